@@ -1,0 +1,11 @@
+//! `basr preview` (not yet implemented).
+
+use super::{Global, Outcome};
+
+/// Not yet implemented.
+#[derive(clap::Args)]
+pub struct Args {}
+
+pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
+    anyhow::bail!("`basr preview` is not implemented yet")
+}

@@ -1,0 +1,11 @@
+//! `basr workspace` (not yet implemented).
+
+use super::{Global, Outcome};
+
+/// Not yet implemented.
+#[derive(clap::Args)]
+pub struct Args {}
+
+pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
+    anyhow::bail!("`basr workspace` is not implemented yet")
+}

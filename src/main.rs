@@ -1,0 +1,74 @@
+//! The `basr` command line: parse arguments, call the library, print results.
+//!
+//! Each subcommand lives in `src/cmd/<name>.rs` with its own `Args` and `run`.
+//! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage.
+
+mod cmd;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+const EXAMPLES: &str = "\
+Examples:
+  basr compile STOP                      # writes STOP.job.json in this folder
+  basr compile \"STOP AHEAD\" --csv sa.csv # two lines, setpoints as CSV too
+  basr preview STOP.job.json -o stop.svg # simulated paint film
+  basr simulate STOP.job.json            # closed-loop check against 6.35 mm
+  basr glyphs --svg alphabet.svg         # the embedded font, drawn
+  basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
+
+Exit codes: 0 success, 1 verdict negative (simulate over tolerance, check found
+problems), 2 bad input or usage.";
+
+/// Offline trajectory-planning compiler for the Big Articulated Stenciling Robot.
+///
+/// basr turns a roadway message ("STOP", "SCHOOL XING") into a job file of
+/// timed setpoints for every actuator of the BASR truck-mounted arm, previews
+/// the paint film it will lay, and simulates the arm in closed loop.
+#[derive(Parser)]
+#[command(name = "basr", version, about, long_about, after_help = EXAMPLES)]
+struct Cli {
+    /// Print nothing but errors on stderr.
+    #[arg(long, short, global = true)]
+    quiet: bool,
+
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Compile(cmd::compile::Args),
+    Glyphs(cmd::glyphs::Args),
+    Preview(cmd::preview::Args),
+    Simulate(cmd::simulate::Args),
+    Robot(cmd::robot::Args),
+    Workspace(cmd::workspace::Args),
+    Pose(cmd::pose::Args),
+    Check(cmd::check::Args),
+}
+
+fn main() -> ExitCode {
+    basr::io::install_interrupt_cleanup();
+    let cli = Cli::parse();
+    let global = cmd::Global { quiet: cli.quiet };
+    let result = match cli.command {
+        Command::Compile(a) => cmd::compile::run(a, &global),
+        Command::Glyphs(a) => cmd::glyphs::run(a, &global),
+        Command::Preview(a) => cmd::preview::run(a, &global),
+        Command::Simulate(a) => cmd::simulate::run(a, &global),
+        Command::Robot(a) => cmd::robot::run(a, &global),
+        Command::Workspace(a) => cmd::workspace::run(a, &global),
+        Command::Pose(a) => cmd::pose::run(a, &global),
+        Command::Check(a) => cmd::check::run(a, &global),
+    };
+    match result {
+        Ok(cmd::Outcome::Success) => ExitCode::SUCCESS,
+        Ok(cmd::Outcome::Negative) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
