@@ -4,8 +4,15 @@
 //! subdivision) → `font` (strokes of glyphs) → `layout` (placed glyphs) →
 //! `plan` (rungs, knots, tilt, path, time law) → `robot` (kinematics,
 //! actuators, encoders) → `job` (the document). `paint` previews a job's
-//! film; `sim` runs it through the arm in closed loop.
+//! film; `sim` runs it through the arm in closed loop; `plot` draws SVG.
 
+pub mod font;
+pub mod geom;
 pub mod io;
 pub mod job;
+pub mod layout;
+pub mod paint;
+pub mod plan;
+pub mod plot;
 pub mod robot;
+pub mod sim;

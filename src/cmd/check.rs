@@ -1,11 +1,86 @@
-//! `basr check` (not yet implemented).
+//! `basr check FILE...`: validate font, robot, marking and job files,
+//! reporting every problem found (exit 1 when any file has problems).
+
+use std::path::PathBuf;
 
 use super::{Global, Outcome};
 
-/// Not yet implemented.
+/// Validate basr files: fonts (.toml), robot descriptions (.toml), marking
+/// files (.toml) and jobs (.json). The kind is recognised from the content.
+///
+/// Example: `basr check STOP.job.json fonts/basr.toml`;
+/// `basr robot --toml | basr check -` reads standard input.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(after_help = "Example:\n  basr check STOP.job.json\n  basr robot --toml | basr check -")]
+pub struct Args {
+    /// Files to check (`-` for standard input).
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+}
 
-pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`basr check` is not implemented yet")
+/// What kind of basr file a text is.
+#[derive(Debug, PartialEq)]
+enum Kind {
+    Job,
+    Font,
+    Robot,
+    Marking,
+}
+
+fn kind_of(text: &str) -> Option<Kind> {
+    let trimmed = text.trim_start();
+    if trimmed.starts_with('{') {
+        return Some(Kind::Job);
+    }
+    let table: toml::Table = toml::from_str(text).ok()?;
+    if table.contains_key("glyphs") || table.contains_key("primitives") {
+        Some(Kind::Font)
+    } else if table.contains_key("arm") {
+        Some(Kind::Robot)
+    } else if table.contains_key("marking") || table.contains_key("lines") {
+        Some(Kind::Marking)
+    } else {
+        None
+    }
+}
+
+/// Problems in one file's text (empty when valid).
+fn problems(text: &str, origin: &str) -> Vec<String> {
+    match kind_of(text) {
+        Some(Kind::Job) => match basr::job::Job::from_str_verified(text, origin) {
+            Ok(_) => vec![],
+            Err(e) => vec![e.to_string()],
+        },
+        Some(k) => vec![format!(
+            "{origin}: checking {k:?} files is not implemented yet"
+        )],
+        None => vec![format!(
+            "{origin}: not a basr file: expected a job (JSON) or a font, robot or marking \
+             description (TOML with a [glyphs], [arm] or [marking] table)"
+        )],
+    }
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    let mut bad = 0usize;
+    for path in &args.files {
+        let origin = path.display().to_string();
+        let text = basr::io::read_text(path)?;
+        let found = problems(&text, &origin);
+        if found.is_empty() {
+            if !global.quiet {
+                eprintln!("{origin}: ok");
+            }
+        } else {
+            bad += 1;
+            for p in found {
+                eprintln!("{p}");
+            }
+        }
+    }
+    Ok(if bad == 0 {
+        Outcome::Success
+    } else {
+        Outcome::Negative
+    })
 }

@@ -307,7 +307,11 @@ impl Job {
         if v.get("format").and_then(|f| f.as_str()) != Some(FORMAT) {
             return Err(JobError::Format {
                 path: p(),
-                found: if format.is_empty() { "missing".into() } else { format },
+                found: if format.is_empty() {
+                    "missing".into()
+                } else {
+                    format
+                },
             });
         }
         match v.get("version").and_then(|x| x.as_u64()) {
@@ -331,12 +335,16 @@ impl Job {
         if stated != actual {
             return Err(JobError::Hash {
                 path: p(),
-                stated: if stated.is_empty() { "nothing".into() } else { stated },
+                stated: if stated.is_empty() {
+                    "nothing".into()
+                } else {
+                    stated
+                },
                 actual,
             });
         }
-        let job: Job =
-            serde_json::from_value(v).map_err(|source| JobError::Structure { path: p(), source })?;
+        let job: Job = serde_json::from_value(v)
+            .map_err(|source| JobError::Structure { path: p(), source })?;
         let robot_actual = job.robot.sha256();
         if robot_actual != job.robot_sha256 {
             return Err(JobError::RobotHash {
@@ -345,7 +353,9 @@ impl Job {
                 actual: robot_actual,
             });
         }
-        job.samples.check_lengths().map_err(|what| JobError::Invalid { path: p(), what })?;
+        job.samples
+            .check_lengths()
+            .map_err(|what| JobError::Invalid { path: p(), what })?;
         Ok(job)
     }
 

@@ -1,0 +1,1 @@
+//! Curves and edges: lines, cardinal splines, conic arcs; evaluation, arc length, subdivision.

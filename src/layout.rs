@@ -1,0 +1,1 @@
+//! Message or marking file → glyphs placed in the road frame.

@@ -1,0 +1,1 @@
+//! Paint: the spray deposition model, the film raster and its metrics.

@@ -1,0 +1,1 @@
+//! SVG drawing shared by glyphs, preview, simulate and workspace.

@@ -1,0 +1,1 @@
+//! Closed-loop simulation: arm and hydraulics plant, sensors, controllers, integrator, report.
