@@ -1,0 +1,1 @@
+//! Stroke order and direction that minimise air travel.

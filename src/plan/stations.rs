@@ -1,0 +1,1 @@
+//! Truck stations: splitting a message so every stroke is reachable from one station.
