@@ -17,6 +17,7 @@ Examples:
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
+  basr completions bash > basr.bash      # shell completions
 
 Exit codes: 0 success, 1 verdict negative (simulate over tolerance, check found
 problems), 2 bad input or usage.";
@@ -47,6 +48,13 @@ enum Command {
     Workspace(cmd::workspace::Args),
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    ///
+    /// Example: `basr completions bash > ~/.local/share/bash-completion/completions/basr`
+    Completions {
+        /// The shell to complete for.
+        shell: clap_complete::Shell,
+    },
 }
 
 fn main() -> ExitCode {
@@ -62,6 +70,11 @@ fn main() -> ExitCode {
         Command::Workspace(a) => cmd::workspace::run(a, &global),
         Command::Pose(a) => cmd::pose::run(a, &global),
         Command::Check(a) => cmd::check::run(a, &global),
+        Command::Completions { shell } => {
+            use clap::CommandFactory;
+            clap_complete::generate(shell, &mut Cli::command(), "basr", &mut std::io::stdout());
+            Ok(cmd::Outcome::Success)
+        }
     };
     match result {
         Ok(cmd::Outcome::Success) => ExitCode::SUCCESS,
