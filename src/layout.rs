@@ -1,1 +1,543 @@
-//! Message or marking file → glyphs placed in the road frame.
+//! Message or marking file → glyphs placed in the road frame (SPEC §2).
+//!
+//! Rules (sources in the comments beside each constant):
+//! - letters sit on the seed's 4 × 25 grid, scaled by `height / 25` in both
+//!   axes (square units, as 001 app. A scales x and y by `letterlength/25`);
+//! - a letter's "up" is +y, the direction of traffic; one word per line, the
+//!   first word nearest the approaching driver (smallest y);
+//! - each line is centred on the lane (x = 0 at the anchor);
+//! - clear space between lines at least 4× and at most 10× the letter height
+//!   (MUTCD §3B.20: "at least four times the height of the characters …
+//!   not more than ten times"); below 4× is an error, above 10× a warning;
+//! - letters are upper case; lower case is accepted and read as upper case
+//!   (the standard pavement alphabet has capitals only, and a crew typing
+//!   `stop` means STOP).
+
+use serde::{Deserialize, Serialize};
+
+/// Letter height when none is given (SPEC §4: 8 ft).
+pub const DEFAULT_LETTER_HEIGHT_M: f64 = 2.44;
+/// Lane width when none is given (SPEC §4: 12 ft).
+pub const DEFAULT_LANE_WIDTH_M: f64 = 3.66;
+/// Height of the letter grid in grid units (001 §2.1: 25 units tall).
+pub const GRID_HEIGHT_UNITS: f64 = 25.0;
+/// Width of one letter's grid in grid units (001 §2.1: 4 units wide).
+pub const GRID_WIDTH_UNITS: f64 = 4.0;
+/// Clear space between adjacent letters' grids, in grid units. The FHWA
+/// Standard Alphabets (1977, pavement markings section; SHS 2004 ch. 6)
+/// give letter-to-letter distances in spacing charts that are not in our
+/// sources; assumed: half a letter grid (2 units, 0.195 m at 8 ft), which
+/// keeps the longest shipped word (SCHOOL, 34 units = 3.32 m) inside a
+/// 3.66 m lane, as the elongated pavement letters are meant to.
+pub const DEFAULT_LETTER_SPACING_UNITS: f64 = 2.0;
+/// Minimum clear space between lines, in letter heights (MUTCD §3B.20).
+pub const MIN_LINE_GAP_HEIGHTS: f64 = 4.0;
+/// Above this clear space between lines, in letter heights, warn (MUTCD §3B.20).
+pub const MAX_LINE_GAP_HEIGHTS: f64 = 10.0;
+
+/// Errors of layout and of marking files.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum LayoutError {
+    #[error("the message is empty: give at least one letter, e.g. `basr compile STOP`")]
+    Empty,
+    #[error(
+        "unsupported character {ch:?} at position {position} of {message:?}: messages take \
+         the letters A–Z (lower case is read as upper case), the digits 0–9 and spaces"
+    )]
+    Unsupported {
+        ch: char,
+        position: usize,
+        message: String,
+    },
+    #[error(
+        "the font has no glyph for {ch:?} (position {position} of {message:?}); \
+         `basr glyphs` lists what it has"
+    )]
+    NoGlyph {
+        ch: char,
+        position: usize,
+        message: String,
+    },
+    #[error(
+        "{word:?} is {width_m:.3} m wide but the lane is {lane_m:.3} m: use a wider lane \
+         (--lane-width), a smaller letter height (--letter-height) or a shorter word"
+    )]
+    TooWide {
+        word: String,
+        width_m: f64,
+        lane_m: f64,
+    },
+    #[error(
+        "clear space between lines is {gap_m:.3} m but must be at least {min_m:.3} m \
+         ({MIN_LINE_GAP_HEIGHTS}× the letter height, MUTCD §3B.20): raise --line-gap"
+    )]
+    GapTooSmall { gap_m: f64, min_m: f64 },
+    #[error("{field} must be a finite number above zero, got {value}")]
+    BadNumber { field: String, value: f64 },
+    #[error("{origin}: {message}")]
+    Marking { origin: String, message: String },
+}
+
+/// The settings of one marking: its lines and how to lay them out.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Marking {
+    /// Lines, first nearest the approaching driver; each one word.
+    pub lines: Vec<String>,
+    pub letter_height_m: f64,
+    /// Clear space between adjacent letters of a word.
+    pub letter_spacing_m: f64,
+    pub lane_width_m: f64,
+    /// Clear space between consecutive lines.
+    pub line_gap_m: f64,
+    /// Road-frame position of the anchor relative to the lane centre at the
+    /// near edge of the first line (SPEC §2); (0, 0) unless a file moves it.
+    pub anchor_x_m: f64,
+    pub anchor_y_m: f64,
+}
+
+/// Optional overrides of a marking's settings (the compile command line).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overrides {
+    pub letter_height_m: Option<f64>,
+    pub lane_width_m: Option<f64>,
+    pub line_gap_m: Option<f64>,
+}
+
+/// The `[marking]` table of a marking file. Unknown keys are errors.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MarkingToml {
+    /// A name for people, e.g. "STOP AHEAD".
+    #[allow(dead_code)] // documentation in the file; the lines are what is painted
+    name: Option<String>,
+    lines: Vec<String>,
+    letter_height_m: Option<f64>,
+    letter_height_ft: Option<f64>,
+    letter_spacing_m: Option<f64>,
+    lane_width_m: Option<f64>,
+    line_gap_m: Option<f64>,
+    anchor_x_m: Option<f64>,
+    anchor_y_m: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MarkingFileToml {
+    marking: MarkingToml,
+}
+
+/// Metres per foot (exact by definition).
+const M_PER_FT: f64 = 0.3048;
+
+impl Marking {
+    /// Default settings for a message typed on the command line: words
+    /// (separated by spaces or newlines) become lines.
+    pub fn from_message(message: &str, o: &Overrides) -> Result<Marking, LayoutError> {
+        let lines: Vec<String> = message
+            .split([' ', '\n'])
+            .filter(|w| !w.is_empty())
+            .map(str::to_string)
+            .collect();
+        let h = o.letter_height_m.unwrap_or(DEFAULT_LETTER_HEIGHT_M);
+        let m = Marking {
+            lines,
+            letter_height_m: h,
+            letter_spacing_m: DEFAULT_LETTER_SPACING_UNITS * h / GRID_HEIGHT_UNITS,
+            lane_width_m: o.lane_width_m.unwrap_or(DEFAULT_LANE_WIDTH_M),
+            line_gap_m: o.line_gap_m.unwrap_or(MIN_LINE_GAP_HEIGHTS * h),
+            anchor_x_m: 0.0,
+            anchor_y_m: 0.0,
+        };
+        m.validate_message(message)?;
+        Ok(m)
+    }
+
+    /// Parse a marking file (TOML with one `[marking]` table); `origin`
+    /// names it in messages. Command-line overrides win over the file.
+    pub fn from_toml(text: &str, origin: &str, o: &Overrides) -> Result<Marking, LayoutError> {
+        let err = |message: String| LayoutError::Marking {
+            origin: origin.to_string(),
+            message,
+        };
+        let file: MarkingFileToml =
+            toml::from_str(text).map_err(|e| err(toml_message(text, &e)))?;
+        let t = file.marking;
+        let h_file = match (t.letter_height_m, t.letter_height_ft) {
+            (Some(_), Some(_)) => {
+                return Err(err(
+                    "give letter_height_m or letter_height_ft, not both".into()
+                ))
+            }
+            (Some(m), None) => Some(m),
+            (None, Some(ft)) => Some(ft * M_PER_FT),
+            (None, None) => None,
+        };
+        let h = o
+            .letter_height_m
+            .or(h_file)
+            .unwrap_or(DEFAULT_LETTER_HEIGHT_M);
+        let lines: Vec<String> = t.lines.iter().map(|l| l.trim().to_string()).collect();
+        for (i, l) in lines.iter().enumerate() {
+            if l.contains(' ') {
+                return Err(err(format!(
+                    "lines[{i}] = {l:?} holds several words; put one word per line \
+                     (multi-word messages stack one word per line)"
+                )));
+            }
+        }
+        let m = Marking {
+            lines,
+            letter_height_m: h,
+            letter_spacing_m: t
+                .letter_spacing_m
+                .unwrap_or(DEFAULT_LETTER_SPACING_UNITS * h / GRID_HEIGHT_UNITS),
+            lane_width_m: o
+                .lane_width_m
+                .or(t.lane_width_m)
+                .unwrap_or(DEFAULT_LANE_WIDTH_M),
+            line_gap_m: o
+                .line_gap_m
+                .or(t.line_gap_m)
+                .unwrap_or(MIN_LINE_GAP_HEIGHTS * h),
+            anchor_x_m: t.anchor_x_m.unwrap_or(0.0),
+            anchor_y_m: t.anchor_y_m.unwrap_or(0.0),
+        };
+        let joined = m.message();
+        m.validate_message(&joined)
+            .map_err(|e| err(e.to_string()))?;
+        Ok(m)
+    }
+
+    /// The message as one string, lines joined with `\n` (SPEC §3 `message`).
+    pub fn message(&self) -> String {
+        self.lines.join("\n")
+    }
+
+    /// A file name stem for the job: lines joined with `_`.
+    pub fn file_stem(&self) -> String {
+        self.lines.join("_")
+    }
+
+    fn validate_message(&self, message: &str) -> Result<(), LayoutError> {
+        for (i, ch) in message.chars().enumerate() {
+            if !(ch.is_ascii_alphanumeric() || ch == ' ' || ch == '\n') {
+                return Err(LayoutError::Unsupported {
+                    ch,
+                    position: i + 1,
+                    message: message.to_string(),
+                });
+            }
+        }
+        if self.lines.iter().all(|l| l.is_empty()) {
+            return Err(LayoutError::Empty);
+        }
+        for (field, v) in [
+            ("letter height", self.letter_height_m),
+            ("lane width", self.lane_width_m),
+            ("line gap", self.line_gap_m),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(LayoutError::BadNumber {
+                    field: field.into(),
+                    value: v,
+                });
+            }
+        }
+        for (field, v) in [
+            ("letter spacing", self.letter_spacing_m),
+            ("anchor x", self.anchor_x_m),
+            ("anchor y", self.anchor_y_m),
+        ] {
+            if !v.is_finite() || (field == "letter spacing" && v < 0.0) {
+                return Err(LayoutError::BadNumber {
+                    field: field.into(),
+                    value: v,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A toml error as `line L, column C: what` (toml's own text already names
+/// the line and column; keep it on one line).
+fn toml_message(text: &str, e: &toml::de::Error) -> String {
+    let what = e.message().to_string();
+    match e.span() {
+        Some(span) => {
+            let (line, col) = line_col(text, span.start);
+            format!("line {line}, column {col}: {what}")
+        }
+        None => what,
+    }
+}
+
+/// 1-based line and column of byte offset `at` in `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let before = &text[..at.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before
+        .rsplit('\n')
+        .next()
+        .map(|l| l.chars().count())
+        .unwrap_or(0)
+        + 1;
+    (line, col)
+}
+
+/// Every problem of a marking file's text (empty when valid); for `basr check`.
+pub fn check_marking_source(text: &str, origin: &str) -> Vec<String> {
+    let m = match Marking::from_toml(text, origin, &Overrides::default()) {
+        Ok(m) => m,
+        Err(e) => return vec![e.to_string()],
+    };
+    // Width needs a font; the grid width is the same for every glyph.
+    match place(&m, |_| Some(GRID_WIDTH_UNITS)) {
+        Ok(_) => vec![],
+        Err(e) => vec![format!("{origin}: {e}")],
+    }
+}
+
+/// One letter placed on the road.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedLetter {
+    pub ch: char,
+    /// Line index (0 = nearest the approaching driver).
+    pub line: usize,
+    /// Road-frame position of the glyph grid's origin (its lower-left corner).
+    pub origin_m: [f64; 2],
+    /// Metres per grid unit (both axes).
+    pub scale_m: f64,
+}
+
+impl PlacedLetter {
+    /// Glyph-grid point (units) → road frame (m). Letter up is +y (SPEC §2).
+    pub fn to_road(&self, u: f64, v: f64) -> [f64; 2] {
+        [
+            self.origin_m[0] + self.scale_m * u,
+            self.origin_m[1] + self.scale_m * v,
+        ]
+    }
+}
+
+/// A laid-out marking: letters in the road frame, and notes for a person.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Placed {
+    pub letters: Vec<PlacedLetter>,
+    /// Width of each line (m), for the summary.
+    pub line_widths_m: Vec<f64>,
+    /// Road-frame y of each line's near edge.
+    pub line_y_m: Vec<f64>,
+    pub warnings: Vec<String>,
+}
+
+/// Place the marking's letters. `width_units(ch)` gives a glyph's grid width
+/// (grid units) or `None` when the font has no glyph for `ch`.
+pub fn place(
+    m: &Marking,
+    width_units: impl Fn(char) -> Option<f64>,
+) -> Result<Placed, LayoutError> {
+    let scale = m.letter_height_m / GRID_HEIGHT_UNITS; // 001 app. A: scalesize = letterlength/25
+    let min_gap = MIN_LINE_GAP_HEIGHTS * m.letter_height_m;
+    let mut warnings = vec![];
+    if m.lines.len() > 1 {
+        // Compare with a small tolerance so a gap given as exactly 4 h passes.
+        if m.line_gap_m < min_gap * (1.0 - 1e-9) {
+            return Err(LayoutError::GapTooSmall {
+                gap_m: m.line_gap_m,
+                min_m: min_gap,
+            });
+        }
+        if m.line_gap_m > MAX_LINE_GAP_HEIGHTS * m.letter_height_m {
+            warnings.push(format!(
+                "clear space between lines {:.2} m is more than {MAX_LINE_GAP_HEIGHTS}× the \
+                 letter height ({:.2} m); MUTCD §3B.20 advises against it: drivers read the \
+                 lines as separate messages",
+                m.line_gap_m,
+                MAX_LINE_GAP_HEIGHTS * m.letter_height_m
+            ));
+        }
+    }
+    let message = m.message();
+    let mut letters = vec![];
+    let mut line_widths_m = vec![];
+    let mut line_y_m = vec![];
+    let mut position = 0usize;
+    for (li, word) in m.lines.iter().enumerate() {
+        let mut widths = vec![];
+        for ch in word.chars() {
+            position += 1;
+            let up = ch.to_ascii_uppercase();
+            let w = width_units(up).ok_or(LayoutError::NoGlyph {
+                ch,
+                position,
+                message: message.clone(),
+            })?;
+            widths.push((up, w * scale));
+        }
+        position += 1; // the separator
+        let n = widths.len();
+        let width: f64 = widths.iter().map(|(_, w)| w).sum::<f64>()
+            + m.letter_spacing_m * n.saturating_sub(1) as f64;
+        // The word must fit the lane where it is anchored.
+        let reach = width / 2.0 + m.anchor_x_m.abs();
+        if reach > m.lane_width_m / 2.0 + 1e-12 {
+            return Err(LayoutError::TooWide {
+                word: word.to_uppercase(),
+                width_m: width + 2.0 * m.anchor_x_m.abs(),
+                lane_m: m.lane_width_m,
+            });
+        }
+        let y = m.anchor_y_m + li as f64 * (m.letter_height_m + m.line_gap_m);
+        let mut x = m.anchor_x_m - width / 2.0;
+        for (ch, w) in widths {
+            letters.push(PlacedLetter {
+                ch,
+                line: li,
+                origin_m: [x, y],
+                scale_m: scale,
+            });
+            x += w + m.letter_spacing_m;
+        }
+        line_widths_m.push(width);
+        line_y_m.push(y);
+    }
+    Ok(Placed {
+        letters,
+        line_widths_m,
+        line_y_m,
+        warnings,
+    })
+}
+
+/// The marking files shipped with basr (markings/*.toml), by file stem.
+pub const SHIPPED_MARKINGS: &[(&str, &str)] = &[
+    ("stop", include_str!("../markings/stop.toml")),
+    ("stop_ahead", include_str!("../markings/stop_ahead.toml")),
+    ("school_xing", include_str!("../markings/school_xing.toml")),
+    ("bus_only", include_str!("../markings/bus_only.toml")),
+    ("ped_xing", include_str!("../markings/ped_xing.toml")),
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(_: char) -> Option<f64> {
+        Some(GRID_WIDTH_UNITS)
+    }
+
+    #[test]
+    fn stop_is_centred_and_upright() {
+        let m = Marking::from_message("STOP", &Overrides::default()).unwrap();
+        let p = place(&m, grid).unwrap();
+        assert_eq!(p.letters.len(), 4);
+        let s = 2.44 / 25.0;
+        // 4 letters of 4 units and 3 gaps of 2 units = 22 units.
+        assert!((p.line_widths_m[0] - 22.0 * s).abs() < 1e-12);
+        let left = p.letters[0].to_road(0.0, 0.0);
+        let right = p.letters[3].to_road(4.0, 25.0);
+        assert!((left[0] + right[0]).abs() < 1e-12, "centred on x = 0");
+        assert!((left[1]).abs() < 1e-12 && (right[1] - 2.44).abs() < 1e-12);
+        assert_eq!(p.letters.iter().map(|l| l.ch).collect::<String>(), "STOP");
+    }
+
+    #[test]
+    fn first_word_nearest_driver_with_gap() {
+        let m = Marking::from_message("stop ahead", &Overrides::default()).unwrap();
+        let p = place(&m, grid).unwrap();
+        assert_eq!(p.line_y_m.len(), 2);
+        assert_eq!(p.letters[0].ch, 'S');
+        assert_eq!(p.letters[0].line, 0);
+        let clear = p.line_y_m[1] - (p.line_y_m[0] + 2.44);
+        assert!(clear >= 4.0 * 2.44 - 1e-9, "gap {clear}");
+        assert!(p
+            .letters
+            .iter()
+            .filter(|l| l.line == 1)
+            .all(|l| l.origin_m[1] > 2.44));
+    }
+
+    #[test]
+    fn bad_messages_are_named() {
+        let o = Overrides::default();
+        assert_eq!(
+            Marking::from_message("   ", &o).unwrap_err(),
+            LayoutError::Empty
+        );
+        match Marking::from_message("STO!P", &o).unwrap_err() {
+            LayoutError::Unsupported { ch, position, .. } => {
+                assert_eq!((ch, position), ('!', 4))
+            }
+            e => panic!("{e}"),
+        }
+        let m = Marking::from_message("ABCDEFGHIJKLMNOPQRSTUVWXYZ", &o).unwrap();
+        let e = place(&m, grid).unwrap_err();
+        assert!(e.to_string().contains("lane is 3.660 m"), "{e}");
+        let gap = Overrides {
+            line_gap_m: Some(3.0),
+            ..o.clone()
+        };
+        let m = Marking::from_message("STOP AHEAD", &gap).unwrap();
+        assert!(matches!(
+            place(&m, grid),
+            Err(LayoutError::GapTooSmall { .. })
+        ));
+        let wide = Overrides {
+            line_gap_m: Some(30.0),
+            ..o
+        };
+        let m = Marking::from_message("STOP AHEAD", &wide).unwrap();
+        assert_eq!(place(&m, grid).unwrap().warnings.len(), 1);
+    }
+
+    #[test]
+    fn missing_glyph_named() {
+        let m = Marking::from_message("A7", &Overrides::default()).unwrap();
+        let e = place(&m, |c| c.is_ascii_alphabetic().then_some(4.0)).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                LayoutError::NoGlyph {
+                    ch: '7',
+                    position: 2,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn shipped_markings_are_valid() {
+        for (name, text) in SHIPPED_MARKINGS {
+            let p = check_marking_source(text, name);
+            assert!(p.is_empty(), "{name}: {p:?}");
+        }
+    }
+
+    #[test]
+    fn unknown_key_names_line_and_column() {
+        let text = "[marking]\nlines = [\"STOP\"]\nletter_hieght_m = 2.0\n";
+        let p = check_marking_source(text, "x.toml");
+        assert_eq!(p.len(), 1);
+        assert!(p[0].starts_with("x.toml: line 3, column 1"), "{}", p[0]);
+        assert!(p[0].contains("letter_hieght_m"), "{}", p[0]);
+    }
+
+    #[test]
+    fn file_settings_and_overrides() {
+        let text =
+            "[marking]\nlines = [\"BUS\", \"ONLY\"]\nletter_height_ft = 6.0\nline_gap_m = 10.0\n";
+        let m = Marking::from_toml(text, "f", &Overrides::default()).unwrap();
+        assert!((m.letter_height_m - 1.8288).abs() < 1e-12);
+        assert_eq!(m.line_gap_m, 10.0);
+        let o = Overrides {
+            letter_height_m: Some(2.0),
+            ..Default::default()
+        };
+        let m = Marking::from_toml(text, "f", &o).unwrap();
+        assert_eq!(m.letter_height_m, 2.0);
+        assert_eq!(m.message(), "BUS\nONLY");
+    }
+}

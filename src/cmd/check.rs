@@ -51,6 +51,7 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
             Ok(_) => vec![],
             Err(e) => vec![e.to_string()],
         },
+        Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),
         Some(k) => vec![format!(
             "{origin}: checking {k:?} files is not implemented yet"
         )],

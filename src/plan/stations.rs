@@ -1,1 +1,363 @@
 //! Truck stations: splitting a message so every stroke is reachable from one station.
+//!
+//! The truck drives with the traffic (+y of the road frame) and the arm
+//! paints behind it, so every station has heading −π/2 (SPEC §2) and the
+//! truck visits stations in increasing y. Items (strokes or passes) are
+//! taken nearest the driver first and added to the current station while
+//! one base position still reaches all of them with the required margin
+//! (a greedy cover along the lane, which gives the fewest stations when
+//! reach is an interval along y); the station is then put where the worst
+//! margin over its items is largest.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::job::Station;
+
+/// Heading of every station: truck with the traffic, arm behind (SPEC §2).
+pub const HEADING_RAD: f64 = -FRAC_PI_2;
+/// Margin (m) every painted point keeps from the edge of the reachable
+/// region; assumed: covers the tilt's offset of the tip from the yaw axis
+/// (≤ 0.03 m at 15°) and leaves room for the controller's overshoot.
+pub const DEFAULT_MARGIN_M: f64 = 0.05;
+/// Steps of the search over the station's position along the lane (m).
+const Y_COARSE_M: f64 = 0.05;
+const Y_STEP_M: f64 = 0.005;
+/// No arm of this class reaches further (m); bounds the search.
+const MAX_REACH_M: f64 = 10.0;
+/// Step of the search over the station's lateral position (m).
+const X_STEP_M: f64 = 0.05;
+
+/// Errors of station planning.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum StationError {
+    #[error(
+        "stroke {item} cannot be reached from any truck position in the lane: its point \
+         ({x:.3}, {y:.3}) m stays {short_m:.3} m outside the arm's reach (margin {margin_m} m); \
+         use a smaller --letter-height or a robot with more reach"
+    )]
+    Unreachable {
+        item: usize,
+        x: f64,
+        y: f64,
+        short_m: f64,
+        margin_m: f64,
+    },
+}
+
+/// The SPEC §4 reach of the BASR arm, used until a robot description
+/// supplies its own: base rotation window, extension range and offset.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SectorReach {
+    /// θ1 safety window (SPEC §4: 0.7854–2.3562 rad).
+    pub theta_min: f64,
+    pub theta_max: f64,
+    /// Extension range (SPEC §4: 1.55 m retracted, about 5.36 m extended).
+    pub r_min: f64,
+    pub r_max: f64,
+    /// Arm–end-effector offset (SPEC §4: 0.01 m).
+    pub a2: f64,
+}
+
+impl Default for SectorReach {
+    fn default() -> Self {
+        SectorReach {
+            theta_min: std::f64::consts::FRAC_PI_4, // SPEC §4: 0.7854
+            theta_max: 3.0 * std::f64::consts::FRAC_PI_4, // SPEC §4: 2.3562
+            r_min: 1.55,                            // SPEC §4
+            r_max: 1.55 + 8.333 * 0.457,            // SPEC §4: 8.333 × 0.457 m stroke
+            a2: 0.01,                               // SPEC §4
+        }
+    }
+}
+
+impl SectorReach {
+    /// Signed distance-like margin (m) of a base-frame point: positive inside
+    /// the reachable region, the smallest of the distances to its four edges.
+    pub fn margin(&self, x_b: f64, y_b: f64) -> f64 {
+        let w2 = x_b * x_b + y_b * y_b;
+        // SPEC §2: W = R·u(θ) + a2·u(θ − π/2), so |W|² = R² + a2².
+        let r = (w2 - self.a2 * self.a2).max(0.0).sqrt();
+        let theta = y_b.atan2(x_b) + self.a2.atan2(r);
+        let lateral = |d: f64| {
+            if d.abs() < FRAC_PI_2 {
+                r * d.sin()
+            } else {
+                -r - d.abs()
+            }
+        };
+        (r - self.r_min)
+            .min(self.r_max - r)
+            .min(lateral(theta - self.theta_min))
+            .min(lateral(self.theta_max - theta))
+    }
+}
+
+/// Road-frame point → base frame of a station (inverse of SPEC §2's map).
+pub fn road_to_base(s: &Station, p: [f64; 2]) -> [f64; 2] {
+    let a = -(s.heading_rad - FRAC_PI_2);
+    let (dx, dy) = (p[0] - s.x_m, p[1] - s.y_m);
+    [dx * a.cos() - dy * a.sin(), dx * a.sin() + dy * a.cos()]
+}
+
+/// Base-frame point of a station → road frame (SPEC §2).
+pub fn base_to_road(s: &Station, p: [f64; 2]) -> [f64; 2] {
+    let a = s.heading_rad - FRAC_PI_2;
+    [
+        s.x_m + p[0] * a.cos() - p[1] * a.sin(),
+        s.y_m + p[0] * a.sin() + p[1] * a.cos(),
+    ]
+}
+
+/// Stations and which station paints each item.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StationPlan {
+    pub stations: Vec<Station>,
+    /// `station_of[item]`: index into `stations`.
+    pub station_of: Vec<usize>,
+    /// Worst margin (m) of each station over its items.
+    pub margin_m: Vec<f64>,
+}
+
+/// Plan stations for `items` (each a set of road-frame points that must be
+/// reachable from one station). `reach_margin(x_b, y_b)` is the robot's
+/// margin in its base frame; the truck's axis stays inside the lane
+/// (|x| ≤ `lane_half_width_m`).
+pub fn plan(
+    items: &[Vec<[f64; 2]>],
+    lane_half_width_m: f64,
+    margin_m: f64,
+    reach_margin: impl Fn(f64, f64) -> f64,
+) -> Result<StationPlan, StationError> {
+    let ymin = |pts: &[[f64; 2]]| pts.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    let xmin = |pts: &[[f64; 2]]| pts.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+    let mut idx: Vec<usize> = (0..items.len()).collect();
+    idx.sort_by(|&a, &b| {
+        ymin(&items[a])
+            .total_cmp(&ymin(&items[b]))
+            .then(xmin(&items[a]).total_cmp(&xmin(&items[b])))
+            .then(a.cmp(&b))
+    });
+    let mut out = StationPlan {
+        stations: vec![],
+        station_of: vec![0; items.len()],
+        margin_m: vec![],
+    };
+    let mut group: Vec<usize> = vec![];
+    let mut best: Option<(Station, f64)> = None;
+    for &i in &idx {
+        let mut trial = group.clone();
+        trial.push(i);
+        let pose = best_pose(items, &trial, lane_half_width_m, margin_m, &reach_margin);
+        if pose.1 >= margin_m {
+            group = trial;
+            best = Some(pose);
+            continue;
+        }
+        // The item does not fit the current station: close it, start anew.
+        if let Some((s, m)) = best.take() {
+            close(&mut out, &group, s, m);
+        }
+        let alone = best_pose(items, &[i], lane_half_width_m, margin_m, &reach_margin);
+        if alone.1 < margin_m {
+            let (x, y) = worst_point(&items[i], &alone.0, &reach_margin);
+            return Err(StationError::Unreachable {
+                item: i,
+                x,
+                y,
+                short_m: margin_m - alone.1,
+                margin_m,
+            });
+        }
+        group = vec![i];
+        best = Some(alone);
+    }
+    if let Some((s, m)) = best {
+        close(&mut out, &group, s, m);
+    }
+    Ok(out)
+}
+
+fn close(out: &mut StationPlan, group: &[usize], s: Station, m: f64) {
+    let k = out.stations.len();
+    for &g in group {
+        out.station_of[g] = k;
+    }
+    out.stations.push(s);
+    out.margin_m.push(m);
+}
+
+fn worst_margin(
+    items: &[Vec<[f64; 2]>],
+    group: &[usize],
+    s: &Station,
+    reach_margin: &impl Fn(f64, f64) -> f64,
+) -> f64 {
+    let mut worst = f64::INFINITY;
+    for &g in group {
+        for p in &items[g] {
+            let b = road_to_base(s, *p);
+            worst = worst.min(reach_margin(b[0], b[1]));
+        }
+    }
+    worst
+}
+
+fn worst_point(
+    pts: &[[f64; 2]],
+    s: &Station,
+    reach_margin: &impl Fn(f64, f64) -> f64,
+) -> (f64, f64) {
+    let mut worst = (f64::INFINITY, 0.0, 0.0);
+    for p in pts {
+        let b = road_to_base(s, *p);
+        let m = reach_margin(b[0], b[1]);
+        if m < worst.0 {
+            worst = (m, p[0], p[1]);
+        }
+    }
+    (worst.1, worst.2)
+}
+
+/// The station (heading −π/2) whose worst margin over `group` is largest.
+/// The lane centre is tried first and kept when it gives `want_m`; a
+/// lateral offset must beat it by 1 mm. Deterministic.
+fn best_pose(
+    items: &[Vec<[f64; 2]>],
+    group: &[usize],
+    lane_half_width_m: f64,
+    want_m: f64,
+    reach_margin: &impl Fn(f64, f64) -> f64,
+) -> (Station, f64) {
+    let pts = || group.iter().flat_map(|&g| items[g].iter());
+    let y_top = pts().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+    let y_low = pts().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    // No arm reaches further than this behind its axis (generous bound).
+    let span = (y_low + MAX_REACH_M - y_top).max(0.0);
+    let n_x = (lane_half_width_m / X_STEP_M).floor().max(0.0) as i64;
+    let mut xs = vec![0.0];
+    for k in 1..=n_x {
+        xs.push(k as f64 * X_STEP_M);
+        xs.push(-(k as f64) * X_STEP_M);
+    }
+    let at = |x: f64, y: f64| {
+        let s = Station {
+            x_m: x,
+            y_m: y,
+            heading_rad: HEADING_RAD,
+        };
+        let m = worst_margin(items, group, &s, reach_margin);
+        (s, m)
+    };
+    let mut best = at(0.0, y_top);
+    for &x in &xs {
+        // Coarse scan along the lane, then a fine one around the best.
+        let mut local = at(x, y_top);
+        let n = (span / Y_COARSE_M).ceil() as usize;
+        for k in 1..=n {
+            let c = at(x, y_top + k as f64 * Y_COARSE_M);
+            if c.1 > local.1 {
+                local = c;
+            }
+        }
+        let y0 = local.0.y_m;
+        let n_fine = (Y_COARSE_M / Y_STEP_M).round() as i64;
+        for k in -n_fine..=n_fine {
+            let y = y0 + k as f64 * Y_STEP_M;
+            if y < y_top {
+                continue;
+            }
+            let c = at(x, y);
+            if c.1 > local.1 {
+                local = c;
+            }
+        }
+        let bias = if x == 0.0 { 0.0 } else { 1e-3 };
+        if local.1 > best.1 + bias {
+            best = local;
+        }
+        if x == 0.0 && best.1 >= want_m {
+            break; // the lane centre works: keep the truck there
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn box_pts(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
+        let mut v = vec![];
+        for i in 0..=10 {
+            let t = i as f64 / 10.0;
+            v.push([x0 + t * (x1 - x0), y0]);
+            v.push([x0 + t * (x1 - x0), y1]);
+            v.push([x0, y0 + t * (y1 - y0)]);
+            v.push([x1, y0 + t * (y1 - y0)]);
+        }
+        v
+    }
+
+    #[test]
+    fn frames_round_trip_and_behind_the_truck() {
+        let s = Station {
+            x_m: 0.3,
+            y_m: 5.0,
+            heading_rad: HEADING_RAD,
+        };
+        // θ1 = π/2 (straight back) at R = 2 lands 2 m behind the truck.
+        let p = base_to_road(&s, [0.0, 2.0]);
+        assert!((p[0] - 0.3).abs() < 1e-12 && (p[1] - 3.0).abs() < 1e-12);
+        let b = road_to_base(&s, [1.0, 1.0]);
+        let back = base_to_road(&s, b);
+        assert!((back[0] - 1.0).abs() < 1e-12 && (back[1] - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn sector_margin_signs() {
+        let r = SectorReach::default();
+        assert!(r.margin(0.0, 3.0) > 1.0);
+        assert!(r.margin(0.0, 1.0) < 0.0, "inside r_min");
+        assert!(r.margin(0.0, 6.0) < 0.0, "beyond r_max");
+        assert!(r.margin(3.0, 1.0) < 0.0, "outside the θ1 window");
+        assert!(r.margin(0.0, -3.0) < 0.0, "in front of the truck");
+    }
+
+    #[test]
+    fn one_word_one_station_two_lines_two_stations() {
+        let r = SectorReach::default();
+        let m = |x: f64, y: f64| r.margin(x, y);
+        // STOP: four letters 0.39 m wide in a 2.15 m line, 2.44 m tall.
+        let mut items: Vec<Vec<[f64; 2]>> = (0..4)
+            .map(|i| {
+                box_pts(
+                    -1.07 + 0.585 * i as f64,
+                    0.0,
+                    -0.68 + 0.585 * i as f64,
+                    2.44,
+                )
+            })
+            .collect();
+        let p = plan(&items, 1.83, DEFAULT_MARGIN_M, m).unwrap();
+        assert_eq!(p.stations.len(), 1);
+        assert!(p.margin_m[0] >= DEFAULT_MARGIN_M);
+        assert!(p.stations[0].y_m > 2.44, "truck ahead of the letters");
+        // A second line 9.76 m further on needs its own station.
+        items.push(box_pts(-1.0, 12.2, 1.0, 14.64));
+        let p = plan(&items, 1.83, DEFAULT_MARGIN_M, m).unwrap();
+        assert_eq!(p.stations.len(), 2);
+        assert_eq!(p.station_of, vec![0, 0, 0, 0, 1]);
+        assert!(p.stations[1].y_m > p.stations[0].y_m);
+    }
+
+    #[test]
+    fn too_tall_is_unreachable() {
+        let r = SectorReach::default();
+        let items = vec![box_pts(-0.2, 0.0, 0.2, 6.0)];
+        let e = plan(&items, 1.83, DEFAULT_MARGIN_M, |x, y| r.margin(x, y)).unwrap_err();
+        assert!(
+            matches!(e, StationError::Unreachable { item: 0, .. }),
+            "{e}"
+        );
+    }
+}
