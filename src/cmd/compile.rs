@@ -1,11 +1,220 @@
-//! `basr compile` (not yet implemented).
+//! `basr compile`: message or marking file → job file, and optionally the
+//! setpoint CSV and the Adept V+ program.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use basr::layout::Overrides;
+use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
 
 use super::{Global, Outcome};
 
-/// Not yet implemented.
-#[derive(clap::Args)]
-pub struct Args {}
+/// Tilt method for the fan nozzle (001 §2.5).
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum TiltArg {
+    /// Nozzle held upright.
+    None,
+    /// Trapezoid-bisector method (001 eq. 2.11–2.12).
+    Trapezoid,
+    /// Quadrilateral-bisector method (001 eq. 2.13–2.20).
+    Quadrilateral,
+}
 
-pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`basr compile` is not implemented yet")
+/// Compile a roadway message into a job of timed actuator setpoints.
+///
+/// Words stack one per line, the first nearest the approaching driver; each
+/// line is centred in the lane. The job (JSON) holds the robot description,
+/// the stations where the truck stops, and one setpoint per control period
+/// for every actuator. Without -o it is written as <MESSAGE>.job.json
+/// (spaces → _) in the current folder. Same input, same bytes.
+#[derive(clap::Args)]
+#[command(after_help = "\
+Examples:
+  basr compile STOP                               # writes STOP.job.json
+  basr compile \"STOP AHEAD\" --csv sa.csv          # also the setpoint CSV
+  basr compile --marking markings/school_xing.toml --adept school.v2
+  basr compile BUS --letter-height 1.83 --tilt none --json")]
+pub struct Args {
+    /// The message: letters A–Z (lower case is read as upper case), digits
+    /// and spaces; each word is painted as one line.
+    #[arg(required_unless_present = "marking", conflicts_with = "marking")]
+    pub message: Option<String>,
+    /// A marking file (TOML, see markings/) giving the lines and layout.
+    #[arg(long, value_name = "FILE")]
+    pub marking: Option<PathBuf>,
+    /// Job file to write [default: <MESSAGE>.job.json].
+    #[arg(short, long, value_name = "JOB")]
+    pub output: Option<PathBuf>,
+    /// Also write the setpoints as CSV (SPEC §3 columns).
+    #[arg(long, value_name = "CSV")]
+    pub csv: Option<PathBuf>,
+    /// Also write an Adept V+ program (move trans / speed lines, mm and degrees).
+    #[arg(long, value_name = "FILE")]
+    pub adept: Option<PathBuf>,
+    /// Font name or file [default: the embedded font].
+    #[arg(long, value_name = "F")]
+    pub font: Option<String>,
+    /// Robot description file [default: the embedded BASR].
+    #[arg(long, value_name = "F")]
+    pub robot: Option<PathBuf>,
+    /// Nozzle tilt method.
+    #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
+    pub tilt: TiltArg,
+    /// Letter height in metres [default: 2.44, or the marking file's].
+    #[arg(long, value_name = "M")]
+    pub letter_height: Option<f64>,
+    /// Lane width in metres [default: 3.66, or the marking file's].
+    #[arg(long, value_name = "M")]
+    pub lane_width: Option<f64>,
+    /// Clear space between lines in metres, at least 4× the letter height
+    /// [default: 4× the letter height, or the marking file's].
+    #[arg(long, value_name = "M")]
+    pub line_gap: Option<f64>,
+    /// Largest distance between rungs along a stroke, in millimetres.
+    #[arg(long, value_name = "MM", default_value_t = 20.0)]
+    pub rung_spacing_mm: f64,
+    /// Setpoint period in seconds (the controller samples at 0.005 s).
+    #[arg(long, value_name = "S", default_value_t = basr::plan::compile::DEFAULT_PERIOD_S)]
+    pub period_s: f64,
+    /// Switch the gun on this many seconds before a stroke starts.
+    #[arg(long, value_name = "S", default_value_t = 0.0)]
+    pub gun_lead_s: f64,
+    /// Switch the gun off this many seconds before a stroke ends.
+    #[arg(long, value_name = "S", default_value_t = 0.0)]
+    pub gun_lag_s: f64,
+    /// Print the summary as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// File name stem for a message: spaces → `_`, and nothing that would leave
+/// the current folder.
+fn stem_of(text: &str) -> String {
+    text.split_whitespace()
+        .collect::<Vec<_>>()
+        .join("_")
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    let source = match (&args.message, &args.marking) {
+        (Some(m), None) => Source::Message(m.clone()),
+        (None, Some(path)) => Source::Marking {
+            text: basr::io::read_text(path)?,
+            origin: path.display().to_string(),
+        },
+        _ => anyhow::bail!("give a MESSAGE or --marking FILE (not both)"),
+    };
+    let req = CompileRequest {
+        source,
+        overrides: Overrides {
+            letter_height_m: args.letter_height,
+            lane_width_m: args.lane_width,
+            line_gap_m: args.line_gap,
+        },
+        font: args.font.clone(),
+        robot: args.robot.clone(),
+        tilt: match args.tilt {
+            TiltArg::None => Tilt::None,
+            TiltArg::Trapezoid => Tilt::Trapezoid,
+            TiltArg::Quadrilateral => Tilt::Quadrilateral,
+        },
+        rung_spacing_m: args.rung_spacing_mm * 1e-3,
+        period_s: args.period_s,
+        gun_lead_s: args.gun_lead_s,
+        gun_lag_s: args.gun_lag_s,
+        ..CompileRequest::message("")
+    };
+    let job = compile_job(&req)?;
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
+    // Write the extras first, the job last; on any failure remove what this
+    // run wrote so no partial set of files is left behind.
+    let mut written: Vec<PathBuf> = vec![];
+    let result = (|| -> anyhow::Result<()> {
+        if let Some(csv) = &args.csv {
+            basr::job::csv::write(&job.samples, csv)?;
+            written.push(csv.clone());
+        }
+        if let Some(adept) = &args.adept {
+            basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+            written.push(adept.clone());
+        }
+        job.write(&out)
+            .with_context(|| format!("cannot write the job to {}", out.display()))?;
+        Ok(())
+    })();
+    if let Err(e) = result {
+        for p in &written {
+            let _ = std::fs::remove_file(p);
+        }
+        return Err(e);
+    }
+    let s = &job.summary;
+    if args.json {
+        let v = serde_json::json!({
+            "job": out.display().to_string(),
+            "csv": args.csv.as_ref().map(|p| p.display().to_string()),
+            "adept": args.adept.as_ref().map(|p| p.display().to_string()),
+            "message": job.message,
+            "stations": job.stations,
+            "samples": job.samples.len(),
+            "control_period_s": job.control_period_s,
+            "summary": s,
+            "sha256": job.sha256,
+        });
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    if !global.quiet {
+        print_summary(&job, &out, &args);
+    }
+    Ok(Outcome::Success)
+}
+
+fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
+    let s = &job.summary;
+    eprintln!(
+        "{}: {:?} in {} station(s), {} stroke(s), {} setpoints every {} s",
+        out.display(),
+        job.message.replace('\n', " / "),
+        job.stations.len(),
+        s.strokes,
+        job.samples.len(),
+        job.control_period_s
+    );
+    eprintln!(
+        "  duration {:.1} s: paint {:.1} s, air {:.1} s; paint sprayed {:.2} L",
+        s.duration_s,
+        s.paint_time_s,
+        s.air_time_s,
+        s.paint_volume_m3 * 1e3
+    );
+    for (i, st) in job.stations.iter().enumerate() {
+        eprintln!(
+            "  station {i}: arm axis at x {:+.3} m, y {:.3} m",
+            st.x_m, st.y_m
+        );
+    }
+    if let Some(c) = &args.csv {
+        eprintln!("  setpoints: {}", c.display());
+    }
+    if let Some(a) = &args.adept {
+        eprintln!("  Adept V+ program: {}", a.display());
+    }
+    if !s.warnings.is_empty() {
+        eprintln!("  {} warning(s):", s.warnings.len());
+        for w in &s.warnings {
+            eprintln!("  warning: {}", w.message);
+        }
+    }
 }

@@ -8,6 +8,7 @@
 //! shortest round-trip form; for the document hash the top-level `sha256`
 //! key is removed first.
 
+pub mod adept;
 pub mod csv;
 
 use std::path::Path;
