@@ -1,1 +1,599 @@
 //! Rungs to knots: fan direction, width, nozzle height and painting speed per rung (001 eq. 2.4–2.6), and splitting wide strokes into passes.
+//!
+//! A rung joins opposing points of a stroke's two edges (001 fig. 2.8). Its
+//! `left` end is the point on the stroke's left edge as the font gives it;
+//! nothing here assumes which way the nozzle travels. The fan axis ψ points
+//! from `left` to `right` (eq. 2.4 with point 1 = left), and β > 0 leans the
+//! fan towards +ψ (SPEC §2); see `tilt` for the geometry.
+
+use kurbo::{Point, Vec2};
+use serde::{Deserialize, Serialize};
+
+use super::tilt;
+pub use super::tilt::TiltMethod;
+
+/// Rungs narrower than this (m) have no direction of their own: they take
+/// the fan direction of the nearest proper rung (e.g. a pointed stroke end).
+const DEGENERATE_WIDTH_M: f64 = 1e-9;
+
+/// One rung: a segment across the stroke joining opposing edge points (road frame, m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rung {
+    pub left: Point,
+    pub right: Point,
+}
+
+impl Rung {
+    /// Midpoint: where the untilted nozzle sits (001 §2.4).
+    pub fn mid(&self) -> Point {
+        self.left.midpoint(self.right)
+    }
+    /// Rung length: the stroke width to paint.
+    pub fn width(&self) -> f64 {
+        (self.right - self.left).hypot()
+    }
+    /// Fan direction ψ, eq. 2.4 (atan2, so the full circle).
+    pub fn yaw(&self) -> f64 {
+        (self.right - self.left).atan2()
+    }
+}
+
+/// Nozzle height above the road as a function of stroke width.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum HeightLaw {
+    /// h = (w/2)/tan(α/2): the fan's edges meet the rung's ends (001 eq. 2.5).
+    Geometric,
+    /// h = c0 + c1·w (m, m/m): a bench calibration of a real nozzle (001 fig. 2.25).
+    Linear { c0: f64, c1: f64 },
+}
+
+/// What the spray needs from the arm: fan geometry, paint rate, height law
+/// and the vertical joint's reach.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PaintLaw {
+    /// Full fan angle α (63.5° in 001 App. A).
+    pub fan_angle_rad: f64,
+    /// speed × width (m²/s) = flow × transfer efficiency / wet film (001 eq. 2.6, SPEC §3).
+    pub k_m2ps: f64,
+    pub height: HeightLaw,
+    /// Lowest nozzle tip height the vertical joint reaches (m above the road).
+    pub min_height_m: f64,
+    /// Highest nozzle tip height the vertical joint reaches (m above the road).
+    pub max_height_m: f64,
+}
+
+impl PaintLaw {
+    /// Untilted nozzle height that makes the fan exactly span width `w`.
+    pub fn height_for_width(&self, width_m: f64) -> f64 {
+        match self.height {
+            HeightLaw::Geometric => 0.5 * width_m / (0.5 * self.fan_angle_rad).tan(),
+            HeightLaw::Linear { c0, c1 } => c0 + c1 * width_m,
+        }
+    }
+
+    /// Width of the fan's footprint at untilted height `z` (inverse of `height_for_width`).
+    pub fn width_at_height(&self, height_m: f64) -> f64 {
+        match self.height {
+            HeightLaw::Geometric => 2.0 * height_m * (0.5 * self.fan_angle_rad).tan(),
+            HeightLaw::Linear { c0, c1 } => (height_m - c0) / c1,
+        }
+    }
+
+    /// Widest rung one pass can paint: the footprint at the top of the vertical joint's reach.
+    pub fn max_width_m(&self) -> f64 {
+        self.width_at_height(self.max_height_m)
+    }
+
+    /// Checks every field, naming the bad one.
+    pub fn validate(&self) -> Result<(), PlanError> {
+        let bad = |field: &'static str, value: f64, why: &'static str| {
+            Err(PlanError::BadLaw { field, value, why })
+        };
+        let a = self.fan_angle_rad;
+        if !(a.is_finite() && a > 0.0 && a < std::f64::consts::PI) {
+            return bad("fan_angle_rad", a, "must lie strictly between 0 and π");
+        }
+        if !(self.k_m2ps.is_finite() && self.k_m2ps > 0.0) {
+            return bad(
+                "k_m2ps",
+                self.k_m2ps,
+                "must be positive (flow × efficiency / film)",
+            );
+        }
+        if let HeightLaw::Linear { c0, c1 } = self.height {
+            if !c0.is_finite() {
+                return bad("height.c0", c0, "must be finite");
+            }
+            if !(c1.is_finite() && c1 > 0.0) {
+                return bad(
+                    "height.c1",
+                    c1,
+                    "must be positive (wider strokes need a higher nozzle)",
+                );
+            }
+        }
+        if !(self.min_height_m.is_finite() && self.min_height_m >= 0.0) {
+            return bad("min_height_m", self.min_height_m, "must be ≥ 0");
+        }
+        if !(self.max_height_m.is_finite() && self.max_height_m > self.min_height_m) {
+            return bad(
+                "max_height_m",
+                self.max_height_m,
+                "must exceed min_height_m",
+            );
+        }
+        if self.max_width_m().is_nan() || self.max_width_m() <= 0.0 {
+            return bad(
+                "max_height_m",
+                self.max_height_m,
+                "the height law paints no width at this height",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// One knot: where the nozzle is and how it is oriented and moving at one rung.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Knot {
+    /// Rung midpoint (road frame).
+    pub mid: Point,
+    /// Nozzle tip's xy after the tilt correction (001 eq. 2.21–2.23); `mid` when β = 0.
+    pub tip: Point,
+    /// Nozzle tip height above the road (eq. 2.5 or the calibrated law, lowered by tilt per eq. 2.24, then clamped to the reach).
+    pub z_m: f64,
+    /// Fan direction ψ (road frame, eq. 2.4), from the rung's left to its right end.
+    pub yaw_rad: f64,
+    /// Tilt β within ±max tilt; β > 0 leans the fan towards +ψ.
+    pub tilt_rad: f64,
+    /// Rung length (the stroke width being painted).
+    pub width_m: f64,
+    /// Width the fan actually covers: `width_m`, or more where the height was clamped up to the minimum.
+    pub fan_width_m: f64,
+    /// Painting speed v = k / fan width (eq. 2.6), so the film stays the target even where clamped.
+    pub speed_mps: f64,
+}
+
+/// A knot whose nozzle height was raised to the vertical joint's minimum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightClamp {
+    /// Rung index in the input.
+    pub rung: usize,
+    /// Height the rung needed (m).
+    pub wanted_m: f64,
+    /// Height used (m): the minimum.
+    pub used_m: f64,
+}
+
+/// Knots of one stroke (or one pass) and what the tilt did to the paint balance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KnotPlan {
+    pub knots: Vec<Knot>,
+    /// Range (min, max) of the area ratios U in percent over all cells without tilt (001 eq. 2.7–2.8).
+    pub u_before: (f64, f64),
+    /// The same with the chosen tilts.
+    pub u_after: (f64, f64),
+    /// Knots whose nozzle height was clamped up to the minimum (the fan paints wider than the rung there).
+    pub clamped: Vec<HeightClamp>,
+}
+
+/// Errors of the rung → knot stage.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    #[error("paint law: {field} = {value} is invalid: it {why}")]
+    BadLaw {
+        field: &'static str,
+        value: f64,
+        why: &'static str,
+    },
+    #[error("a stroke with no rungs cannot be painted")]
+    NoRungs,
+    #[error("rung {rung} has a coordinate that is not a finite number")]
+    NotFinite { rung: usize },
+    #[error("all {count} rungs of the stroke have zero width, so the fan has no direction")]
+    Degenerate { count: usize },
+    #[error(
+        "rung {rung} is {width_m:.3} m wide and needs the nozzle {height_m:.3} m above the road, above the vertical joint's reach of {max_height_m:.3} m: split the stroke into passes no wider than {max_width_m:.3} m (split_passes)"
+    )]
+    TooWide {
+        rung: usize,
+        width_m: f64,
+        height_m: f64,
+        max_height_m: f64,
+        max_width_m: f64,
+    },
+    #[error("passes: max width {max_width_m} m must be positive and larger than the overlap {overlap_m} m (≥ 0)")]
+    BadPassSplit { max_width_m: f64, overlap_m: f64 },
+}
+
+/// Rungs → knots: per rung ψ (eq. 2.4), width, height (eq. 2.5 or the
+/// calibrated law), tilt β by `method` within ±`max_tilt_rad` (001 §2.5),
+/// the corrected nozzle position (eq. 2.21–2.24) and the painting speed
+/// v = k / w (eq. 2.6).
+///
+/// Heights below the vertical joint's minimum are clamped and listed; the
+/// fan then covers more than the rung and the speed is set by the width it
+/// covers, so the film stays the target. A rung needing more than the
+/// maximum height is an error: split the stroke with [`split_passes`] first.
+/// Zero-width rungs (a pointed stroke end) take the fan direction of the
+/// nearest rung with width.
+pub fn knots(
+    rungs: &[Rung],
+    law: &PaintLaw,
+    method: TiltMethod,
+    max_tilt_rad: f64,
+) -> Result<KnotPlan, PlanError> {
+    law.validate()?;
+    if !(max_tilt_rad.is_finite() && max_tilt_rad >= 0.0) {
+        return Err(PlanError::BadLaw {
+            field: "max_tilt_rad",
+            value: max_tilt_rad,
+            why: "must be a finite angle ≥ 0",
+        });
+    }
+    if rungs.is_empty() {
+        return Err(PlanError::NoRungs);
+    }
+    for (k, r) in rungs.iter().enumerate() {
+        if !(r.left.is_finite() && r.right.is_finite()) {
+            return Err(PlanError::NotFinite { rung: k });
+        }
+    }
+    let yaws = yaws(rungs)?;
+    let fan = law.fan_angle_rad;
+    let max_width = law.max_width_m();
+    for (k, r) in rungs.iter().enumerate() {
+        let h = law.height_for_width(r.width());
+        // Tiny tolerance so a rung exactly at the reach (e.g. from split_passes) passes.
+        if h > law.max_height_m * (1.0 + 1e-9) {
+            return Err(PlanError::TooWide {
+                rung: k,
+                width_m: r.width(),
+                height_m: h,
+                max_height_m: law.max_height_m,
+                max_width_m: max_width,
+            });
+        }
+    }
+
+    let betas = tilt::tilts(rungs, method, fan, max_tilt_rad);
+    let u_before = tilt::u_range(&tilt::u_ratios(rungs, &[], fan));
+    let u_after = tilt::u_range(&tilt::u_ratios(rungs, &betas, fan));
+
+    let mut clamped = Vec::new();
+    let mut out = Vec::with_capacity(rungs.len());
+    for (k, (r, (&yaw, &beta))) in rungs.iter().zip(yaws.iter().zip(betas.iter())).enumerate() {
+        let w = r.width();
+        let mid = r.mid();
+        let dir = Vec2::from_angle(yaw);
+        // Eq. 2.21–2.23: the foot moves against the lean so the fan still spans the rung.
+        let tip = mid - tilt::foot_offset(w, beta, fan) * dir;
+        // Eq. 2.24 relative to eq. 2.5; applied to the calibrated law too
+        // (assumed: a real fan's footprint scales with height as the ideal one).
+        let factor = tilt::height_factor(beta, fan);
+        let wanted = law.height_for_width(w) * factor;
+        let (z, fan_width) = if wanted < law.min_height_m {
+            clamped.push(HeightClamp {
+                rung: k,
+                wanted_m: wanted,
+                used_m: law.min_height_m,
+            });
+            (
+                law.min_height_m,
+                law.width_at_height(law.min_height_m / factor).max(w),
+            )
+        } else {
+            (wanted, w)
+        };
+        out.push(Knot {
+            mid,
+            tip,
+            z_m: z,
+            yaw_rad: yaw,
+            tilt_rad: beta,
+            width_m: w,
+            fan_width_m: fan_width,
+            speed_mps: law.k_m2ps / fan_width, // 001 eq. 2.6
+        });
+    }
+    Ok(KnotPlan {
+        knots: out,
+        u_before,
+        u_after,
+        clamped,
+    })
+}
+
+/// ψ per rung; degenerate rungs borrow the nearest proper rung's direction.
+fn yaws(rungs: &[Rung]) -> Result<Vec<f64>, PlanError> {
+    let proper: Vec<usize> = (0..rungs.len())
+        .filter(|&k| rungs[k].width() > DEGENERATE_WIDTH_M)
+        .collect();
+    if proper.is_empty() {
+        return Err(PlanError::Degenerate { count: rungs.len() });
+    }
+    Ok((0..rungs.len())
+        .map(|k| {
+            let nearest = match proper.binary_search(&k) {
+                Ok(i) => proper[i],
+                Err(0) => proper[0],
+                Err(i) if i == proper.len() => proper[i - 1],
+                // Ties go to the earlier rung (deterministic).
+                Err(i) => {
+                    if k - proper[i - 1] <= proper[i] - k {
+                        proper[i - 1]
+                    } else {
+                        proper[i]
+                    }
+                }
+            };
+            rungs[nearest].yaw()
+        })
+        .collect())
+}
+
+/// Splits a stroke too wide for one pass into parallel passes.
+///
+/// The rule: the number of passes n is the same along the whole stroke (so
+/// each pass is one continuous stroke with the gun on from end to end), the
+/// smallest with w_max/n + overlap ≤ `max_width_m`. Every rung is cut at the
+/// fractions j/n of its length; pass j gets the piece from j/n to (j+1)/n,
+/// widened by `overlap_m`/2 into each neighbour (never past the stroke's
+/// edges). With `overlap_m` = 0 the pieces tile every rung exactly: the
+/// passes share their boundaries, cover the stroke and paint no area twice.
+/// A positive overlap trades a band of double film for tolerance to arm
+/// error at the seam. Passes come left to right (pass 0 touches the left
+/// edge); a stroke narrow enough for one pass comes back unchanged.
+pub fn split_passes(
+    rungs: &[Rung],
+    max_width_m: f64,
+    overlap_m: f64,
+) -> Result<Vec<Vec<Rung>>, PlanError> {
+    if !(max_width_m.is_finite()
+        && overlap_m.is_finite()
+        && overlap_m >= 0.0
+        && max_width_m > overlap_m)
+    {
+        return Err(PlanError::BadPassSplit {
+            max_width_m,
+            overlap_m,
+        });
+    }
+    let widest = rungs.iter().map(Rung::width).fold(0.0_f64, f64::max);
+    if !widest.is_finite() {
+        return Err(PlanError::NotFinite {
+            rung: rungs
+                .iter()
+                .position(|r| !r.width().is_finite())
+                .unwrap_or(0),
+        });
+    }
+    if widest <= max_width_m {
+        return Ok(vec![rungs.to_vec()]);
+    }
+    let n = (widest / (max_width_m - overlap_m)).ceil().max(1.0) as usize;
+    Ok((0..n)
+        .map(|j| {
+            rungs
+                .iter()
+                .map(|r| {
+                    let w = r.width();
+                    let ext = if w > 0.0 { 0.5 * overlap_m / w } else { 0.0 };
+                    let f0 = if j == 0 {
+                        0.0
+                    } else {
+                        j as f64 / n as f64 - ext
+                    };
+                    let f1 = if j + 1 == n {
+                        1.0
+                    } else {
+                        (j + 1) as f64 / n as f64 + ext
+                    };
+                    Rung {
+                        left: r.left.lerp(r.right, f0.max(0.0)),
+                        right: r.left.lerp(r.right, f1.min(1.0)),
+                    }
+                })
+                .collect()
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+    use std::f64::consts::PI;
+
+    const FAN: f64 = 63.5 * PI / 180.0; // 001 App. A
+
+    fn law() -> PaintLaw {
+        PaintLaw {
+            fan_angle_rad: FAN,
+            k_m2ps: 0.4e-3 / 60.0 * 0.9 / 0.38e-3, // SPEC §4 assumed: 0.4 L/min, 0.9, 0.38 mm
+            height: HeightLaw::Geometric,
+            min_height_m: 0.05,
+            max_height_m: 0.33,
+        }
+    }
+
+    fn straight(width: f64, n: usize) -> Vec<Rung> {
+        (0..n)
+            .map(|k| {
+                let y = 0.02 * k as f64;
+                Rung {
+                    left: Point::new(0.0, y),
+                    right: Point::new(width, y),
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn straight_stroke_knots_follow_eq_2_4_to_2_6() {
+        let l = law();
+        let plan = knots(
+            &straight(0.2, 5),
+            &l,
+            TiltMethod::Quadrilateral,
+            tilt::DEFAULT_MAX_TILT_RAD,
+        )
+        .unwrap();
+        for k in &plan.knots {
+            assert!((k.mid.x - 0.1).abs() < 1e-12);
+            assert_eq!(k.tip, k.mid);
+            assert!(k.yaw_rad.abs() < 1e-12);
+            assert!(k.tilt_rad.abs() < 1e-12);
+            assert!((k.z_m - 0.1 / (FAN / 2.0).tan()).abs() < 1e-12);
+            assert!((k.speed_mps * k.width_m - l.k_m2ps).abs() < 1e-15);
+        }
+        assert!((plan.u_before.0 - 50.0).abs() < 1e-9 && (plan.u_before.1 - 50.0).abs() < 1e-9);
+        assert!(plan.clamped.is_empty());
+    }
+
+    #[test]
+    fn narrow_rungs_are_clamped_and_slowed_for_the_wider_fan() {
+        let l = law();
+        let plan = knots(&straight(0.02, 3), &l, TiltMethod::None, 0.0).unwrap();
+        assert_eq!(plan.clamped.len(), 3);
+        for k in &plan.knots {
+            assert_eq!(k.z_m, l.min_height_m);
+            assert!((k.fan_width_m - l.width_at_height(l.min_height_m)).abs() < 1e-12);
+            assert!((k.speed_mps * k.fan_width_m - l.k_m2ps).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn too_wide_names_the_rung_and_the_fix() {
+        let err = knots(&straight(0.6, 3), &law(), TiltMethod::None, 0.0).unwrap_err();
+        assert!(matches!(err, PlanError::TooWide { rung: 0, .. }));
+        assert!(err.to_string().contains("split"), "{err}");
+    }
+
+    #[test]
+    fn bad_law_names_the_field() {
+        let mut l = law();
+        l.k_m2ps = -1.0;
+        let err = knots(&straight(0.2, 2), &l, TiltMethod::None, 0.0).unwrap_err();
+        assert!(err.to_string().contains("k_m2ps"), "{err}");
+        l = law();
+        l.height = HeightLaw::Linear { c0: 0.0, c1: 0.0 };
+        assert!(knots(&straight(0.2, 2), &l, TiltMethod::None, 0.0).is_err());
+        assert_eq!(
+            knots(&[], &law(), TiltMethod::None, 0.0),
+            Err(PlanError::NoRungs)
+        );
+        let nan = [Rung {
+            left: Point::new(f64::NAN, 0.0),
+            right: Point::ZERO,
+        }];
+        assert_eq!(
+            knots(&nan, &law(), TiltMethod::None, 0.0),
+            Err(PlanError::NotFinite { rung: 0 })
+        );
+    }
+
+    #[test]
+    fn pointed_end_borrows_the_neighbours_direction() {
+        let mut rungs = straight(0.2, 4);
+        rungs[0] = Rung {
+            left: Point::new(0.1, 0.0),
+            right: Point::new(0.1, 0.0),
+        };
+        let plan = knots(&rungs, &law(), TiltMethod::None, 0.0).unwrap();
+        assert!(plan.knots[0].yaw_rad.abs() < 1e-12);
+        assert!(plan.knots[0].speed_mps.is_finite());
+        assert_eq!(plan.clamped.len(), 1);
+        let all_zero = [rungs[0]; 2];
+        assert_eq!(
+            knots(&all_zero, &law(), TiltMethod::None, 0.0),
+            Err(PlanError::Degenerate { count: 2 })
+        );
+    }
+
+    #[test]
+    fn linear_law_matches_the_calibration() {
+        let mut l = law();
+        // 001 App. A (pathS.c): z = 509.3 mm + 0.878715·w incl. the gun mount; here without the mount.
+        l.height = HeightLaw::Linear {
+            c0: 0.01,
+            c1: 0.878715,
+        };
+        let plan = knots(&straight(0.3, 2), &l, TiltMethod::None, 0.0).unwrap();
+        assert!((plan.knots[0].z_m - (0.01 + 0.878715 * 0.3)).abs() < 1e-12);
+        assert!((l.width_at_height(l.height_for_width(0.3)) - 0.3).abs() < 1e-12);
+    }
+
+    fn arc_rungs(r_in: f64, r_out: f64, n: usize) -> Vec<Rung> {
+        (0..n)
+            .map(|k| {
+                let a = 0.02 * k as f64;
+                let d = Vec2::from_angle(a);
+                Rung {
+                    left: Point::ZERO + r_in * d,
+                    right: Point::ZERO + r_out * d,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn tilt_lowers_the_nozzle_and_moves_its_foot_towards_the_lean() {
+        let plan = knots(
+            &arc_rungs(0.3, 0.6, 10),
+            &law(),
+            TiltMethod::Quadrilateral,
+            tilt::DEFAULT_MAX_TILT_RAD,
+        )
+        .unwrap();
+        assert!(plan.u_before.0 < 45.0);
+        assert!(plan.u_after.0 > plan.u_before.0);
+        for k in &plan.knots {
+            assert!(k.tilt_rad < 0.0 && k.tilt_rad >= -tilt::DEFAULT_MAX_TILT_RAD);
+            assert!(k.z_m < law().height_for_width(k.width_m));
+            // β < 0 leans towards −ψ (inwards); the foot moves outwards (+ψ) to keep the fan on the rung.
+            let along = (k.tip - k.mid).dot(Vec2::from_angle(k.yaw_rad));
+            assert!(along > 0.0);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+        #[test]
+        fn passes_tile_every_rung(
+            widths in proptest::collection::vec(0.01f64..1.5, 2..12),
+            max_w in 0.1f64..0.5, overlap_frac in 0.0f64..0.5, angle in -3.0f64..3.0,
+        ) {
+            let overlap = overlap_frac * max_w;
+            let d = Vec2::from_angle(angle);
+            let rungs: Vec<Rung> = widths.iter().enumerate().map(|(k, &w)| {
+                let left = Point::new(0.03 * k as f64, 0.1);
+                Rung { left, right: left + w * d }
+            }).collect();
+            let passes = split_passes(&rungs, max_w, overlap).unwrap();
+            for p in &passes {
+                prop_assert_eq!(p.len(), rungs.len());
+                for r in p { prop_assert!(r.width() <= max_w + 1e-9); }
+            }
+            for (k, r) in rungs.iter().enumerate() {
+                let w = r.width();
+                // Pieces in order, first at the left end, last at the right end,
+                // consecutive ones overlapping by exactly min(overlap, …) and 0 when overlap = 0.
+                prop_assert!((passes[0][k].left - r.left).hypot() < 1e-12);
+                prop_assert!((passes[passes.len() - 1][k].right - r.right).hypot() < 1e-12);
+                let covered: f64 = passes.iter().map(|p| p[k].width()).sum();
+                let seams = (passes.len() - 1) as f64;
+                prop_assert!(covered >= w - 1e-9);
+                prop_assert!(covered <= w + seams * overlap + 1e-9);
+                for pair in passes.windows(2) {
+                    // Next piece starts no later than this one ends: no gap.
+                    let end = (pair[0][k].right - r.left).hypot();
+                    let start = (pair[1][k].left - r.left).hypot();
+                    prop_assert!(start <= end + 1e-12);
+                    if overlap == 0.0 { prop_assert!((start - end).abs() < 1e-12); }
+                }
+            }
+        }
+    }
+}
