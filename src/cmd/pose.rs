@@ -1,11 +1,133 @@
-//! `basr pose` (not yet implemented).
+//! `basr pose`: inverse kinematics of one nozzle pose, to joints, actuators
+//! and encoder counts.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use basr::robot::{Joints, NozzlePose, Robot};
+use serde_json::json;
 
 use super::{Global, Outcome};
 
-/// Not yet implemented.
+/// Inverse kinematics of one nozzle pose in the base frame (origin on the base
+/// rotation axis at road level, +y straight back along the arm's symmetry
+/// axis): prints the joints, actuator positions and encoder counts of the
+/// solution nearest the arm's rest position. An unreachable pose exits 2
+/// naming the binding limit and by how much it is exceeded. The engineer's
+/// tool for calibration and manual moves.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(after_help = "Examples:\n  basr pose 0 3 --tilt-deg 10          # 3 m straight back, tilted 10°\n  basr pose -1.2 4 --height 0.15 --yaw-deg 30 --json\n\nJSON: {\"pose\", \"joints\", \"actuators\", \"encoders\", \"solutions\"}; joints,\nactuators and encoders are keyed by the setpoint CSV's column names.")]
+pub struct Args {
+    /// Tip x in the base frame (m).
+    #[arg(allow_negative_numbers = true)]
+    pub x: f64,
+    /// Tip y in the base frame (m).
+    #[arg(allow_negative_numbers = true)]
+    pub y: f64,
+    /// Tip height over the road (m); default: the middle of the vertical stroke.
+    #[arg(long, allow_negative_numbers = true)]
+    pub height: Option<f64>,
+    /// Fan direction in the base frame, degrees from +x counter-clockwise.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub yaw_deg: f64,
+    /// Tilt in degrees (> 0 leans the nozzle towards the fan direction).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub tilt_deg: f64,
+    /// Robot description file (TOML); default: the embedded BASR.
+    #[arg(long, value_name = "FILE")]
+    pub robot: Option<PathBuf>,
+    /// Print JSON on stdout instead of a table on stderr.
+    #[arg(long)]
+    pub json: bool,
+}
 
-pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`basr pose` is not implemented yet")
+/// The joint set IK is measured from when there is no previous state: the
+/// middle of every range (arm on its axis, yaw and tilt centred).
+fn rest(robot: &Robot) -> Joints {
+    let mid = |l: &basr::robot::JointLimit| 0.5 * (l.min + l.max);
+    let l = &robot.limits;
+    Joints {
+        base_rot_rad: mid(&l.base_rot_rad),
+        extension_m: mid(&l.extension_m),
+        vertical_m: mid(&l.vertical_m),
+        ee_yaw_rad: mid(&l.ee_yaw_rad),
+        tilt_rad: mid(&l.tilt_rad),
+    }
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    let robot = Robot::load_or_default(args.robot.as_deref())?;
+    let top = robot.end_effector.tip_height_top_m;
+    let lv = &robot.limits.vertical_m;
+    let pose = NozzlePose {
+        x_m: args.x,
+        y_m: args.y,
+        z_m: args.height.unwrap_or(top - 0.5 * (lv.min + lv.max)),
+        yaw_rad: args.yaw_deg.to_radians(),
+        tilt_rad: args.tilt_deg.to_radians(),
+    };
+    let all = robot.ik(&pose).with_context(|| {
+        format!(
+            "pose x {} m, y {} m, height {} m, yaw {}°, tilt {}° cannot be reached",
+            pose.x_m, pose.y_m, pose.z_m, args.yaw_deg, args.tilt_deg
+        )
+    })?;
+    let j = robot.ik_nearest(&pose, &rest(&robot))?;
+    let a = robot.actuators(&j);
+    let e = robot.encoders(&j);
+    // Distance to the edge of the region reachable with this yaw and tilt.
+    let margin = robot
+        .region_for(pose.yaw_rad, pose.tilt_rad)
+        .map(|r| r.margin(pose.x_m, pose.y_m))?;
+    if args.json {
+        let out = json!({
+            "pose": pose,
+            "joints": j,
+            "actuators": {
+                "base_motor_rad": a.base_motor_rad,
+                "cylinder_m": a.cylinder_m,
+                "vertical_m": a.vertical_m,
+                "yaw_motor_rad": a.yaw_motor_rad,
+                "tilt_nut_m": a.tilt_nut_m,
+                "tilt_motor_rad": a.tilt_motor_rad,
+            },
+            "encoders": e,
+            "solutions": all.len(),
+            "reach_margin_m": margin,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else if !global.quiet {
+        let deg = |r: f64| r.to_degrees();
+        eprintln!(
+            "pose (base frame): x {:.4} m  y {:.4} m  height {:.4} m  yaw {:.2}°  tilt {:.2}°",
+            pose.x_m,
+            pose.y_m,
+            pose.z_m,
+            deg(pose.yaw_rad),
+            deg(pose.tilt_rad)
+        );
+        eprintln!("joints ({} solutions; nearest the rest position shown):", all.len());
+        eprintln!("  base_rot_rad  {:>12.6}  ({:.3}°)", j.base_rot_rad, deg(j.base_rot_rad));
+        eprintln!("  extension_m   {:>12.6}", j.extension_m);
+        eprintln!("  vertical_m    {:>12.6}", j.vertical_m);
+        eprintln!("  ee_yaw_rad    {:>12.6}  ({:.3}°)", j.ee_yaw_rad, deg(j.ee_yaw_rad));
+        eprintln!("  tilt_rad      {:>12.6}  ({:.3}°)", j.tilt_rad, deg(j.tilt_rad));
+        eprintln!("actuators:");
+        eprintln!("  base_motor_rad {:>12.6}", a.base_motor_rad);
+        eprintln!("  cylinder_m     {:>12.6}", a.cylinder_m);
+        eprintln!("  vertical_m     {:>12.6}", a.vertical_m);
+        eprintln!("  yaw_motor_rad  {:>12.6}", a.yaw_motor_rad);
+        eprintln!("  tilt_nut_m     {:>12.6}", a.tilt_nut_m);
+        eprintln!("  tilt_motor_rad {:>12.6}", a.tilt_motor_rad);
+        eprintln!("encoders:");
+        eprintln!("  enc_base      {:>10}", e.base);
+        eprintln!("  enc_extension {:>10}", e.extension);
+        eprintln!("  enc_yaw       {:>10}", e.yaw);
+        eprintln!("  enc_tilt      {:>10}", e.tilt);
+        eprintln!("  enc_vertical  {:>10}", e.vertical);
+        eprintln!(
+            "reach margin: {margin:.3} m inside the workspace boundary"
+        );
+    }
+    Ok(Outcome::Success)
 }

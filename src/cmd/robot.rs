@@ -1,11 +1,39 @@
-//! `basr robot` (not yet implemented).
+//! `basr robot`: print the effective robot description.
+
+use std::path::PathBuf;
 
 use super::{Global, Outcome};
 
-/// Not yet implemented.
+/// Print the effective robot description: the embedded BASR (SPEC §4) or the
+/// file given with --robot, after validation. The TOML form reads back to an
+/// identical robot, so it is a starting point for a customised description.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(after_help = "Examples:\n  basr robot                       # embedded BASR as TOML\n  basr robot --toml > my.toml      # edit, then: basr robot --robot my.toml\n  basr robot --json | jq .limits\n  basr robot --toml | basr check -")]
+pub struct Args {
+    /// Robot description file (TOML); default: the embedded BASR.
+    #[arg(long, value_name = "FILE")]
+    pub robot: Option<PathBuf>,
+    /// Print JSON (the form embedded in job files) instead of TOML.
+    #[arg(long, conflicts_with = "toml")]
+    pub json: bool,
+    /// Print TOML (the default).
+    #[arg(long)]
+    pub toml: bool,
+}
 
-pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`basr robot` is not implemented yet")
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+    if args.json {
+        let mut v = serde_json::to_value(&robot)?;
+        if let Some(o) = v.as_object_mut() {
+            o.insert("sha256".into(), robot.sha256().into());
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        print!("{}", robot.to_toml_string());
+        if !global.quiet {
+            eprintln!("robot {} sha256 {}", robot.name, robot.sha256());
+        }
+    }
+    Ok(Outcome::Success)
 }
