@@ -52,6 +52,9 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
             Err(e) => vec![e.to_string()],
         },
         Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),
+        Some(Kind::Robot) => basr::robot::check_source(text, origin),
+        // A robot file with a TOML syntax error: report where, not "unknown".
+        None if basr::robot::looks_like_robot(text) => basr::robot::check_source(text, origin),
         Some(k) => vec![format!(
             "{origin}: checking {k:?} files is not implemented yet"
         )],

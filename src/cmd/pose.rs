@@ -68,11 +68,21 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     };
     let all = robot.ik(&pose).with_context(|| {
         format!(
-            "pose x {} m, y {} m, height {} m, yaw {}°, tilt {}° cannot be reached",
+            "pose x {:.4} m, y {:.4} m, height {:.4} m, yaw {}°, tilt {}° cannot be reached",
             pose.x_m, pose.y_m, pose.z_m, args.yaw_deg, args.tilt_deg
         )
     })?;
-    let j = robot.ik_nearest(&pose, &rest(&robot))?;
+    // Nearest the rest position, keeping the fan as asked (ψ, β) when a
+    // solution does; the flipped fan (ψ+π, −β) paints the same.
+    let as_asked: Vec<_> = all
+        .iter()
+        .filter(|j| (j.tilt_rad - pose.tilt_rad).abs() < 1e-12)
+        .copied()
+        .collect();
+    let pool = if as_asked.is_empty() { &all } else { &as_asked };
+    let j = robot
+        .nearest_of(pool, &rest(&robot))
+        .context("inverse kinematics returned no solution")?;
     let a = robot.actuators(&j);
     let e = robot.encoders(&j);
     // Distance to the edge of the region reachable with this yaw and tilt.

@@ -143,15 +143,20 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
     let tree: toml::Table = match toml::from_str(text) {
         Ok(t) => t,
         Err(e) => {
-            let loc = e
-                .span()
-                .map(|s| {
+            let (loc, field) = match e.span() {
+                Some(s) => {
                     let (l, c) = line_col(text, s.start);
-                    format!("{origin}:{l}:{c}")
-                })
-                .unwrap_or_else(|| origin.to_string());
+                    (
+                        format!("{origin}:{l}:{c}"),
+                        field_at_line(text, l)
+                            .map(|f| format!(" in field `{f}`"))
+                            .unwrap_or_default(),
+                    )
+                }
+                None => (origin.to_string(), String::new()),
+            };
             return Err(invalid(vec![format!(
-                "{loc}: TOML syntax error: {}; fix the syntax (see https://toml.io)",
+                "{loc}: TOML syntax error{field}: {}; fix the syntax (see https://toml.io)",
                 e.message().trim()
             )]));
         }

@@ -354,6 +354,14 @@ impl Robot {
     /// slowest joint at its speed limit, ties broken by the summed times.
     pub fn ik_nearest(&self, pose: &NozzlePose, prev: &Joints) -> Result<Joints, Unreachable> {
         let all = self.ik(pose)?;
+        // `ik` returns Ok only with at least one solution.
+        Ok(self.nearest_of(&all, prev).unwrap_or(all[0]))
+    }
+
+    /// The joint set of `all` with the shortest travel from `prev` (None
+    /// when `all` is empty).
+    pub fn nearest_of(&self, all: &[Joints], prev: &Joints) -> Option<Joints> {
+        let (first, others) = all.split_first()?;
         let cost = |j: &Joints| {
             let mut worst: f64 = 0.0;
             let mut sum = 0.0;
@@ -368,9 +376,9 @@ impl Robot {
             }
             (worst, sum)
         };
-        let mut best = all[0];
+        let mut best = *first;
         let mut best_cost = cost(&best);
-        for j in &all[1..] {
+        for j in others {
             let c = cost(j);
             if c.0 < best_cost.0 - 1e-12 || ((c.0 - best_cost.0).abs() <= 1e-12 && c.1 < best_cost.1)
             {
@@ -378,7 +386,7 @@ impl Robot {
                 best_cost = c;
             }
         }
-        Ok(best)
+        Some(best)
     }
 
     /// Radians of tilt motor per metre of nut travel.

@@ -21,6 +21,12 @@ use serde::{Deserialize, Serialize};
 /// The embedded default description (SPEC §4).
 pub const BASR_TOML: &str = include_str!("../../robots/basr.toml");
 
+/// Whether a text that may not parse as TOML looks like a robot description
+/// (has an `[arm]` table header), so its syntax errors can be reported.
+pub fn looks_like_robot(text: &str) -> bool {
+    text.lines().any(|l| l.trim() == "[arm]")
+}
+
 /// The immutable description of one robot. One field per TOML section.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -1,0 +1,111 @@
+//! End-to-end tests of `basr robot` and robot-file validation through the binary.
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+
+fn basr() -> Command {
+    Command::cargo_bin("basr").unwrap()
+}
+
+fn default_toml() -> String {
+    let out = basr().args(["robot", "--toml"]).output().unwrap();
+    assert!(out.status.success());
+    String::from_utf8(out.stdout).unwrap()
+}
+
+#[test]
+fn toml_output_checks_and_reads_back() {
+    let text = default_toml();
+    basr()
+        .args(["check", "-"])
+        .write_stdin(text.clone())
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("-: ok"));
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("r.toml");
+    std::fs::write(&f, &text).unwrap();
+    let again = basr()
+        .args(["robot", "--toml", "--robot"])
+        .arg(&f)
+        .output()
+        .unwrap();
+    assert!(again.status.success());
+    assert_eq!(String::from_utf8(again.stdout).unwrap(), text);
+}
+
+#[test]
+fn json_has_sections_and_hash() {
+    let out = basr().args(["robot", "--json"]).output().unwrap();
+    assert!(out.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["arm", "end_effector", "paint", "control", "encoders", "limits", "hydraulics"] {
+        assert!(v.get(key).is_some(), "{key}");
+    }
+    assert_eq!(v["limits"]["base_rot_rad"]["min"], 0.7854);
+    assert_eq!(v["sha256"].as_str().unwrap().len(), 64);
+    assert_eq!(v["sha256"], basr::robot::Robot::basr().sha256());
+}
+
+/// Write the default description with one edit; return the file and the
+/// 1-based line of the edit.
+fn bad_file(dir: &tempfile::TempDir, find: &str, replace: &str) -> (std::path::PathBuf, usize) {
+    let text = default_toml();
+    let (before, _) = text.split_once(find).expect("field present");
+    let line = before.matches('\n').count() + 1;
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, text.replacen(find, replace, 1)).unwrap();
+    (path, line)
+}
+
+fn assert_rejected(find: &str, replace: &str, field: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, line) = bad_file(&dir, find, replace);
+    let shown = format!("{}:{line}", path.display());
+    basr()
+        .args(["robot", "--robot"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stdout("")
+        .stderr(predicate::str::contains(shown.clone()).and(predicate::str::contains(field)));
+    basr()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains(shown).and(predicate::str::contains(field)));
+}
+
+#[test]
+fn syntax_error_exits_2_with_line() {
+    assert_rejected("a2_m = 0.01", "a2_m = 0.01 0.02", "a2_m");
+}
+
+#[test]
+fn nan_exits_2_naming_field() {
+    assert_rejected("fan_angle_rad = ", "fan_angle_rad = nan #", "paint.fan_angle_rad");
+}
+
+#[test]
+fn negative_mass_exits_2_naming_field() {
+    assert_rejected("mass_kg = 35.0", "mass_kg = -35.0", "end_effector.mass_kg");
+}
+
+#[test]
+fn reversed_range_exits_2_naming_field() {
+    assert_rejected(
+        "min = -0.2617993877991494\nmax = 0.2617993877991494",
+        "min = 0.2617993877991494\nmax = -0.2617993877991494",
+        "limits.tilt_rad.min",
+    );
+}
+
+#[test]
+fn missing_file_exits_2() {
+    basr()
+        .args(["robot", "--robot", "no/such/robot.toml"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("no/such/robot.toml"));
+}
