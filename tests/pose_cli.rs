@@ -13,15 +13,31 @@ fn pose_json_keyed_by_csv_columns() {
         .args(["pose", "0", "3", "--tilt-deg", "10", "--json"])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    for k in ["base_rot_rad", "extension_m", "vertical_m", "ee_yaw_rad", "tilt_rad"] {
+    for k in [
+        "base_rot_rad",
+        "extension_m",
+        "vertical_m",
+        "ee_yaw_rad",
+        "tilt_rad",
+    ] {
         assert!(v["joints"][k].is_f64(), "{k}");
     }
     for k in ["cylinder_m", "tilt_nut_m", "vertical_m"] {
         assert!(v["actuators"][k].is_f64(), "{k}");
     }
-    for k in ["enc_base", "enc_extension", "enc_yaw", "enc_tilt", "enc_vertical"] {
+    for k in [
+        "enc_base",
+        "enc_extension",
+        "enc_yaw",
+        "enc_tilt",
+        "enc_vertical",
+    ] {
         assert!(v["encoders"][k].is_i64(), "{k}");
     }
     // The fan as asked: tilt +10°; base straight back (≈ 90°).
@@ -39,7 +55,16 @@ fn pose_json_keyed_by_csv_columns() {
 #[test]
 fn negative_coordinates_are_accepted() {
     basr()
-        .args(["pose", "-1.2", "4", "--yaw-deg", "-30", "--height", "0.15", "--json"])
+        .args([
+            "pose",
+            "-1.2",
+            "4",
+            "--yaw-deg",
+            "-30",
+            "--height",
+            "0.15",
+            "--json",
+        ])
         .assert()
         .success();
 }
@@ -52,8 +77,7 @@ fn unreachable_pose_exits_2_naming_limit_and_excess() {
         .code(2)
         .stdout("")
         .stderr(
-            predicate::str::contains("extension_m")
-                .and(predicate::str::contains("by 0.6417 m")),
+            predicate::str::contains("extension_m").and(predicate::str::contains("by 0.6417 m")),
         );
     basr()
         .args(["pose", "0", "3", "--tilt-deg", "20"])

@@ -35,11 +35,20 @@ fn toml_output_checks_and_reads_back() {
 }
 
 #[test]
+#[allow(clippy::approx_constant)] // 0.7854 is the seed's base window, not π/4
 fn json_has_sections_and_hash() {
     let out = basr().args(["robot", "--json"]).output().unwrap();
     assert!(out.status.success());
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    for key in ["arm", "end_effector", "paint", "control", "encoders", "limits", "hydraulics"] {
+    for key in [
+        "arm",
+        "end_effector",
+        "paint",
+        "control",
+        "encoders",
+        "limits",
+        "hydraulics",
+    ] {
         assert!(v.get(key).is_some(), "{key}");
     }
     assert_eq!(v["limits"]["base_rot_rad"]["min"], 0.7854);
@@ -84,7 +93,11 @@ fn syntax_error_exits_2_with_line() {
 
 #[test]
 fn nan_exits_2_naming_field() {
-    assert_rejected("fan_angle_rad = ", "fan_angle_rad = nan #", "paint.fan_angle_rad");
+    assert_rejected(
+        "fan_angle_rad = ",
+        "fan_angle_rad = nan #",
+        "paint.fan_angle_rad",
+    );
 }
 
 #[test]

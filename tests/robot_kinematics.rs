@@ -118,16 +118,42 @@ proptest! {
 #[test]
 fn every_limit_is_refused_by_name() {
     let r = robot();
-    let ok = NozzlePose { x_m: 0.3, y_m: 3.0, z_m: 0.2, yaw_rad: 0.4, tilt_rad: 0.1 };
+    let ok = NozzlePose {
+        x_m: 0.3,
+        y_m: 3.0,
+        z_m: 0.2,
+        yaw_rad: 0.4,
+        tilt_rad: 0.1,
+    };
     assert!(r.ik(&ok).is_ok());
     let cases = [
         (NozzlePose { y_m: 1.0, ..ok }, "extension_m"),
         (NozzlePose { y_m: 5.6, ..ok }, "extension_m"),
-        (NozzlePose { x_m: 3.0, y_m: 0.3, ..ok }, "base_rot_rad"),
-        (NozzlePose { x_m: -3.0, y_m: 0.3, ..ok }, "base_rot_rad"),
+        (
+            NozzlePose {
+                x_m: 3.0,
+                y_m: 0.3,
+                ..ok
+            },
+            "base_rot_rad",
+        ),
+        (
+            NozzlePose {
+                x_m: -3.0,
+                y_m: 0.3,
+                ..ok
+            },
+            "base_rot_rad",
+        ),
         (NozzlePose { z_m: 0.40, ..ok }, "vertical_m"),
         (NozzlePose { z_m: 0.05, ..ok }, "vertical_m"),
-        (NozzlePose { tilt_rad: 0.3, ..ok }, "tilt_rad"),
+        (
+            NozzlePose {
+                tilt_rad: 0.3,
+                ..ok
+            },
+            "tilt_rad",
+        ),
     ];
     for (pose, joint) in cases {
         let e = r.ik(&pose).unwrap_err();
@@ -136,7 +162,14 @@ fn every_limit_is_refused_by_name() {
         assert!(e.to_string().contains(joint));
     }
     // Exceeding by a known amount: 5.6 m straight back.
-    let e = r.ik(&NozzlePose { x_m: 0.0, y_m: 5.6, tilt_rad: 0.0, ..ok }).unwrap_err();
+    let e = r
+        .ik(&NozzlePose {
+            x_m: 0.0,
+            y_m: 5.6,
+            tilt_rad: 0.0,
+            ..ok
+        })
+        .unwrap_err();
     let need = (5.6f64 * 5.6 - 1e-4).sqrt();
     assert!((e.excess - (need - 5.358333333333333)).abs() < 1e-9, "{e}");
 }
@@ -144,7 +177,13 @@ fn every_limit_is_refused_by_name() {
 #[test]
 fn joints_beyond_limits_are_reported_not_clamped() {
     let r = robot();
-    let j = Joints { base_rot_rad: 2.5, extension_m: 3.0, vertical_m: 0.1, ee_yaw_rad: 0.0, tilt_rad: 0.0 };
+    let j = Joints {
+        base_rot_rad: 2.5,
+        extension_m: 3.0,
+        vertical_m: 0.1,
+        ee_yaw_rad: 0.0,
+        tilt_rad: 0.0,
+    };
     let e = r.check_joints(&j).unwrap_err();
     assert_eq!(e.joint, "base_rot_rad");
     assert!((e.excess - (2.5 - 2.3562)).abs() < 1e-12);

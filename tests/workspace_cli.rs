@@ -28,7 +28,11 @@ fn json_area_and_boundary() {
 fn svg_is_written_and_parses() {
     let dir = tempfile::tempdir().unwrap();
     let f = dir.path().join("ws.svg");
-    basr().args(["workspace", "--svg"]).arg(&f).assert().success();
+    basr()
+        .args(["workspace", "--svg"])
+        .arg(&f)
+        .assert()
+        .success();
     let text = std::fs::read_to_string(&f).unwrap();
     let tree = resvg::usvg::Tree::from_str(&text, &resvg::usvg::Options::default());
     assert!(tree.is_ok());

@@ -16,7 +16,9 @@ use super::{Global, Outcome};
 /// naming the binding limit and by how much it is exceeded. The engineer's
 /// tool for calibration and manual moves.
 #[derive(clap::Args)]
-#[command(after_help = "Examples:\n  basr pose 0 3 --tilt-deg 10          # 3 m straight back, tilted 10°\n  basr pose -1.2 4 --height 0.15 --yaw-deg 30 --json\n\nJSON: {\"pose\", \"joints\", \"actuators\", \"encoders\", \"solutions\"}; joints,\nactuators and encoders are keyed by the setpoint CSV's column names.")]
+#[command(
+    after_help = "Examples:\n  basr pose 0 3 --tilt-deg 10          # 3 m straight back, tilted 10°\n  basr pose -1.2 4 --height 0.15 --yaw-deg 30 --json\n\nJSON: {\"pose\", \"joints\", \"actuators\", \"encoders\", \"solutions\"}; joints,\nactuators and encoders are keyed by the setpoint CSV's column names."
+)]
 pub struct Args {
     /// Tip x in the base frame (m).
     #[arg(allow_negative_numbers = true)]
@@ -116,12 +118,27 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             deg(pose.yaw_rad),
             deg(pose.tilt_rad)
         );
-        eprintln!("joints ({} solutions; nearest the rest position shown):", all.len());
-        eprintln!("  base_rot_rad  {:>12.6}  ({:.3}°)", j.base_rot_rad, deg(j.base_rot_rad));
+        eprintln!(
+            "joints ({} solutions; nearest the rest position shown):",
+            all.len()
+        );
+        eprintln!(
+            "  base_rot_rad  {:>12.6}  ({:.3}°)",
+            j.base_rot_rad,
+            deg(j.base_rot_rad)
+        );
         eprintln!("  extension_m   {:>12.6}", j.extension_m);
         eprintln!("  vertical_m    {:>12.6}", j.vertical_m);
-        eprintln!("  ee_yaw_rad    {:>12.6}  ({:.3}°)", j.ee_yaw_rad, deg(j.ee_yaw_rad));
-        eprintln!("  tilt_rad      {:>12.6}  ({:.3}°)", j.tilt_rad, deg(j.tilt_rad));
+        eprintln!(
+            "  ee_yaw_rad    {:>12.6}  ({:.3}°)",
+            j.ee_yaw_rad,
+            deg(j.ee_yaw_rad)
+        );
+        eprintln!(
+            "  tilt_rad      {:>12.6}  ({:.3}°)",
+            j.tilt_rad,
+            deg(j.tilt_rad)
+        );
         eprintln!("actuators:");
         eprintln!("  base_motor_rad {:>12.6}", a.base_motor_rad);
         eprintln!("  cylinder_m     {:>12.6}", a.cylinder_m);
@@ -135,9 +152,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         eprintln!("  enc_yaw       {:>10}", e.yaw);
         eprintln!("  enc_tilt      {:>10}", e.tilt);
         eprintln!("  enc_vertical  {:>10}", e.vertical);
-        eprintln!(
-            "reach margin: {margin:.3} m inside the workspace boundary"
-        );
+        eprintln!("reach margin: {margin:.3} m inside the workspace boundary");
     }
     Ok(Outcome::Success)
 }

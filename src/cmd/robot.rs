@@ -8,7 +8,9 @@ use super::{Global, Outcome};
 /// file given with --robot, after validation. The TOML form reads back to an
 /// identical robot, so it is a starting point for a customised description.
 #[derive(clap::Args)]
-#[command(after_help = "Examples:\n  basr robot                       # embedded BASR as TOML\n  basr robot --toml > my.toml      # edit, then: basr robot --robot my.toml\n  basr robot --json | jq .limits\n  basr robot --toml | basr check -")]
+#[command(
+    after_help = "Examples:\n  basr robot                       # embedded BASR as TOML\n  basr robot --toml > my.toml      # edit, then: basr robot --robot my.toml\n  basr robot --json | jq .limits\n  basr robot --toml | basr check -"
+)]
 pub struct Args {
     /// Robot description file (TOML); default: the embedded BASR.
     #[arg(long, value_name = "FILE")]

@@ -17,7 +17,9 @@ use super::{Global, Outcome};
 /// the tip, so the region shifts. Prints the area, ranges and tip heights;
 /// --json adds the boundary polygon, --svg draws it.
 #[derive(clap::Args)]
-#[command(after_help = "Examples:\n  basr workspace                       # area and ranges of the embedded BASR\n  basr workspace --svg ws.svg          # drawing of the region\n  basr workspace --tilt-deg 15 --yaw-deg 90 --json")]
+#[command(
+    after_help = "Examples:\n  basr workspace                       # area and ranges of the embedded BASR\n  basr workspace --svg ws.svg          # drawing of the region\n  basr workspace --tilt-deg 15 --yaw-deg 90 --json"
+)]
 pub struct Args {
     /// Robot description file (TOML); default: the embedded BASR.
     #[arg(long, value_name = "FILE")]

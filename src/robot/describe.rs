@@ -208,7 +208,8 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
 fn validate(r: &Robot) -> Vec<(String, String)> {
     let mut out: Vec<(String, String)> = Vec::new();
     let mut positive = |path: &str, v: f64| {
-        if !(v > 0.0) {
+        // Values are finite here (checked before deserialising).
+        if v <= 0.0 {
             out.push((path.into(), format!("must be positive (got {v})")));
         }
     };
@@ -227,9 +228,18 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
         "end_effector.tilt_motor_turns_per_screw_turn",
         e.tilt_motor_turns_per_screw_turn,
     );
-    positive("end_effector.tilt_nut_max_speed_mps", e.tilt_nut_max_speed_mps);
-    positive("end_effector.nozzle_below_joint_f_m", e.nozzle_below_joint_f_m);
-    positive("end_effector.joint_f_test_torque_nm", e.joint_f_test_torque_nm);
+    positive(
+        "end_effector.tilt_nut_max_speed_mps",
+        e.tilt_nut_max_speed_mps,
+    );
+    positive(
+        "end_effector.nozzle_below_joint_f_m",
+        e.nozzle_below_joint_f_m,
+    );
+    positive(
+        "end_effector.joint_f_test_torque_nm",
+        e.joint_f_test_torque_nm,
+    );
     let f = &e.fourbar;
     positive("end_effector.fourbar.ground_m", f.ground_m);
     positive("end_effector.fourbar.coupler_m", f.coupler_m);
@@ -262,7 +272,10 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
         ("supply_pa", h.supply_pa),
         ("tank_pa", h.tank_pa),
         ("bulk_modulus_pa", h.bulk_modulus_pa),
-        ("base_motor_displacement_m3prad", h.base_motor_displacement_m3prad),
+        (
+            "base_motor_displacement_m3prad",
+            h.base_motor_displacement_m3prad,
+        ),
         ("base_chamber_a_m3", h.base_chamber_a_m3),
         ("base_chamber_b_m3", h.base_chamber_b_m3),
         ("valve_flow_gain", h.valve_flow_gain),
@@ -279,7 +292,6 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
         positive(&format!("{base}.max_vel"), l.max_vel);
         positive(&format!("{base}.max_acc"), l.max_acc);
     }
-    drop(positive);
 
     let mut push = |path: &str, what: String| out.push((path.into(), what));
     if e.yaw_backlash_rad < 0.0 {
@@ -333,7 +345,7 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
             "paint.height_law_c1",
             "given without paint.height_law_c0_m: give both or neither".into(),
         ),
-        (Some(_), Some(c1)) if !(c1 > 0.0) => push(
+        (Some(_), Some(c1)) if c1 <= 0.0 => push(
             "paint.height_law_c1",
             format!("must be positive (height grows with width; got {c1})"),
         ),
@@ -363,7 +375,7 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
 
     // Ranges.
     let order = |name: &str, l: &JointLimit, push: &mut dyn FnMut(&str, String)| {
-        if !(l.min < l.max) {
+        if l.min >= l.max {
             push(
                 &format!("limits.{name}.min"),
                 format!(
@@ -425,7 +437,10 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
     }
     // The tilt linkage must assemble and the nut map stay monotonic over the
     // tilt range, or tilt ↔ nut would not be a function.
-    if f.rocker_m > 0.0 && f.coupler_m > 0.0 && f.ground_m > 0.0 && lim.tilt_rad.min < lim.tilt_rad.max
+    if f.rocker_m > 0.0
+        && f.coupler_m > 0.0
+        && f.ground_m > 0.0
+        && lim.tilt_rad.min < lim.tilt_rad.max
     {
         if f.rocker_m <= 0.5 * f.coupler_m {
             push(
@@ -495,7 +510,11 @@ mod tests {
     fn nan_names_field_and_line() {
         let text = with("mass_kg = 35.0", "mass_kg = nan");
         let p = check_source(&text, "bad.toml");
-        let line = text.lines().position(|l| l.contains("mass_kg = nan")).unwrap() + 1;
+        let line = text
+            .lines()
+            .position(|l| l.contains("mass_kg = nan"))
+            .unwrap()
+            + 1;
         assert_eq!(p.len(), 1);
         assert!(p[0].starts_with(&format!("bad.toml:{line}: field `end_effector.mass_kg`")));
     }
@@ -508,10 +527,20 @@ mod tests {
             1,
         );
         let p = check_source(&text, "bad.toml");
-        assert!(p.iter().any(|m| m.contains("`end_effector.mass_kg`") && m.contains("positive")));
-        assert!(p.iter().any(|m| m.contains("`limits.extension_m.min`") && m.contains("reversed")));
-        let mass_line = text.lines().position(|l| l.contains("mass_kg = -35")).unwrap() + 1;
-        assert!(p.iter().any(|m| m.starts_with(&format!("bad.toml:{mass_line}:"))));
+        assert!(p
+            .iter()
+            .any(|m| m.contains("`end_effector.mass_kg`") && m.contains("positive")));
+        assert!(p
+            .iter()
+            .any(|m| m.contains("`limits.extension_m.min`") && m.contains("reversed")));
+        let mass_line = text
+            .lines()
+            .position(|l| l.contains("mass_kg = -35"))
+            .unwrap()
+            + 1;
+        assert!(p
+            .iter()
+            .any(|m| m.starts_with(&format!("bad.toml:{mass_line}:"))));
     }
 
     #[test]

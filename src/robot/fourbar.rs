@@ -128,7 +128,7 @@ impl FourBar {
     /// within ±`span` rad where the map is monotonic. Bisection to the last
     /// bit: robust, and cheap next to everything else per setpoint.
     pub fn tilt_from_nut(&self, nut: f64, span: f64) -> Option<f64> {
-        if !nut.is_finite() || !(span.is_finite() && span > 0.0) {
+        if !(nut.is_finite() && span.is_finite() && span > 0.0) {
             return None;
         }
         let (mut lo, mut hi) = (-span, span);
@@ -264,13 +264,21 @@ mod tests {
                 assert_eq!(sig(t2, printed_digits(t2_printed)), t2_printed);
             }
             let t1 = seed_theta1e(0.9, 0.6, 0.9, 1.2, t2).unwrap();
-            assert_eq!(sig(t1, printed_digits(t1_printed)), t1_printed, "θ1e at {t2}");
+            assert_eq!(
+                sig(t1, printed_digits(t1_printed)),
+                t1_printed,
+                "θ1e at {t2}"
+            );
             let dx = seed_delta_x(0.9, 0.6, 0.9, 1.2, t2).unwrap();
             if t2_printed == 0.0 {
                 // MATLAB's −π/9 + 10·π/90 leaves 2.2e-16; both are zero to print.
                 assert!(dx.abs() < 1e-12);
             } else {
-                assert_eq!(sig(dx, printed_digits(dx_printed)), dx_printed, "Δx at {t2}");
+                assert_eq!(
+                    sig(dx, printed_digits(dx_printed)),
+                    dx_printed,
+                    "Δx at {t2}"
+                );
             }
         }
     }

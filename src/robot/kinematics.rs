@@ -38,8 +38,7 @@ impl NozzlePose {
             && (self.z_m - other.z_m).abs() <= tol;
         let d = wrap_pi(self.yaw_rad - other.yaw_rad);
         let same = d.abs() <= tol && (self.tilt_rad - other.tilt_rad).abs() <= tol;
-        let flipped =
-            (PI - d.abs()).abs() <= tol && (self.tilt_rad + other.tilt_rad).abs() <= tol;
+        let flipped = (PI - d.abs()).abs() <= tol && (self.tilt_rad + other.tilt_rad).abs() <= tol;
         pos && (same || flipped)
     }
 }
@@ -293,7 +292,11 @@ impl Robot {
                 let k_hi = ((yl.max - base_yaw) / TAU).floor() as i64;
                 if k_lo > k_hi {
                     // No turn fits: report the nearest one.
-                    let k = if base_yaw < yl.min { k_lo - 1 } else { k_hi + 1 };
+                    let k = if base_yaw < yl.min {
+                        k_lo - 1
+                    } else {
+                        k_hi + 1
+                    };
                     j.ee_yaw_rad = base_yaw + TAU * k.clamp(-4, 4) as f64;
                     match self.check_joints(&j) {
                         Err(u) => note(u),
@@ -380,7 +383,8 @@ impl Robot {
         let mut best_cost = cost(&best);
         for j in others {
             let c = cost(j);
-            if c.0 < best_cost.0 - 1e-12 || ((c.0 - best_cost.0).abs() <= 1e-12 && c.1 < best_cost.1)
+            if c.0 < best_cost.0 - 1e-12
+                || ((c.0 - best_cost.0).abs() <= 1e-12 && c.1 < best_cost.1)
             {
                 best = *j;
                 best_cost = c;
@@ -440,7 +444,11 @@ impl Robot {
                 value: nut_m,
                 min,
                 max,
-                excess: if nut_m < min { min - nut_m } else { nut_m - max },
+                excess: if nut_m < min {
+                    min - nut_m
+                } else {
+                    nut_m - max
+                },
             }
         })
     }
@@ -554,7 +562,9 @@ mod tests {
         };
         let e = r.ik(&pose).unwrap_err();
         assert_eq!(e.joint, "extension_m");
-        assert!((e.excess - (6.0f64.hypot(0.0).powi(2) - 1e-4).sqrt() + 5.358333333333333).abs() < 1e-9);
+        assert!(
+            (e.excess - (6.0f64.hypot(0.0).powi(2) - 1e-4).sqrt() + 5.358333333333333).abs() < 1e-9
+        );
         assert!(e.to_string().contains("extension_m"), "{e}");
     }
 
@@ -569,11 +579,24 @@ mod tests {
             tilt_rad: 0.0,
         };
         assert_eq!(r.ik(&pose).unwrap_err().joint, "base_rot_rad");
-        let too_high = NozzlePose { z_m: 0.5, x_m: 0.0, y_m: 3.0, ..pose };
+        let too_high = NozzlePose {
+            z_m: 0.5,
+            x_m: 0.0,
+            y_m: 3.0,
+            ..pose
+        };
         assert_eq!(r.ik(&too_high).unwrap_err().joint, "vertical_m");
-        let tilted = NozzlePose { tilt_rad: 0.5, x_m: 0.0, y_m: 3.0, ..pose };
+        let tilted = NozzlePose {
+            tilt_rad: 0.5,
+            x_m: 0.0,
+            y_m: 3.0,
+            ..pose
+        };
         assert_eq!(r.ik(&tilted).unwrap_err().joint, "tilt_rad");
-        let nan = NozzlePose { x_m: f64::NAN, ..pose };
+        let nan = NozzlePose {
+            x_m: f64::NAN,
+            ..pose
+        };
         assert_eq!(r.ik(&nan).unwrap_err().joint, "x_m");
     }
 
