@@ -31,7 +31,14 @@ fn toml_output_checks_and_reads_back() {
         .output()
         .unwrap();
     assert!(again.status.success());
-    assert_eq!(String::from_utf8(again.stdout).unwrap(), text);
+    let again = String::from_utf8(again.stdout).unwrap();
+    // The default prints the embedded file with its sources; a file prints
+    // its effective values; both are the same robot.
+    assert!(text.contains("# Safety window of the controller"));
+    let parse = |t: &str| basr::robot::Robot::from_toml_str(t, "t").unwrap();
+    assert_eq!(parse(&again), parse(&text));
+    assert_eq!(parse(&again), basr::robot::Robot::basr());
+    assert_eq!(parse(&again).to_toml_string(), again);
 }
 
 #[test]

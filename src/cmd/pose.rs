@@ -107,7 +107,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "solutions": all.len(),
             "reach_margin_m": margin,
         });
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        super::robot::stdout_text(&(serde_json::to_string_pretty(&out)? + "\n"))?;
     } else if !global.quiet {
         let deg = |r: f64| r.to_degrees();
         eprintln!(

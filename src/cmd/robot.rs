@@ -18,9 +18,21 @@ pub struct Args {
     /// Print JSON (the form embedded in job files) instead of TOML.
     #[arg(long, conflicts_with = "toml")]
     pub json: bool,
-    /// Print TOML (the default).
+    /// Print TOML (the default): the embedded file with its sources, or the
+    /// effective values of --robot FILE.
     #[arg(long)]
     pub toml: bool,
+}
+
+/// Write machine output to stdout; a closed pipe (`| head`) ends quietly
+/// instead of panicking like `println!`.
+pub(crate) fn stdout_text(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
+        _ => Ok(()),
+    }
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
@@ -30,9 +42,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if let Some(o) = v.as_object_mut() {
             o.insert("sha256".into(), robot.sha256().into());
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        stdout_text(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     } else {
-        print!("{}", robot.to_toml_string());
+        // The embedded robot prints as shipped, with every value's source.
+        if args.robot.is_none() {
+            stdout_text(basr::robot::BASR_TOML)?;
+        } else {
+            stdout_text(&robot.to_toml_string())?;
+        }
         if !global.quiet {
             eprintln!("robot {} sha256 {}", robot.name, robot.sha256());
         }

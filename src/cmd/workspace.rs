@@ -68,7 +68,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "z_range_m": region.z_range_m,
             "boundary": boundary,
         });
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        super::robot::stdout_text(&(serde_json::to_string_pretty(&out)? + "\n"))?;
     } else if !global.quiet {
         eprintln!(
             "{}: reachable tip region on the road (base frame), tilt {:.2}°, fan {:.2}°",
