@@ -300,10 +300,27 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
             "must not be negative".into(),
         );
     }
-    if e.joint_f_deflection_rad < 0.0 {
+    let (xs, ys) = (&e.joint_f_deflection_extension_m, &e.joint_f_deflection_rad);
+    if xs.len() != ys.len() || xs.is_empty() {
         push(
             "end_effector.joint_f_deflection_rad",
-            "must not be negative".into(),
+            format!(
+                "needs one value per joint_f_deflection_extension_m entry ({} given for {})",
+                ys.len(),
+                xs.len()
+            ),
+        );
+    }
+    if xs.windows(2).any(|w| w[0] >= w[1]) {
+        push(
+            "end_effector.joint_f_deflection_extension_m",
+            "extensions must increase".into(),
+        );
+    }
+    if ys.iter().any(|&y| y < 0.0) {
+        push(
+            "end_effector.joint_f_deflection_rad",
+            "deflections must not be negative".into(),
         );
     }
     if f.tip_below_coupler_m < 0.0 {

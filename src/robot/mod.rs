@@ -72,7 +72,10 @@ pub struct EndEffector {
     pub tilt_nut_max_speed_mps: f64,
     pub nozzle_below_joint_f_m: f64,
     pub joint_f_test_torque_nm: f64,
-    pub joint_f_deflection_rad: f64,
+    /// Extensions at which the joint-F deflection was measured (increasing).
+    pub joint_f_deflection_extension_m: Vec<f64>,
+    /// Joint-F deflection under the test torque at those extensions.
+    pub joint_f_deflection_rad: Vec<f64>,
     pub fourbar: FourBar,
 }
 
@@ -272,6 +275,25 @@ impl Robot {
         crate::io::sha256_hex(&crate::job::canonical_json(&v))
     }
 
+    /// Angular compliance of joint F (rad per N·m) at extension `r`:
+    /// the measured deflection under the test torque (001 table 3.2),
+    /// interpolated linearly and held constant beyond the measured range.
+    pub fn joint_f_compliance_rad_per_nm(&self, extension_m: f64) -> f64 {
+        let e = &self.end_effector;
+        let xs = &e.joint_f_deflection_extension_m;
+        let ys = &e.joint_f_deflection_rad;
+        let defl = match xs.iter().position(|&x| x >= extension_m) {
+            _ if xs.is_empty() || ys.len() != xs.len() => 0.0,
+            Some(0) => ys[0],
+            None => ys[ys.len() - 1],
+            Some(i) => {
+                let t = (extension_m - xs[i - 1]) / (xs[i] - xs[i - 1]);
+                ys[i - 1] + t * (ys[i] - ys[i - 1])
+            }
+        };
+        defl / e.joint_f_test_torque_nm
+    }
+
     /// Highest extension the cylinder can give.
     pub fn max_extension_by_cylinder_m(&self) -> f64 {
         self.arm.retracted_extension_m + self.arm.pantograph_ratio * self.arm.cylinder_stroke_m
@@ -315,6 +337,18 @@ mod tests {
         p.height_law_c0_m = Some(0.02);
         p.height_law_c1 = Some(0.7);
         assert!((p.height_for_width_m(0.2) - 0.16).abs() < 1e-15);
+    }
+
+    #[test]
+    fn joint_f_compliance_from_table_3_2() {
+        let r = Robot::basr();
+        let per = |deg: f64| deg.to_radians() / 101.7;
+        assert!((r.joint_f_compliance_rad_per_nm(1.0) - per(0.18)).abs() < 1e-15);
+        assert!((r.joint_f_compliance_rad_per_nm(2.0) - per(0.18)).abs() < 1e-15);
+        assert!((r.joint_f_compliance_rad_per_nm(5.3) - per(0.20)).abs() < 1e-15);
+        // Halfway between 4.788 m (0.19°) and 5.093 m (0.20°).
+        let mid = 0.5 * (4.788 + 5.093);
+        assert!((r.joint_f_compliance_rad_per_nm(mid) - per(0.195)).abs() < 1e-12);
     }
 
     #[test]
