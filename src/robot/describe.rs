@@ -222,6 +222,14 @@ fn validate(r: &Robot) -> Vec<(String, String)> {
     positive("end_effector.mass_kg", e.mass_kg);
     positive("end_effector.vertical_stroke_m", e.vertical_stroke_m);
     positive("end_effector.tip_height_top_m", e.tip_height_top_m);
+    positive(
+        "end_effector.vertical_disturbance_m",
+        e.vertical_disturbance_m,
+    );
+    positive(
+        "end_effector.vertical_disturbance_hz",
+        e.vertical_disturbance_hz,
+    );
     positive("end_effector.yaw_gear_ratio", e.yaw_gear_ratio);
     positive("end_effector.tilt_screw_pitch_m", e.tilt_screw_pitch_m);
     positive(

@@ -161,6 +161,23 @@ impl Unreachable {
     }
 }
 
+/// A sampled joint trajectory breaking a speed or acceleration limit.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error(
+    "{joint} {what} {value:.4} exceeds its limit {limit:.4} (SI units) at sample {index}; \
+     slow the motion there"
+)]
+pub struct RateViolation {
+    /// Sample index where the violation is found.
+    pub index: usize,
+    /// Joint (CSV column name), or `tilt_nut_m` for the nut speed.
+    pub joint: String,
+    /// `"speed"` or `"acceleration"`.
+    pub what: &'static str,
+    pub value: f64,
+    pub limit: f64,
+}
+
 /// Angle wrapped to (−π, π].
 pub fn wrap_pi(a: f64) -> f64 {
     let w = a.rem_euclid(TAU);
@@ -393,6 +410,56 @@ impl Robot {
         Some(best)
     }
 
+    /// Check a joint trajectory sampled every `dt` seconds against every
+    /// joint's speed and acceleration limits (finite differences) and the
+    /// ball nut's speed limit; the first violation in sample order.
+    /// Limits are met up to a relative 1e-9 (rounding).
+    pub fn check_rates(&self, samples: &[Joints], dt: f64) -> Result<(), RateViolation> {
+        let over = |v: f64, lim: f64| v.abs() > lim * (1.0 + 1e-9);
+        let fb = &self.end_effector.fourbar;
+        let nut_lim = self.end_effector.tilt_nut_max_speed_mps;
+        for i in 1..samples.len() {
+            let (a, b) = (samples[i - 1].values(), samples[i].values());
+            for (k, (name, l)) in self.limits.iter().enumerate() {
+                let v = (b[k] - a[k]) / dt;
+                if over(v, l.max_vel) {
+                    return Err(RateViolation {
+                        index: i,
+                        joint: name.into(),
+                        what: "speed",
+                        value: v.abs(),
+                        limit: l.max_vel,
+                    });
+                }
+                if i >= 2 {
+                    let z = samples[i - 2].values()[k];
+                    let acc = (b[k] - 2.0 * a[k] + z) / (dt * dt);
+                    if over(acc, l.max_acc) {
+                        return Err(RateViolation {
+                            index: i - 1,
+                            joint: name.into(),
+                            what: "acceleration",
+                            value: acc.abs(),
+                            limit: l.max_acc,
+                        });
+                    }
+                }
+            }
+            let nut = |j: &Joints| fb.nut_m(j.tilt_rad).unwrap_or(f64::NAN);
+            let v = (nut(&samples[i]) - nut(&samples[i - 1])) / dt;
+            if v.is_nan() || over(v, nut_lim) {
+                return Err(RateViolation {
+                    index: i,
+                    joint: "tilt_nut_m".into(),
+                    what: "speed",
+                    value: v.abs(),
+                    limit: nut_lim,
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// Radians of tilt motor per metre of nut travel.
     fn tilt_motor_rad_per_m(&self) -> f64 {
         let e = &self.end_effector;
@@ -616,6 +683,51 @@ mod tests {
         let next = r.ik_nearest(&p2, &prev).unwrap();
         assert!((next.ee_yaw_rad - prev.ee_yaw_rad).abs() < 0.1);
         assert!((next.tilt_rad - prev.tilt_rad).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rates_checked_per_joint() {
+        let r = robot();
+        let dt = 0.032;
+        let start = Joints {
+            base_rot_rad: 1.5,
+            extension_m: 3.0,
+            vertical_m: 0.1,
+            ee_yaw_rad: 0.0,
+            tilt_rad: 0.0,
+        };
+        // Yaw at 29°/s: fine (acceleration from rest would not be, so
+        // start already moving).
+        let at = |w: f64, n: usize| -> Vec<Joints> {
+            (0..n)
+                .map(|i| Joints {
+                    ee_yaw_rad: w * dt * i as f64,
+                    ..start
+                })
+                .collect()
+        };
+        assert!(r.check_rates(&at(29f64.to_radians(), 10), dt).is_ok());
+        let e = r.check_rates(&at(31f64.to_radians(), 10), dt).unwrap_err();
+        assert_eq!(
+            (e.joint.as_str(), e.what, e.index),
+            ("ee_yaw_rad", "speed", 1)
+        );
+        // A jump to 20°/s within one period breaks the yaw acceleration.
+        let mut v = at(0.0, 3);
+        v.extend(at(20f64.to_radians(), 3).into_iter().map(|j| Joints {
+            ee_yaw_rad: j.ee_yaw_rad + 20f64.to_radians() * dt,
+            ..j
+        }));
+        let e = r.check_rates(&v, dt).unwrap_err();
+        assert_eq!((e.joint.as_str(), e.what), ("ee_yaw_rad", "acceleration"));
+        // Tilt at 14°/s moves the nut at ≈ 0.106 m/s (< 0.11): fine.
+        let tilt: Vec<_> = (0..5)
+            .map(|i| Joints {
+                tilt_rad: 14f64.to_radians() * dt * i as f64,
+                ..start
+            })
+            .collect();
+        assert!(r.check_rates(&tilt, dt).is_ok());
     }
 
     #[test]

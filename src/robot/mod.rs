@@ -13,7 +13,7 @@ mod describe;
 
 pub use describe::{check_source, RobotError};
 pub use fourbar::FourBar;
-pub use kinematics::{Actuators, Encoders, Joints, NozzlePose, Unreachable};
+pub use kinematics::{Actuators, Encoders, Joints, NozzlePose, RateViolation, Unreachable};
 pub use workspace::Region;
 
 use serde::{Deserialize, Serialize};
@@ -63,6 +63,9 @@ pub struct Arm {
 pub struct EndEffector {
     pub mass_kg: f64,
     pub vertical_stroke_m: f64,
+    /// Amplitude and frequency of the disturbances the vertical joint follows.
+    pub vertical_disturbance_m: f64,
+    pub vertical_disturbance_hz: f64,
     /// Tip height over the road at the top of the vertical stroke, zero tilt.
     pub tip_height_top_m: f64,
     pub yaw_gear_ratio: f64,
