@@ -55,6 +55,7 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
         Some(Kind::Robot) => basr::robot::check_source(text, origin),
         // A robot file with a TOML syntax error: report where, not "unknown".
         None if basr::robot::looks_like_robot(text) => basr::robot::check_source(text, origin),
+        Some(Kind::Font) => basr::font::check_source(text, origin),
         Some(k) => vec![format!(
             "{origin}: checking {k:?} files is not implemented yet"
         )],

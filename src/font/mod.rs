@@ -1,1 +1,216 @@
 //! Font files, the five primitives of 001 fig. 2.4, glyphs and their validation.
+//!
+//! A font is a TOML file (see `fonts/basr.toml`, whose header documents the
+//! format). Glyphs live on the letter grid of 001 §2.3: x from 0 to 4 to the
+//! right, y from 0 to 25 up. Each glyph is a list of [`Stroke`]s, painted in
+//! that order.
+//!
+//! **Stroke convention.** A stroke has two edges, `left` and `right`, that
+//! both run from the stroke's start to its end; `left` lies on the left of
+//! the direction of travel. Rung i joins `left.subdivide(n)[i]` and
+//! `right.subdivide(n)[i]` (001 §2.4, fig. 2.7–2.8); the start and end caps
+//! are the straight rungs i = 0 and i = n, which a flat fan paints square.
+//! Strokes of one glyph never overlap (they may abut along a shared rung or
+//! edge), so no area is painted twice.
+
+mod build;
+mod spec;
+mod validate;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::OnceLock;
+
+use kurbo::{Affine, Point};
+
+use crate::geom::Edge;
+
+pub use validate::{overlap_area, validate_stroke, Limits, DEFAULT_LIMITS};
+
+/// Width of the letter grid in font units (001 §2.3: 25 × 4 grid).
+pub const GRID_WIDTH: f64 = 4.0;
+/// Height of the letter grid in font units (001 §2.3).
+pub const GRID_HEIGHT: f64 = 25.0;
+
+/// Name of the font built into the binary.
+pub const EMBEDDED_NAME: &str = "basr";
+const EMBEDDED_SOURCE: &str = include_str!("../../fonts/basr.toml");
+const EMBEDDED_ORIGIN: &str = "fonts/basr.toml (embedded)";
+
+/// One band of paint between two opposing edges (see the module docs for
+/// the convention).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stroke {
+    pub left: Edge,
+    pub right: Edge,
+}
+
+impl Stroke {
+    /// The n + 1 rungs (left point, right point) of an n-way subdivision.
+    pub fn rungs(&self, n: usize) -> Vec<(Point, Point)> {
+        self.left
+            .subdivide(n)
+            .into_iter()
+            .zip(self.right.subdivide(n))
+            .collect()
+    }
+
+    /// Closed outline, counter-clockwise: the right edge forward, then the
+    /// left edge backward, each sampled at `k` equal-arc-length points.
+    pub fn outline(&self, k: usize) -> Vec<Point> {
+        let mut pts = self.right.sample(k);
+        let mut left = self.left.sample(k);
+        left.reverse();
+        pts.extend(left);
+        pts
+    }
+
+    /// The stroke mapped by an affine transform. A mirroring map (negative
+    /// determinant) swaps which edge is on the left, so the edges swap too.
+    pub fn transformed(&self, m: &Affine) -> Stroke {
+        let left = self.left.transformed(m);
+        let right = self.right.transformed(m);
+        if m.determinant() < 0.0 {
+            Stroke {
+                left: right,
+                right: left,
+            }
+        } else {
+            Stroke { left, right }
+        }
+    }
+
+    /// The same band painted in the opposite direction.
+    pub fn reversed(&self) -> Stroke {
+        Stroke {
+            left: self.right.reversed(),
+            right: self.left.reversed(),
+        }
+    }
+}
+
+/// One character's strokes, in painting order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Glyph {
+    pub ch: char,
+    pub strokes: Vec<Stroke>,
+}
+
+/// A validated font.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Font {
+    /// The font's `name`.
+    pub name: String,
+    /// SHA-256 (hex) of the font file's bytes.
+    pub sha256: String,
+    /// Where it came from (a path, or the embedded marker).
+    pub origin: String,
+    glyphs: BTreeMap<char, Glyph>,
+}
+
+/// Why a font could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum FontError {
+    /// The file could not be read.
+    #[error("cannot read font file {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file was read but is not a valid font; every problem is listed,
+    /// each naming file:line:col, the glyph and stroke.
+    #[error("invalid font {origin}:\n  {}", problems.join("\n  "))]
+    Invalid {
+        origin: String,
+        problems: Vec<String>,
+    },
+}
+
+impl Font {
+    /// The default font built into the binary (`fonts/basr.toml`).
+    pub fn embedded() -> &'static Font {
+        static FONT: OnceLock<Font> = OnceLock::new();
+        FONT.get_or_init(|| {
+            // The embedded source is fixed at build time and a test checks it
+            // validates, so a failure here is a build defect, not bad input.
+            Font::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN)
+                .unwrap_or_else(|e| panic!("the embedded font is invalid: {e}"))
+        })
+    }
+
+    /// The embedded font's source text.
+    pub fn embedded_source() -> &'static str {
+        EMBEDDED_SOURCE
+    }
+
+    /// Read and validate a font file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Font, FontError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| FontError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Font::from_toml_str(&text, &path.display().to_string())
+    }
+
+    /// `--font NAME|FILE`: the embedded font by its name, otherwise a file.
+    pub fn from_name_or_path(name_or_path: &str) -> Result<Font, FontError> {
+        if name_or_path == EMBEDDED_NAME {
+            Ok(Font::embedded().clone())
+        } else {
+            Font::load(name_or_path)
+        }
+    }
+
+    /// Parse and validate font source text; `origin` names it in messages.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Font, FontError> {
+        let built = build::build(text, origin);
+        if !built.problems.is_empty() {
+            return Err(FontError::Invalid {
+                origin: origin.to_string(),
+                problems: built.problems,
+            });
+        }
+        Ok(Font {
+            name: built.name,
+            sha256: crate::io::sha256_hex(text.as_bytes()),
+            origin: origin.to_string(),
+            glyphs: built.glyphs,
+        })
+    }
+
+    /// The glyph for `ch` (exactly as given; the font holds capitals and digits).
+    pub fn glyph(&self, ch: char) -> Option<&Glyph> {
+        self.glyphs.get(&ch)
+    }
+
+    /// All glyphs in character order.
+    pub fn glyphs(&self) -> impl Iterator<Item = &Glyph> {
+        self.glyphs.values()
+    }
+
+    /// The characters the font has, in order.
+    pub fn chars(&self) -> String {
+        self.glyphs.keys().collect()
+    }
+}
+
+/// Every problem in a font source (empty when valid), for `basr check`.
+pub fn check_source(text: &str, origin: &str) -> Vec<String> {
+    build::build(text, origin).problems
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn embedded_font_validates() {
+        let problems = check_source(EMBEDDED_SOURCE, EMBEDDED_ORIGIN);
+        assert!(problems.is_empty(), "{}", problems.join("\n"));
+        let f = Font::embedded();
+        assert_eq!(f.name, EMBEDDED_NAME);
+        assert_eq!(f.sha256.len(), 64);
+    }
+}

@@ -1,0 +1,411 @@
+//! From font source text to glyphs: parse, expand primitives, validate.
+
+use std::collections::BTreeMap;
+
+use kurbo::{Affine, Point, Vec2};
+use toml::Spanned;
+
+use super::spec::{FontSpec, SegmentSpec, TransformSpec};
+use super::validate::{validate_glyph, DEFAULT_LIMITS};
+use super::{Glyph, Stroke, GRID_HEIGHT, GRID_WIDTH};
+use crate::geom::{Cardinal, Conic, Edge, Segment};
+
+/// What building found: the glyphs that built, and every problem.
+pub struct Built {
+    pub name: String,
+    pub glyphs: BTreeMap<char, Glyph>,
+    pub problems: Vec<String>,
+}
+
+/// Turns byte offsets into `origin:line:col`.
+pub struct Locator<'a> {
+    text: &'a str,
+    origin: &'a str,
+}
+
+impl Locator<'_> {
+    pub fn at(&self, offset: usize) -> String {
+        let offset = offset.min(self.text.len());
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        format!("{}:{line}:{col}", self.origin)
+    }
+}
+
+pub fn build(text: &str, origin: &str) -> Built {
+    let loc = Locator { text, origin };
+    let mut out = Built {
+        name: String::new(),
+        glyphs: BTreeMap::new(),
+        problems: vec![],
+    };
+    let spec: FontSpec = match toml::from_str(text) {
+        Ok(s) => s,
+        Err(e) => {
+            let at = e.span().map_or(origin.to_string(), |s| loc.at(s.start));
+            out.problems.push(format!(
+                "{at}: {} (see the format notes at the top of fonts/basr.toml)",
+                e.message().trim_end()
+            ));
+            return out;
+        }
+    };
+    out.name = spec.name.get_ref().clone();
+    if out.name.trim().is_empty() {
+        out.problems.push(format!(
+            "{}: the font needs a non-empty `name`",
+            loc.at(spec.name.span().start)
+        ));
+    }
+    let grid = spec.grid.get_ref();
+    if grid.width != GRID_WIDTH || grid.height != GRID_HEIGHT {
+        out.problems.push(format!(
+            "{}: grid is {} × {}; basr letters use the 4 × 25 grid of 001 §2.3 \
+             (write `grid = {{ width = 4, height = 25 }}`)",
+            loc.at(spec.grid.span().start),
+            grid.width,
+            grid.height
+        ));
+    }
+
+    // Primitives: stroke templates in their own coordinates.
+    let mut primitives: BTreeMap<&str, Stroke> = BTreeMap::new();
+    for (name, p) in &spec.primitives {
+        let ctx = format!("{}: primitive `{name}`", loc.at(p.span().start));
+        let p = p.get_ref();
+        let left = edge(
+            &p.left,
+            &loc,
+            &format!("{ctx} left edge"),
+            &mut out.problems,
+        );
+        let right = edge(
+            &p.right,
+            &loc,
+            &format!("{ctx} right edge"),
+            &mut out.problems,
+        );
+        if let (Some(left), Some(right)) = (left, right) {
+            primitives.insert(name.as_str(), Stroke { left, right });
+        }
+    }
+
+    // Glyphs that copy another are built after the ones they copy.
+    let mut order: Vec<(&Spanned<String>, &super::spec::GlyphSpec)> = spec.glyphs.iter().collect();
+    order.sort_by_key(|(_, g)| g.copy.is_some());
+    for (key, g) in order {
+        let gat = loc.at(key.span().start);
+        let key = key.get_ref();
+        let mut chars = key.chars();
+        let ch = match (chars.next(), chars.next()) {
+            (Some(c), None) if c.is_ascii_uppercase() || c.is_ascii_digit() => c,
+            _ => {
+                out.problems.push(format!(
+                    "{gat}: glyph `{key}`: a glyph key must be one capital letter or digit \
+                     (lower case is drawn with the capitals; space is left to layout)"
+                ));
+                continue;
+            }
+        };
+        let before = out.problems.len();
+        let mut strokes: Vec<(String, Stroke)> = Vec::new();
+        match (&g.copy, g.strokes.is_empty()) {
+            (Some(src), true) => {
+                let at = loc.at(src.span().start);
+                let found = src
+                    .get_ref()
+                    .chars()
+                    .next()
+                    .filter(|_| src.get_ref().chars().count() == 1)
+                    .and_then(|c| out.glyphs.get(&c));
+                let Some(found) = found else {
+                    out.problems.push(format!(
+                        "{at}: glyph '{ch}': `copy = \"{}\"` names no valid glyph of this font \
+                         (a copied glyph must itself have strokes)",
+                        src.get_ref()
+                    ));
+                    continue;
+                };
+                let ctx = format!("{at}: glyph '{ch}'");
+                let Some(m) = transform(&g.transform, &loc, &ctx, &mut out.problems) else {
+                    continue;
+                };
+                for (i, s) in found.strokes.iter().enumerate() {
+                    strokes.push((
+                        format!("{ctx} stroke {} (copied)", i + 1),
+                        s.transformed(&m),
+                    ));
+                }
+            }
+            (None, false) => {
+                if !g.transform.is_empty() {
+                    out.problems.push(format!(
+                        "{gat}: glyph '{ch}': a glyph-level `transform` goes with `copy`; \
+                         put it on each stroke instead"
+                    ));
+                    continue;
+                }
+                for (i, s) in g.strokes.iter().enumerate() {
+                    let ctx = format!("{}: glyph '{ch}' stroke {}", loc.at(s.span().start), i + 1);
+                    if let Some(st) = stroke(
+                        s.get_ref(),
+                        &primitives,
+                        &spec,
+                        &loc,
+                        &ctx,
+                        &mut out.problems,
+                    ) {
+                        strokes.push((ctx, st));
+                    }
+                }
+            }
+            _ => {
+                out.problems.push(format!(
+                    "{gat}: glyph '{ch}' needs either `strokes` or `copy = \"OTHER\"`, not both \
+                     and not neither"
+                ));
+                continue;
+            }
+        }
+        if out.problems.len() == before {
+            out.problems
+                .extend(validate_glyph(&strokes, &DEFAULT_LIMITS));
+        }
+        if out.problems.len() == before {
+            let strokes = strokes.into_iter().map(|(_, s)| s).collect();
+            out.glyphs.insert(ch, Glyph { ch, strokes });
+        }
+    }
+    out
+}
+
+fn stroke(
+    s: &super::spec::StrokeSpec,
+    primitives: &BTreeMap<&str, Stroke>,
+    spec: &FontSpec,
+    loc: &Locator,
+    ctx: &str,
+    problems: &mut Vec<String>,
+) -> Option<Stroke> {
+    let base = match (&s.primitive, &s.left, &s.right) {
+        (Some(name), None, None) => match primitives.get(name.get_ref().as_str()) {
+            Some(p) => p.clone(),
+            None => {
+                let known: Vec<&str> = spec.primitives.keys().map(|k| k.as_str()).collect();
+                let why = if spec.primitives.contains_key(name.get_ref()) {
+                    "is itself invalid (see its own error)".to_string()
+                } else {
+                    format!("is unknown; the font defines: {}", known.join(", "))
+                };
+                problems.push(format!(
+                    "{}: {ctx}: primitive `{}` {why}",
+                    loc.at(name.span().start),
+                    name.get_ref()
+                ));
+                return None;
+            }
+        },
+        (None, Some(l), Some(r)) => {
+            let left = edge(l, loc, &format!("{ctx} left edge"), problems);
+            let right = edge(r, loc, &format!("{ctx} right edge"), problems);
+            Stroke {
+                left: left?,
+                right: right?,
+            }
+        }
+        _ => {
+            problems.push(format!(
+                "{ctx}: a stroke is either `primitive = \"NAME\"` (with an optional `transform`) \
+                 or explicit `left` and `right` edges"
+            ));
+            return None;
+        }
+    };
+    let m = transform(&s.transform, loc, ctx, problems)?;
+    let placed = base.transformed(&m);
+    Some(if s.reverse { placed.reversed() } else { placed })
+}
+
+fn edge(
+    segs: &[Spanned<SegmentSpec>],
+    loc: &Locator,
+    ctx: &str,
+    problems: &mut Vec<String>,
+) -> Option<Edge> {
+    let mut out: Vec<Segment> = Vec::new();
+    let mut starts: Vec<usize> = Vec::new(); // source offset of each built segment
+    let mut ok = true;
+    for (i, s) in segs.iter().enumerate() {
+        let sctx = format!("{} segment {}", ctx, i + 1);
+        match segment(s.get_ref(), loc, &sctx, problems) {
+            Some(v) => {
+                for seg in v {
+                    out.push(seg);
+                    starts.push(s.span().start);
+                }
+            }
+            None => ok = false,
+        }
+    }
+    if !ok {
+        return None;
+    }
+    match Edge::new(out) {
+        Ok(e) => Some(e),
+        Err(e) => {
+            let at = match &e {
+                crate::geom::GeomError::Gap { index, .. }
+                | crate::geom::GeomError::Degenerate { index }
+                | crate::geom::GeomError::NotFinite { index } => {
+                    starts.get(*index).map(|&o| loc.at(o))
+                }
+                crate::geom::GeomError::Empty => None,
+            };
+            let fix = match &e {
+                crate::geom::GeomError::Gap { .. } => {
+                    " (make each segment start where the previous one ends)"
+                }
+                crate::geom::GeomError::Degenerate { .. } => " (give the segment distinct ends)",
+                _ => "",
+            };
+            match at {
+                Some(at) => problems.push(format!("{at}: {ctx}: {e}{fix}")),
+                None => problems.push(format!("{ctx}: {e}")),
+            }
+            None
+        }
+    }
+}
+
+fn pt(p: [f64; 2]) -> Point {
+    Point::new(p[0], p[1])
+}
+
+fn segment(
+    s: &SegmentSpec,
+    loc: &Locator,
+    ctx: &str,
+    problems: &mut Vec<String>,
+) -> Option<Vec<Segment>> {
+    let kinds = [
+        s.line.is_some(),
+        s.cardinal.is_some(),
+        s.arc.is_some(),
+        s.conic.is_some(),
+    ];
+    if kinds.iter().filter(|&&k| k).count() != 1 {
+        problems.push(format!(
+            "{ctx}: a segment needs exactly one of `line`, `cardinal`, `arc`, `conic`"
+        ));
+        return None;
+    }
+    if (s.tension.is_some() || s.t.is_some()) && s.cardinal.is_none() {
+        problems.push(format!(
+            "{ctx}: `tension` and `t` belong to a `cardinal` segment"
+        ));
+        return None;
+    }
+    if s.weight.is_some() && s.conic.is_none() {
+        problems.push(format!("{ctx}: `weight` belongs to a `conic` segment"));
+        return None;
+    }
+    let mut v: Vec<Segment> = if let Some([a, b]) = s.line {
+        vec![Segment::line(pt(a), pt(b))]
+    } else if let Some(p) = s.cardinal {
+        let tension = s.tension.unwrap_or(1.0); // 001 app. A uses a = 1 throughout
+        let t = s.t.unwrap_or([0.0, 1.0]);
+        if !(0.0..=1.0).contains(&t[0]) || !(0.0..=1.0).contains(&t[1]) || t[0] >= t[1] {
+            problems.push(format!(
+                "{ctx}: `t = [{}, {}]` must satisfy 0 ≤ t0 < t1 ≤ 1",
+                t[0], t[1]
+            ));
+            return None;
+        }
+        if !(tension.is_finite() && tension > 0.0) {
+            problems.push(format!("{ctx}: `tension` must be a positive number"));
+            return None;
+        }
+        vec![Segment::Cardinal(Cardinal::with_range(
+            p.map(pt),
+            tension,
+            (t[0], t[1]),
+        ))]
+    } else if let Some(a) = &s.arc {
+        let sweep = (a.to_deg - a.from_deg).abs();
+        if !(a.radii[0] > 0.0 && a.radii[1] > 0.0 && sweep > 0.0 && sweep <= 360.0) {
+            problems.push(format!(
+                "{ctx}: an arc needs positive radii and a sweep of 0–360° (from_deg ≠ to_deg)"
+            ));
+            return None;
+        }
+        Conic::elliptical_arc(
+            pt(a.center),
+            Vec2::new(a.radii[0], a.radii[1]),
+            a.from_deg.to_radians(),
+            a.to_deg.to_radians(),
+        )
+        .into_iter()
+        .map(Segment::Conic)
+        .collect()
+    } else if let Some([p0, p1, p2]) = s.conic {
+        let w = s.weight.unwrap_or(1.0);
+        if !(w.is_finite() && w > 0.0) {
+            problems.push(format!("{ctx}: a conic's `weight` must be positive"));
+            return None;
+        }
+        vec![Segment::Conic(Conic::new(pt(p0), pt(p1), pt(p2), w))]
+    } else {
+        return None;
+    };
+    let m = transform(&s.transform, loc, ctx, problems)?;
+    v = v.iter().map(|seg| seg.transformed(&m)).collect();
+    if s.reverse {
+        v = v.iter().rev().map(|seg| seg.reversed()).collect();
+    }
+    Some(v)
+}
+
+/// The composed placement (steps applied in the order written).
+fn transform(
+    steps: &[Spanned<TransformSpec>],
+    loc: &Locator,
+    ctx: &str,
+    problems: &mut Vec<String>,
+) -> Option<Affine> {
+    let mut m = Affine::IDENTITY;
+    for step in steps {
+        let t = step.get_ref();
+        let options = [
+            t.translate.map(|[dx, dy]| Affine::translate((dx, dy))),
+            t.scale.map(|[sx, sy]| Affine::scale_non_uniform(sx, sy)),
+            t.rotate_deg.map(|d| Affine::rotate(d.to_radians())),
+            t.mirror_x
+                .map(|c| Affine::new([-1.0, 0.0, 0.0, 1.0, 2.0 * c, 0.0])),
+            t.mirror_y
+                .map(|c| Affine::new([1.0, 0.0, 0.0, -1.0, 0.0, 2.0 * c])),
+            t.rotate180
+                .map(|[cx, cy]| Affine::new([-1.0, 0.0, 0.0, -1.0, 2.0 * cx, 2.0 * cy])),
+            t.shear_x.map(|k| Affine::new([1.0, 0.0, k, 1.0, 0.0, 0.0])),
+        ];
+        let given: Vec<Affine> = options.into_iter().flatten().collect();
+        if given.len() != 1 {
+            problems.push(format!(
+                "{}: {ctx}: each transform step needs exactly one of translate, scale, \
+                 rotate_deg, mirror_x, mirror_y, rotate180, shear_x",
+                loc.at(step.span().start)
+            ));
+            return None;
+        }
+        let step_m = given[0];
+        if !step_m.is_finite() || step_m.determinant().abs() < 1e-12 {
+            problems.push(format!(
+                "{}: {ctx}: this transform step collapses the plane (zero scale?)",
+                loc.at(step.span().start)
+            ));
+            return None;
+        }
+        m = step_m * m;
+    }
+    Some(m)
+}

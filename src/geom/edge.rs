@@ -1,0 +1,326 @@
+//! An edge: a G0 chain of segments, measured and split by arc length.
+
+use kurbo::{Affine, Point, Vec2};
+
+use super::{Curve, GeomError, Segment, DEFAULT_ACCURACY, JOIN_TOLERANCE};
+
+/// A continuous chain of segments, each starting where the previous ends
+/// (within [`JOIN_TOLERANCE`]). Lengths are measured once, at
+/// [`DEFAULT_ACCURACY`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Edge {
+    segments: Vec<Segment>,
+    /// cum[i] = arc length from the edge's start to the start of segment i;
+    /// one more entry than segments (the last is the total).
+    cum: Vec<f64>,
+}
+
+impl Edge {
+    /// Build an edge, checking that it is non-empty, finite, non-degenerate
+    /// and continuous.
+    pub fn new(segments: Vec<Segment>) -> Result<Edge, GeomError> {
+        if segments.is_empty() {
+            return Err(GeomError::Empty);
+        }
+        let mut cum = Vec::with_capacity(segments.len() + 1);
+        cum.push(0.0);
+        for (index, seg) in segments.iter().enumerate() {
+            if !seg.is_finite() {
+                return Err(GeomError::NotFinite { index });
+            }
+            if index > 0 {
+                let prev_end = segments[index - 1].end();
+                let start = seg.start();
+                let gap = (start - prev_end).hypot();
+                if gap > JOIN_TOLERANCE {
+                    return Err(GeomError::Gap {
+                        index,
+                        prev_end,
+                        start,
+                        gap,
+                    });
+                }
+            }
+            let len = seg.arclen(DEFAULT_ACCURACY);
+            if !len.is_finite() || len <= JOIN_TOLERANCE {
+                return Err(GeomError::Degenerate { index });
+            }
+            cum.push(cum[index] + len);
+        }
+        Ok(Edge { segments, cum })
+    }
+
+    /// The segments, in order.
+    pub fn segments(&self) -> &[Segment] {
+        &self.segments
+    }
+
+    /// Total arc length.
+    pub fn length(&self) -> f64 {
+        self.cum[self.segments.len()]
+    }
+
+    /// First point.
+    pub fn start(&self) -> Point {
+        self.segments[0].start()
+    }
+
+    /// Last point.
+    pub fn end(&self) -> Point {
+        self.segments[self.segments.len() - 1].end()
+    }
+
+    /// Segment index and its parameter at arc length `s` from the start
+    /// (clamped to the edge).
+    fn locate(&self, s: f64, accuracy: f64) -> (usize, f64) {
+        let s = s.clamp(0.0, self.length());
+        // Last segment whose start is at or before s.
+        let i = match self.cum[1..].iter().position(|&c| s <= c) {
+            Some(i) => i,
+            None => self.segments.len() - 1,
+        };
+        let seg = &self.segments[i];
+        let local = s - self.cum[i];
+        let seg_len = self.cum[i + 1] - self.cum[i];
+        let t = if local <= 0.0 {
+            0.0
+        } else if local >= seg_len {
+            1.0
+        } else {
+            seg.inv_arclen(local, accuracy)
+        };
+        (i, t)
+    }
+
+    /// The point at arc length `s` from the start.
+    pub fn point_at_length(&self, s: f64) -> Point {
+        let (i, t) = self.locate(s, DEFAULT_ACCURACY);
+        self.segments[i].eval(t)
+    }
+
+    /// The unit tangent (direction of travel) at arc length `s`.
+    pub fn tangent_at_length(&self, s: f64) -> Vec2 {
+        let (i, t) = self.locate(s, DEFAULT_ACCURACY);
+        let d = self.segments[i].deriv(t);
+        if d.hypot() > 1e-12 {
+            return d.normalize();
+        }
+        // A cusp of the parametrisation: use a short chord instead.
+        let h = 1e-6 * self.length();
+        let chord = self.point_at_length(s + h) - self.point_at_length(s - h);
+        if chord.hypot() > 0.0 {
+            chord.normalize()
+        } else {
+            Vec2::ZERO
+        }
+    }
+
+    /// n + 1 points splitting the edge into n pieces of equal arc length
+    /// (001 §2.4, fig. 2.7), exact to [`DEFAULT_ACCURACY`] rather than the
+    /// seed's chord interpolation. The first and last points are the edge's
+    /// ends. `n = 0` is treated as 1.
+    pub fn subdivide(&self, n: usize) -> Vec<Point> {
+        let n = n.max(1);
+        let total = self.length();
+        let mut out = Vec::with_capacity(n + 1);
+        out.push(self.start());
+        for k in 1..n {
+            out.push(self.point_at_length(total * k as f64 / n as f64));
+        }
+        out.push(self.end());
+        out
+    }
+
+    /// k points at equal arc length along the edge, both ends included
+    /// (k ≥ 2), for drawing and export.
+    pub fn sample(&self, k: usize) -> Vec<Point> {
+        self.subdivide(k.max(2) - 1)
+    }
+
+    /// The edge mapped by an affine transform.
+    pub fn transformed(&self, m: &Affine) -> Edge {
+        let segments: Vec<Segment> = self.segments.iter().map(|s| s.transformed(m)).collect();
+        Edge::from_trusted(segments)
+    }
+
+    /// The edge run from its end to its start.
+    pub fn reversed(&self) -> Edge {
+        let segments: Vec<Segment> = self.segments.iter().rev().map(|s| s.reversed()).collect();
+        Edge::from_trusted(segments)
+    }
+
+    /// The edge followed by `other` (which must start where this one ends).
+    pub fn joined(&self, other: &Edge) -> Result<Edge, GeomError> {
+        let mut segments = self.segments.clone();
+        segments.extend(other.segments.iter().cloned());
+        Edge::new(segments)
+    }
+
+    /// Rebuild the cumulative lengths of segments already known to chain.
+    fn from_trusted(segments: Vec<Segment>) -> Edge {
+        let mut cum = Vec::with_capacity(segments.len() + 1);
+        cum.push(0.0);
+        for (i, seg) in segments.iter().enumerate() {
+            cum.push(cum[i] + seg.arclen(DEFAULT_ACCURACY));
+        }
+        Edge { segments, cum }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Cardinal, Conic};
+    use proptest::prelude::*;
+
+    fn s_outer() -> Edge {
+        let c = Cardinal::new(
+            [
+                (0.0, 6.0).into(),
+                (2.0, -0.2).into(),
+                (4.0, 6.0).into(),
+                (2.0, 8.0).into(),
+            ],
+            1.0,
+        );
+        Edge::new(vec![
+            Segment::Cardinal(c),
+            Segment::line((4.0, 6.0), (4.0, 9.0)),
+        ])
+        .unwrap()
+    }
+
+    #[test]
+    fn refuses_gaps_and_degenerate_segments() {
+        let e = Edge::new(vec![
+            Segment::line((0.0, 0.0), (1.0, 0.0)),
+            Segment::line((1.1, 0.0), (2.0, 0.0)),
+        ]);
+        assert!(matches!(e, Err(GeomError::Gap { index: 1, .. })));
+        let e = Edge::new(vec![Segment::line((0.0, 0.0), (0.0, 0.0))]);
+        assert!(matches!(e, Err(GeomError::Degenerate { index: 0 })));
+        assert!(matches!(Edge::new(vec![]), Err(GeomError::Empty)));
+        let e = Edge::new(vec![Segment::line((f64::NAN, 0.0), (1.0, 0.0))]);
+        assert!(matches!(e, Err(GeomError::NotFinite { index: 0 })));
+    }
+
+    #[test]
+    fn subdivision_ends_and_spacing() {
+        let e = s_outer();
+        let pts = e.subdivide(60);
+        assert_eq!(pts.len(), 61);
+        assert_eq!(pts[0], e.start());
+        assert_eq!(pts[60], e.end());
+        // The last 3 units are straight: points there lie on x = 4.
+        let step = e.length() / 60.0;
+        let straight = (3.0 / step).floor() as usize;
+        for p in &pts[60 - straight..] {
+            assert!((p.x - 4.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn transform_and_reverse() {
+        let e = s_outer();
+        let m = Affine::new([1.0, 0.0, 0.0, -1.0, 0.0, 25.0]); // y → 25 − y
+        let f = e.transformed(&m);
+        assert!((f.length() - e.length()).abs() < 1e-9);
+        assert!((f.start() - Point::new(2.0, 25.2)).hypot() < 1e-12);
+        let r = e.reversed();
+        assert!((r.length() - e.length()).abs() < 1e-9);
+        let a = e.point_at_length(2.5);
+        let b = r.point_at_length(r.length() - 2.5);
+        assert!((a - b).hypot() < 1e-8);
+        let t = e.tangent_at_length(0.0);
+        assert!((t - Vec2::new(1.0, 0.0)).hypot() < 1e-12);
+    }
+
+    /// A dense polyline by uniform *parameter* steps (independent of the
+    /// arc-length code under test), with cumulative chord lengths.
+    fn reference_polyline(e: &Edge) -> (Vec<Point>, Vec<f64>) {
+        let mut pts = vec![e.start()];
+        for seg in e.segments() {
+            for i in 1..=4000 {
+                pts.push(seg.eval(i as f64 / 4000.0));
+            }
+        }
+        let mut cum = vec![0.0];
+        for w in pts.windows(2) {
+            let last = cum[cum.len() - 1];
+            cum.push(last + (w[1] - w[0]).hypot());
+        }
+        (pts, cum)
+    }
+
+    /// Arc-length coordinate of `p` on the reference polyline, searching only
+    /// near `expect` (random splines may loop close to themselves).
+    fn coordinate(poly: &(Vec<Point>, Vec<f64>), p: Point, expect: f64, window: f64) -> f64 {
+        let (pts, cum) = poly;
+        let mut best = (f64::INFINITY, 0.0);
+        for i in 0..pts.len() - 1 {
+            if (cum[i] - expect).abs() > window {
+                continue;
+            }
+            let (a, b) = (pts[i], pts[i + 1]);
+            let ab = b - a;
+            let len2 = ab.hypot2();
+            let u = if len2 > 0.0 {
+                ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let d = (a + ab * u - p).hypot();
+            if d < best.0 {
+                best = (d, cum[i] + u * len2.sqrt());
+            }
+        }
+        best.1
+    }
+
+    fn arb_edge() -> impl Strategy<Value = Edge> {
+        let pt = || (-5.0f64..5.0, -5.0f64..5.0);
+        (
+            prop::array::uniform4(pt()),
+            0.3f64..1.5,
+            (0.2f64..3.0, 0.2f64..3.0),
+            0.2f64..2.8,
+            (-3.0f64..3.0, -3.0f64..3.0),
+        )
+            .prop_filter_map("degenerate", |(cp, a, radii, sweep, tail)| {
+                let pts = cp.map(|(x, y)| Point::new(x, y));
+                let c = Cardinal::new(pts, a);
+                let arc_start = c.end();
+                // An elliptical arc starting where the spline ends.
+                let centre = arc_start - Vec2::new(radii.0, 0.0);
+                let arcs = Conic::elliptical_arc(centre, Vec2::new(radii.0, radii.1), 0.0, sweep);
+                let mut segs = vec![Segment::Cardinal(c)];
+                segs.extend(arcs.into_iter().map(Segment::Conic));
+                let last = segs.last()?.end();
+                segs.push(Segment::line(last, last + Vec2::new(tail.0, tail.1)));
+                Edge::new(segs).ok()
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        #[test]
+        fn equal_arc_length_pieces(e in arb_edge()) {
+            let n = 60;
+            let pts = e.subdivide(n);
+            prop_assert_eq!(pts.len(), n + 1);
+            let poly = reference_polyline(&e);
+            let total = poly.1[poly.1.len() - 1];
+            prop_assert!(((total - e.length()) / total).abs() < 1e-5);
+            let s: Vec<f64> = pts
+                .iter()
+                .enumerate()
+                .map(|(k, p)| coordinate(&poly, *p, total * k as f64 / n as f64, 0.05 * total))
+                .collect();
+            let mean = total / n as f64;
+            for k in 0..n {
+                let piece = s[k + 1] - s[k];
+                prop_assert!(((piece - mean) / mean).abs() < 1e-3, "piece {}: {} vs {}", k, piece, mean);
+            }
+        }
+    }
+}
