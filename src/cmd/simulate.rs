@@ -4,8 +4,6 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
-use anyhow::Context;
-
 use super::{Global, Outcome};
 use basr::sim::{self, ControllerKind};
 
@@ -80,17 +78,6 @@ pub struct Args {
     pub substeps: Option<u32>,
 }
 
-fn load_robot(path: &Option<PathBuf>) -> anyhow::Result<basr::robot::Robot> {
-    match path {
-        None => Ok(basr::robot::Robot::basr()),
-        Some(p) => {
-            let text = basr::io::read_text(p)?;
-            toml::from_str(&text)
-                .with_context(|| format!("{}: not a valid robot description", p.display()))
-        }
-    }
-}
-
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if !(args.tolerance_mm.is_finite() && args.tolerance_mm > 0.0) {
         anyhow::bail!(
@@ -99,7 +86,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         );
     }
     let job = basr::job::Job::read(&args.job)?;
-    let robot = load_robot(&args.robot)?;
+    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {
         anyhow::bail!(
@@ -112,7 +99,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             want
         );
     }
-    let model = sim::SimModel::basr();
+    let model = sim::SimModel::from_robot(&job.robot).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: the robot description cannot be simulated: {e}",
+            args.job.display()
+        )
+    })?;
     let opts = sim::Options {
         controller: args.controller.into(),
         tolerance_m: args.tolerance_mm * 1e-3,

@@ -17,6 +17,7 @@ pub use model::SimModel;
 pub use report::{Report, TraceRow};
 
 use crate::job::Job;
+use crate::robot::Joints;
 use plant::{Inputs, State};
 use report::{AxisErrors, LimitViolation, PeakPressures, Place, Saturation, StrokeError, Waviness};
 
@@ -389,15 +390,23 @@ pub fn simulate(
         let meas = measure(&state, t, reference);
         let cmd = ctrl.step(&meas);
         let station = s.station[row];
-        let pose = &poses[station as usize];
-        // the nozzle now: arm FK plus the linkage's deflection
+        let station_pose = &poses[station as usize];
+        // the nozzle now: the robot's FK of the actual joints plus the
+        // linkage's deflection
         let r_act = model.arm.r_of_x(state[plant::X]);
-        let w = nozzle_base(model, state[plant::TH], r_act);
-        let act = [w[0] + state[plant::DX], w[1] + state[plant::DY]];
+        let tilt = job.robot.tilt_from_nut(nut.pos).unwrap_or(f64::NAN);
+        let pose = job.robot.fk(&Joints {
+            base_rot_rad: state[plant::TH],
+            extension_m: r_act,
+            vertical_m: vert.pos,
+            ee_yaw_rad: yaw.pos,
+            tilt_rad: if tilt.is_finite() { tilt } else { 0.0 },
+        });
+        let act = [pose.x_m + state[plant::DX], pose.y_m + state[plant::DY]];
         let des = reference.nozzle[0];
         let (ex, ey) = (act[0] - des[0], act[1] - des[1]);
         let err = ex.hypot(ey);
-        let des_road = pose.to_road(des);
+        let des_road = station_pose.to_road(des);
         let place = Place {
             t_s: t,
             stroke: s.stroke[row],
@@ -498,7 +507,7 @@ pub fn simulate(
         axis.tilt_nut_m = axis.tilt_nut_m.max((nut.pos - nut_ref[0]).abs());
         axis.vertical_m = axis.vertical_m.max((vert.pos - vert_ref[0]).abs());
         if opts.keep_trace {
-            let a_road = pose.to_road(act);
+            let a_road = station_pose.to_road(act);
             trace.push(TraceRow {
                 t_s: t,
                 station,

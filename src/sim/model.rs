@@ -368,6 +368,80 @@ impl SimModel {
         }
     }
 
+    /// The simulator's model of `robot`: kinematics, hydraulics, sensors,
+    /// limits and control timing from the description; the dynamic numbers
+    /// no description field gives yet (cylinder bore, friction, valve time
+    /// constants, servo bandwidths, inertias) keep the BASR values of
+    /// [`SimModel::basr`].
+    pub fn from_robot(robot: &crate::robot::Robot) -> Result<SimModel, String> {
+        let mut m = SimModel::basr();
+        let h = &robot.hydraulics;
+        let arm = &robot.arm;
+        m.arm.k = arm.pantograph_ratio;
+        m.arm.r_min_m = arm.retracted_extension_m;
+        m.arm.stroke_m = arm.cylinder_stroke_m;
+        m.arm.a2_m = arm.a2_m;
+        m.arm.d_m = h.gravity_d_m;
+        m.arm.x_min_m = h.gravity_x_min_m;
+        m.arm.holding_b_n = h.gravity_b_n;
+        m.arm.ee_mass_kg = robot.end_effector.mass_kg;
+        m.arm.theta_min_rad = robot.limits.base_rot_rad.min;
+        m.arm.theta_max_rad = robot.limits.base_rot_rad.max;
+        m.hydraulics.supply_pa = h.supply_pa;
+        m.hydraulics.tank_pa = h.tank_pa;
+        m.hydraulics.bulk_modulus_pa = h.bulk_modulus_pa;
+        m.motor.area = h.base_motor_displacement_m3prad / arm.base_motor_ratio.max(1e-12);
+        m.motor.v0_a_m3 = h.base_chamber_a_m3;
+        m.motor.v0_b_m3 = h.base_chamber_b_m3;
+        m.motor.valve_gain = h.valve_flow_gain;
+        m.motor.command_limit = h.command_limit;
+        let cyl_stroke = m.arm.stroke_m;
+        m.cylinder.v0_b_m3 = m.cylinder.v0_a_m3 + m.cylinder.alpha * m.cylinder.area * cyl_stroke;
+        let l = &robot.limits;
+        for (axis, lim) in [
+            (&mut m.yaw, &l.ee_yaw_rad),
+            (&mut m.vertical, &l.vertical_m),
+        ] {
+            axis.min = lim.min;
+            axis.max = lim.max;
+            axis.rate_limit = lim.max_vel;
+            axis.accel_limit = lim.max_acc;
+        }
+        let fb = &robot.end_effector.fourbar;
+        if let (Some(a), Some(b)) = (fb.nut_m(l.tilt_rad.min), fb.nut_m(l.tilt_rad.max)) {
+            m.tilt_nut.min = a.min(b);
+            m.tilt_nut.max = a.max(b);
+            // nut speed and acceleration from the tilt's, at the linkage's mean ratio
+            let per_rad = (b - a).abs() / (l.tilt_rad.max - l.tilt_rad.min).max(1e-9);
+            m.tilt_nut.rate_limit = robot
+                .end_effector
+                .tilt_nut_max_speed_mps
+                .min(l.tilt_rad.max_vel * per_rad);
+            m.tilt_nut.accel_limit = l.tilt_rad.max_acc * per_rad;
+        }
+        let enc = &robot.encoders;
+        m.sensors.base_counts_per_turn = enc.base_counts_per_rev as f64;
+        m.sensors.extension_m_per_count = enc.extension_m_per_count;
+        m.vertical.resolution = enc.vertical_m_per_count;
+        m.compliance.mass_kg = robot.end_effector.mass_kg;
+        m.compliance.nozzle_below_f_m = robot.end_effector.nozzle_below_joint_f_m;
+        // the softest stiffness of table 3.2 over the reach (the mode is
+        // linear; the stiffness changes by 10 % from retracted to extended)
+        let worst = robot
+            .end_effector
+            .joint_f_deflection_rad
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
+        if worst > 0.0 {
+            m.compliance.stiffness_nm_per_rad = robot.end_effector.joint_f_test_torque_nm / worst;
+        }
+        m.control.period_s = robot.control.controller_sample_s;
+        m.control.lambda_s = robot.control.delay_estimate_s;
+        m.validate()?;
+        Ok(m)
+    }
+
     /// Check every number is finite and in its physical range.
     pub fn validate(&self) -> Result<(), String> {
         let checks: &[(&str, f64, bool)] = &[

@@ -89,8 +89,11 @@ pub fn ik(p: [f64; 2], a2: f64) -> (f64, f64) {
 /// heading −π/2, with air moves at `air_speed` between them and 0.5 s holds
 /// at start and end. Setpoints every `period` s.
 pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
-    let a2 = 0.01; // SPEC §2
-    let k = 8.333; // SPEC §4
+    let robot = Robot::basr();
+    let a2 = robot.arm.a2_m;
+    let k = robot.arm.pantograph_ratio;
+    let r0 = robot.arm.retracted_extension_m;
+    let nut0 = robot.end_effector.fourbar.nut_m(0.0).unwrap_or(0.0);
     let station = Station {
         x_m: 0.0,
         y_m: 6.0,
@@ -174,19 +177,19 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
             paint: u8::from(*paint),
             x_m: station.x_m + c * p[0] - s * p[1],
             y_m: station.y_m + s * p[0] + c * p[1],
-            z_m: 0.15,
+            z_m: robot.end_effector.tip_height_top_m - 0.1,
             yaw_rad: yaw_b + station.heading_rad - std::f64::consts::FRAC_PI_2,
             tilt_rad: 0.0,
             speed_mps: v[0].hypot(v[1]),
             width_m: if *paint { 0.15 } else { 0.0 },
             base_rot_rad: th,
             extension_m: r,
-            cylinder_m: (r - 1.55) / k,
+            cylinder_m: (r - r0) / k,
             vertical_m: 0.1,
             ee_yaw_rad: 0.0,
-            tilt_nut_m: 0.0005,
+            tilt_nut_m: nut0,
             enc_base: (th / (std::f64::consts::TAU / 88_000.0)).round() as i64,
-            enc_extension: ((r - 1.55) / 1.05833e-4).round() as i64,
+            enc_extension: ((r - r0) / robot.encoders.extension_m_per_count).round() as i64,
             enc_yaw: 0,
             enc_tilt: 0,
             enc_vertical: 0,
@@ -200,7 +203,7 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
             name: "none".into(),
             sha256: String::new(),
         },
-        robot: Robot::basr(),
+        robot,
         robot_sha256: String::new(),
         paint: Paint {
             fan_angle_rad: 63.5f64.to_radians(),
