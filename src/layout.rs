@@ -292,7 +292,7 @@ pub fn check_marking_source(text: &str, origin: &str) -> Vec<String> {
         Err(e) => return vec![e.to_string()],
     };
     // Width needs a font; the grid width is the same for every glyph.
-    match place(&m, |_| Some(GRID_WIDTH_UNITS)) {
+    match place(&m, |_| Some(GlyphBox::GRID)) {
         Ok(_) => vec![],
         Err(e) => vec![format!("{origin}: {e}")],
     }
@@ -331,11 +331,31 @@ pub struct Placed {
     pub warnings: Vec<String>,
 }
 
-/// Place the marking's letters. `width_units(ch)` gives a glyph's grid width
-/// (grid units) or `None` when the font has no glyph for `ch`.
+/// A glyph's extent in grid units: its advance width and the lowest and
+/// highest y its paint reaches (round letters may overshoot 0..25).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GlyphBox {
+    pub width: f64,
+    pub y_min: f64,
+    pub y_max: f64,
+}
+
+impl GlyphBox {
+    /// The full grid cell: 4 wide, 0..25 tall.
+    pub const GRID: GlyphBox = GlyphBox {
+        width: GRID_WIDTH_UNITS,
+        y_min: 0.0,
+        y_max: GRID_HEIGHT_UNITS,
+    };
+}
+
+/// Place the marking's letters. `glyph_box(ch)` gives a glyph's extent
+/// (grid units) or `None` when the font has no glyph for `ch`. Lines are
+/// spaced so the clear space between the paint of consecutive lines is the
+/// line gap; the first line's grid sits on the anchor.
 pub fn place(
     m: &Marking,
-    width_units: impl Fn(char) -> Option<f64>,
+    glyph_box: impl Fn(char) -> Option<GlyphBox>,
 ) -> Result<Placed, LayoutError> {
     let scale = m.letter_height_m / GRID_HEIGHT_UNITS; // 001 app. A: scalesize = letterlength/25
     let min_gap = MIN_LINE_GAP_HEIGHTS * m.letter_height_m;
@@ -363,17 +383,21 @@ pub fn place(
     let mut line_widths_m = vec![];
     let mut line_y_m = vec![];
     let mut position = 0usize;
+    let mut prev_top: Option<f64> = None;
     for (li, word) in m.lines.iter().enumerate() {
         let mut widths = vec![];
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for ch in word.chars() {
             position += 1;
             let up = ch.to_ascii_uppercase();
-            let w = width_units(up).ok_or(LayoutError::NoGlyph {
+            let b = glyph_box(up).ok_or(LayoutError::NoGlyph {
                 ch,
                 position,
                 message: message.clone(),
             })?;
-            widths.push((up, w * scale));
+            lo = lo.min(b.y_min);
+            hi = hi.max(b.y_max);
+            widths.push((up, b.width * scale));
         }
         position += 1; // the separator
         let n = widths.len();
@@ -388,7 +412,13 @@ pub fn place(
                 lane_m: m.lane_width_m,
             });
         }
-        let y = m.anchor_y_m + li as f64 * (m.letter_height_m + m.line_gap_m);
+        // Grid origin of this line: the first on the anchor, the next ones
+        // a clear line gap above the previous line's paint.
+        let y = match prev_top {
+            None => m.anchor_y_m,
+            Some(top) => top + m.line_gap_m - lo * scale,
+        };
+        prev_top = Some(y + hi * scale);
         let mut x = m.anchor_x_m - width / 2.0;
         for (ch, w) in widths {
             letters.push(PlacedLetter {
@@ -423,8 +453,8 @@ pub const SHIPPED_MARKINGS: &[(&str, &str)] = &[
 mod tests {
     use super::*;
 
-    fn grid(_: char) -> Option<f64> {
-        Some(GRID_WIDTH_UNITS)
+    fn grid(_: char) -> Option<GlyphBox> {
+        Some(GlyphBox::GRID)
     }
 
     #[test]
@@ -494,7 +524,7 @@ mod tests {
     #[test]
     fn missing_glyph_named() {
         let m = Marking::from_message("A7", &Overrides::default()).unwrap();
-        let e = place(&m, |c| c.is_ascii_alphabetic().then_some(4.0)).unwrap_err();
+        let e = place(&m, |c| c.is_ascii_alphabetic().then_some(GlyphBox::GRID)).unwrap_err();
         assert!(
             matches!(
                 e,

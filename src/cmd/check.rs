@@ -48,7 +48,7 @@ fn kind_of(text: &str) -> Option<Kind> {
 fn problems(text: &str, origin: &str) -> Vec<String> {
     match kind_of(text) {
         Some(Kind::Job) => match basr::job::Job::from_str_verified(text, origin) {
-            Ok(_) => vec![],
+            Ok(job) => basr::job::verify::problems(&job, origin),
             Err(e) => vec![e.to_string()],
         },
         Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),

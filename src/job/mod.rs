@@ -10,6 +10,7 @@
 
 pub mod adept;
 pub mod csv;
+pub mod verify;
 
 use std::path::Path;
 

@@ -1,11 +1,23 @@
 //! The compile pipeline: message or marking → layout → strokes → rungs →
 //! knots with tilt → passes → stations → order → IK → time law → the job.
 
+use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
 
-use crate::job::{self, Job, Warning};
+use kurbo::Affine;
+
+use crate::font::Font;
+use crate::job::{
+    self, FontRef, Job, Layout as JobLayout, PlacedGlyph, PlacedStroke, SampleRow, Samples,
+    Station, Summary, Warning,
+};
 use crate::layout::{self, LayoutError, Marking, Overrides};
+use crate::plan::knots::{self, HeightLaw, Knot, PaintLaw, Rung, TiltMethod};
+use crate::plan::order::{self, Ends};
+use crate::plan::sampling::{self, joints_of, q_of, JointLimits, RunPath, Q};
 use crate::plan::stations::{self, StationError};
+use crate::robot::kinematics::wrap_pi;
+use crate::robot::{Joints, NozzlePose, Robot};
 
 /// Default largest distance between rungs at the letter's scale (issue 4).
 pub const DEFAULT_RUNG_SPACING_M: f64 = 0.020;
@@ -104,8 +116,40 @@ pub enum CompileError {
     Robot(String),
     #[error("{0}")]
     Unreachable(String),
+    #[error("{0}")]
+    Knots(String),
     #[error("time law: {0}")]
     Timing(String),
+}
+
+/// Outline samples of `layout.glyphs` are at most this far apart (m).
+const OUTLINE_STEP_M: f64 = 0.01;
+/// Points of one item offered to the station planner (its knots, thinned).
+const STATION_POINTS_PER_ITEM: usize = 32;
+/// A painting sample slower than planned by more than this is reported.
+const SLOW_REPORT_FACTOR: f64 = 1.03;
+
+/// One continuous gun-on path: a stroke, or one pass of a wide stroke.
+struct Item {
+    stroke: usize,
+    knots: Vec<Knot>,
+}
+
+/// Which letter a stroke belongs to, for messages.
+struct StrokeInfo {
+    ch: char,
+    line: usize,
+}
+
+/// An item as the arm runs it: joints at every knot, in painting order.
+struct Run {
+    stroke: usize,
+    /// Knots including the lead-in and lead-out.
+    knots: Vec<Knot>,
+    joints: Vec<Joints>,
+    /// Indices of the first and last painting knot in `knots`.
+    paint_first: usize,
+    paint_last: usize,
 }
 
 /// Compile a message or marking into a sealed job.
@@ -115,7 +159,18 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
         Source::Message(m) => Marking::from_message(m, &req.overrides)?,
         Source::Marking { text, origin } => Marking::from_toml(text, origin, &req.overrides)?,
     };
-    let placed = layout::place(&marking, |_| Some(layout::GRID_WIDTH_UNITS))?;
+    let robot = Robot::load_or_default(req.robot.as_deref())
+        .map_err(|e| CompileError::Robot(e.to_string()))?;
+    let owned_font;
+    let font: &Font = match &req.font {
+        None => Font::embedded(),
+        Some(name) => {
+            owned_font =
+                Font::from_name_or_path(name).map_err(|e| CompileError::Font(e.to_string()))?;
+            &owned_font
+        }
+    };
+    let placed = layout::place(&marking, |ch| font.glyph(ch).map(glyph_box))?;
     let mut warnings: Vec<Warning> = placed
         .warnings
         .iter()
@@ -127,11 +182,496 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             message: w.clone(),
         })
         .collect();
-    let _ = &mut warnings;
-    let _ = job::FORMAT;
-    Err(CompileError::Font(
-        "the stroke font is not built into this basr yet (issue 2)".into(),
+
+    // Strokes → rungs → passes → knots.
+    let law = paint_law(&robot);
+    let method = match req.tilt {
+        Tilt::None => TiltMethod::None,
+        Tilt::Trapezoid => TiltMethod::Trapezoid,
+        Tilt::Quadrilateral => TiltMethod::Quadrilateral,
+    };
+    let tl = &robot.limits.tilt_rad;
+    let max_tilt = tl.max.min(-tl.min).max(0.0);
+    let mut glyphs = vec![];
+    let mut items: Vec<Item> = vec![];
+    let mut strokes: Vec<StrokeInfo> = vec![];
+    for letter in &placed.letters {
+        let Some(glyph) = font.glyph(letter.ch) else {
+            continue; // place() has already refused letters without a glyph
+        };
+        let s = letter.scale_m;
+        let to_road = Affine::new([s, 0.0, 0.0, s, letter.origin_m[0], letter.origin_m[1]]);
+        let mut outlines = vec![];
+        for stroke in &glyph.strokes {
+            let st = stroke.transformed(&to_road);
+            let sid = strokes.len();
+            strokes.push(StrokeInfo {
+                ch: letter.ch,
+                line: letter.line,
+            });
+            let len = st.left.length().max(st.right.length());
+            let k = ((len / OUTLINE_STEP_M).ceil() as usize).max(1) + 1;
+            let pts = |e: &crate::geom::Edge| e.sample(k).iter().map(|p| [p.x, p.y]).collect();
+            outlines.push(PlacedStroke {
+                left: pts(&st.left),
+                right: pts(&st.right),
+            });
+            let n = ((len / req.rung_spacing_m).ceil() as usize).max(1);
+            let rungs: Vec<Rung> = st
+                .rungs(n)
+                .into_iter()
+                .map(|(left, right)| Rung { left, right })
+                .collect();
+            let what = |e: knots::PlanError| {
+                CompileError::Knots(format!(
+                    "stroke {sid} (letter {} of line {}): {e}",
+                    letter.ch,
+                    letter.line + 1
+                ))
+            };
+            let passes = knots::split_passes(&rungs, law.max_width_m(), 0.0).map_err(what)?;
+            let mut clamped = 0usize;
+            let mut rung_count = 0usize;
+            let mut worst = 1.0f64;
+            for pass in &passes {
+                let mut kp = knots::knots(pass, &law, method, max_tilt).map_err(what)?;
+                let raised = lift_for_tilt(&robot, &law, &mut kp.knots);
+                clamped += kp
+                    .clamped
+                    .iter()
+                    .filter(|c| !raised.contains(&c.rung))
+                    .count()
+                    + raised.len();
+                rung_count += kp.knots.len();
+                for k in &kp.knots {
+                    if k.width_m > 0.0 {
+                        worst = worst.max(k.fan_width_m / k.width_m);
+                    }
+                }
+                items.push(Item {
+                    stroke: sid,
+                    knots: kp.knots,
+                });
+            }
+            if passes.len() > 1 {
+                warnings.push(Warning {
+                    kind: "passes".into(),
+                    stroke: sid as i64,
+                    t_s: None,
+                    factor: Some(passes.len() as f64),
+                    message: format!(
+                        "stroke {sid} (letter {} of line {}) is wider than one pass can paint \
+                         ({:.3} m): painted in {} parallel passes",
+                        letter.ch,
+                        letter.line + 1,
+                        law.max_width_m(),
+                        passes.len()
+                    ),
+                });
+            }
+            if clamped > 0 {
+                warnings.push(Warning {
+                    kind: "height_clamped".into(),
+                    stroke: sid as i64,
+                    t_s: None,
+                    factor: Some(worst),
+                    message: format!(
+                        "stroke {sid} (letter {} of line {}): {clamped} of {rung_count} rungs are \
+                         narrower than the fan paints from the nozzle's lowest height \
+                         ({:.3} m); the fan there paints up to {:.1} % wider than the stroke \
+                         (the speed keeps the film)",
+                        letter.ch,
+                        letter.line + 1,
+                        law.min_height_m,
+                        (worst - 1.0) * 100.0
+                    ),
+                });
+            }
+        }
+        glyphs.push(PlacedGlyph {
+            char: letter.ch.to_string(),
+            line: letter.line,
+            strokes: outlines,
+        });
+    }
+
+    // Stations: every item reachable from one truck position.
+    let region = robot.region();
+    let reach_pts: Vec<Vec<[f64; 2]>> = items.iter().map(|it| thin_tips(&it.knots)).collect();
+    let splan = stations::plan(
+        &reach_pts,
+        marking.lane_width_m / 2.0,
+        req.reach_margin_m,
+        |x, y| region.margin(x, y),
+    )?;
+
+    // Per station: order, inverse kinematics, time law, setpoints.
+    let stow = stow_joints(&robot);
+    let mut samples = Samples::default();
+    let mut slow: Vec<Option<(f64, f64, [f64; 2])>> = vec![None; strokes.len()];
+    for (si, station) in splan.stations.iter().enumerate() {
+        let mine: Vec<usize> = (0..items.len())
+            .filter(|&i| splan.station_of[i] == si)
+            .collect();
+        let ends: Vec<Ends> = mine
+            .iter()
+            .map(|&i| {
+                let k = &items[i].knots;
+                let first = k.first().map(|k| k.tip).unwrap_or_default();
+                let last = k.last().map(|k| k.tip).unwrap_or_default();
+                Ends {
+                    start: [first.x, first.y],
+                    end: [last.x, last.y],
+                }
+            })
+            .collect();
+        let stow_pose = robot.fk(&stow);
+        let from = stations::base_to_road(station, [stow_pose.x_m, stow_pose.y_m]);
+        let cost = |a: [f64; 2], b: [f64; 2]| air_time_estimate(&robot, station, a, b);
+        let tour = order::order(&ends, from, cost);
+        let mut prev = stow;
+        let mut runs = vec![];
+        for v in &tour {
+            let item = mine[v.item];
+            let mut ks = items[item].knots.clone();
+            if v.reversed {
+                ks.reverse();
+            }
+            let mut solved = None;
+            let mut first_err = None;
+            for lead in [LEAD_M, 0.5 * LEAD_M, 0.0] {
+                let (all, a, b) = with_leads(&ks, lead);
+                match solve_run(&robot, station, &all, &prev) {
+                    Ok(j) => {
+                        solved = Some((all, j, a, b));
+                        break;
+                    }
+                    Err((k, e)) => {
+                        // Report the painting knot, not a lead's.
+                        let k = k.saturating_sub(a).min(ks.len() - 1);
+                        first_err.get_or_insert((k, e));
+                    }
+                }
+            }
+            let Some((all, joints, a, b)) = solved else {
+                let (k, e) = first_err.unwrap_or((0, unreachable_pose()));
+                let info = &strokes[items[item].stroke];
+                return Err(CompileError::Unreachable(format!(
+                    "stroke {} (letter {} of line {}) cannot be painted from station {si} at \
+                     ({:.3}, {:.3}) m: {e}; use a smaller --letter-height or check the robot \
+                     description",
+                    items[item].stroke,
+                    info.ch,
+                    info.line + 1,
+                    ks[k].tip.x,
+                    ks[k].tip.y
+                )));
+            };
+            prev = *joints.last().unwrap_or(&prev);
+            runs.push(Run {
+                stroke: items[item].stroke,
+                knots: all,
+                joints,
+                paint_first: a,
+                paint_last: b,
+            });
+        }
+        let timed = time_station(&robot, &stow, &runs, req.period_s)?;
+        // The robot's own check of the sampled joints (speeds, accelerations,
+        // ball-nut speed): no job that breaks a limit leaves the compiler.
+        let js: Vec<Joints> = timed.iter().map(|p| joints_of(&p.q)).collect();
+        robot
+            .check_rates(&js, req.period_s)
+            .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
+        append_samples(
+            &mut samples,
+            &robot,
+            station,
+            si as u32,
+            &runs,
+            &timed,
+            req,
+            &mut slow,
+        );
+    }
+
+    for (sid, s) in slow.iter().enumerate() {
+        if let Some((factor, t, p)) = s {
+            let info = &strokes[sid];
+            warnings.push(Warning {
+                kind: "slowed".into(),
+                stroke: sid as i64,
+                t_s: Some(*t),
+                factor: Some(*factor),
+                message: format!(
+                    "stroke {sid} (letter {} of line {}): a joint limit slows the nozzle below \
+                     the painting speed near ({:.3}, {:.3}) m at t = {:.2} s; the film there is \
+                     up to {:.2}× the target",
+                    info.ch,
+                    info.line + 1,
+                    p[0],
+                    p[1],
+                    t,
+                    factor
+                ),
+            });
+        }
+    }
+
+    let n = samples.len();
+    let paint_samples = samples.paint.iter().filter(|&&p| p == 1).count();
+    let duration_s = if n > 0 {
+        (n - 1) as f64 * req.period_s
+    } else {
+        0.0
+    };
+    let paint_time_s = paint_samples as f64 * req.period_s;
+    let summary = Summary {
+        duration_s,
+        paint_time_s,
+        air_time_s: (duration_s - paint_time_s).max(0.0),
+        strokes: strokes.len(),
+        // Paint sprayed = flow × gun-on time (what leaves the tip; the film
+        // gets the transfer-efficiency share of it).
+        paint_volume_m3: robot.paint.flow_m3ps * paint_time_s,
+        warnings,
+    };
+    let mut job = Job {
+        format: job::FORMAT.into(),
+        version: job::VERSION,
+        message: marking.message(),
+        font: FontRef {
+            name: font.name.clone(),
+            sha256: font.sha256.clone(),
+        },
+        paint: robot.paint.job_paint(),
+        robot,
+        robot_sha256: String::new(),
+        control_period_s: req.period_s,
+        layout: JobLayout {
+            letter_height_m: marking.letter_height_m,
+            lane_width_m: marking.lane_width_m,
+            tilt_method: req.tilt.name().into(),
+            glyphs,
+        },
+        stations: splan.stations,
+        samples,
+        summary,
+        sha256: String::new(),
+    };
+    job.seal();
+    Ok(job)
+}
+
+/// A glyph's extent on the grid: the grid's width, and the lowest and
+/// highest points of its strokes' edges.
+fn glyph_box(g: &crate::font::Glyph) -> layout::GlyphBox {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for s in &g.strokes {
+        for e in [&s.left, &s.right] {
+            for p in e.sample(65) {
+                lo = lo.min(p.y);
+                hi = hi.max(p.y);
+            }
+        }
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return layout::GlyphBox::GRID;
+    }
+    layout::GlyphBox {
+        width: crate::font::GRID_WIDTH,
+        y_min: lo,
+        y_max: hi,
+    }
+}
+
+/// The paint law of the robot's nozzle and vertical joint. The reachable tip
+/// heights leave room for the tilt's vertical tip offset at any tilt.
+fn paint_law(robot: &Robot) -> PaintLaw {
+    let p = &robot.paint;
+    let top = robot.end_effector.tip_height_top_m;
+    let v = &robot.limits.vertical_m;
+    let t = &robot.limits.tilt_rad;
+    // IK: vertical = top + rise(β) − z. A tip that sinks when tilted needs
+    // room at the top of the stroke for every tilt; one that rises is
+    // handled per knot (`lift_for_tilt`).
+    let mut sink: f64 = 0.0;
+    for k in 0..=40 {
+        let b = t.min + (t.max - t.min) * k as f64 / 40.0;
+        let off = robot.tilt_tip_offset(b);
+        if off[1].is_finite() {
+            sink = sink.max(-off[1]);
+        }
+    }
+    PaintLaw {
+        fan_angle_rad: p.fan_angle_rad,
+        k_m2ps: p.k_m2ps(),
+        height: match (p.height_law_c0_m, p.height_law_c1) {
+            (Some(c0), Some(c1)) => HeightLaw::Linear { c0, c1 },
+            _ => HeightLaw::Geometric,
+        },
+        min_height_m: top - v.max,
+        max_height_m: top - v.min - sink,
+    }
+}
+
+/// Raise knots whose tilted tip would need the vertical joint below its
+/// stroke: the tilt four-bar lifts the tip by rise(β), so the lowest tip
+/// height at tilt β is `law.min_height_m + rise(β)`. The fan then covers
+/// more than the rung, and the speed follows the covered width (as
+/// `knots::knots` does for its own clamp). Returns how many were raised.
+fn lift_for_tilt(robot: &Robot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
+    let mut raised = vec![];
+    for (i, k) in ks.iter_mut().enumerate() {
+        let rise = robot.tilt_tip_offset(k.tilt_rad)[1];
+        if !(rise.is_finite() && rise > 0.0) {
+            continue;
+        }
+        let z_min = law.min_height_m + rise;
+        if k.z_m < z_min {
+            let factor = crate::plan::tilt::height_factor(k.tilt_rad, law.fan_angle_rad);
+            k.z_m = z_min;
+            k.fan_width_m = law.width_at_height(z_min / factor).max(k.width_m);
+            k.speed_mps = law.k_m2ps / k.fan_width_m; // 001 eq. 2.6
+            raised.push(i);
+        }
+    }
+    raised
+}
+
+/// Up to `STATION_POINTS_PER_ITEM` knot tips, both ends included.
+fn thin_tips(knots: &[Knot]) -> Vec<[f64; 2]> {
+    let n = knots.len();
+    if n == 0 {
+        return vec![];
+    }
+    let step = n.div_ceil(STATION_POINTS_PER_ITEM).max(1);
+    let mut v: Vec<[f64; 2]> = knots
+        .iter()
+        .step_by(step)
+        .map(|k| [k.tip.x, k.tip.y])
+        .collect();
+    let last = knots[n - 1].tip;
+    if (n - 1) % step != 0 {
+        v.push([last.x, last.y]);
+    }
+    v
+}
+
+/// Where the arm waits while the truck moves: straight back, retracted,
+/// nozzle at the top of its stroke, yaw and tilt centred (within limits).
+fn stow_joints(robot: &Robot) -> Joints {
+    let l = &robot.limits;
+    let mid = |a: f64, b: f64| 0.5 * (a + b);
+    Joints {
+        base_rot_rad: mid(l.base_rot_rad.min, l.base_rot_rad.max),
+        extension_m: l.extension_m.min,
+        vertical_m: l.vertical_m.min,
+        ee_yaw_rad: 0.0_f64.clamp(l.ee_yaw_rad.min, l.ee_yaw_rad.max),
+        tilt_rad: 0.0_f64.clamp(l.tilt_rad.min, l.tilt_rad.max),
+    }
+}
+
+/// Base-frame polar coordinates (θ1, R) of a road point.
+fn polar(station: &Station, p: [f64; 2]) -> (f64, f64) {
+    let b = stations::road_to_base(station, p);
+    (b[1].atan2(b[0]), b[0].hypot(b[1]))
+}
+
+/// Estimated time of an air move of the arm between two road points: the
+/// slower of base rotation and extension, each accelerating and braking at
+/// its limit (symmetric, as the ordering needs).
+fn air_time_estimate(robot: &Robot, station: &Station, a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (ta, ra) = polar(station, a);
+    let (tb, rb) = polar(station, b);
+    let l = &robot.limits;
+    let t = |d: f64, v: f64, acc: f64| {
+        let d = d.abs();
+        if d * acc <= v * v {
+            2.0 * (d / acc).sqrt()
+        } else {
+            d / v + v / acc
+        }
+    };
+    t(tb - ta, l.base_rot_rad.max_vel, l.base_rot_rad.max_acc).max(t(
+        rb - ra,
+        l.extension_m.max_vel,
+        l.extension_m.max_acc,
     ))
+}
+
+/// Joint travel time between two joint sets at the joints' speed limits.
+fn travel(robot: &Robot, a: &Joints, b: &Joints) -> f64 {
+    robot
+        .limits
+        .iter()
+        .zip(a.values().into_iter().zip(b.values()))
+        .map(|((_, l), (x, y))| (x - y).abs() / l.max_vel)
+        .fold(0.0, f64::max)
+}
+
+/// The nozzle pose of a knot in a station's base frame.
+fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
+    let b = stations::road_to_base(station, [k.tip.x, k.tip.y]);
+    NozzlePose {
+        x_m: b[0],
+        y_m: b[1],
+        z_m: k.z_m,
+        yaw_rad: k.yaw_rad - (station.heading_rad - FRAC_PI_2),
+        tilt_rad: k.tilt_rad,
+    }
+}
+
+/// Joints for every knot of a run. The fan's two branches (ψ with β, ψ+π
+/// with −β) and every yaw turn are tried at the first knot; each is followed
+/// along the run by the nearest solution, and the branch with the least
+/// joint travel (entry included) wins. Err: the knot index and why.
+fn solve_run(
+    robot: &Robot,
+    station: &Station,
+    ks: &[Knot],
+    prev: &Joints,
+) -> Result<Vec<Joints>, (usize, crate::robot::Unreachable)> {
+    let first = knot_pose(station, &ks[0]);
+    let starts = robot.ik(&first).map_err(|e| (0, e))?;
+    let mut best: Option<(f64, Vec<Joints>)> = None;
+    let mut last_err = None;
+    'branch: for start in starts {
+        let mut cost = travel(robot, prev, &start);
+        let mut out = Vec::with_capacity(ks.len());
+        out.push(start);
+        for (i, k) in ks.iter().enumerate().skip(1) {
+            let p = *out.last().unwrap_or(&start);
+            match robot.ik_nearest(&knot_pose(station, k), &p) {
+                Ok(j) => {
+                    cost += travel(robot, &p, &j);
+                    out.push(j);
+                }
+                Err(e) => {
+                    last_err = Some((i, e));
+                    continue 'branch;
+                }
+            }
+        }
+        if best.as_ref().is_none_or(|(c, _)| cost < *c - 1e-12) {
+            best = Some((cost, out));
+        }
+    }
+    match best {
+        Some((_, v)) => Ok(v),
+        None => Err(last_err.unwrap_or_else(|| (0, unreachable_pose()))),
+    }
+}
+
+/// Placeholder reason when no IK branch was even tried (never expected).
+fn unreachable_pose() -> crate::robot::Unreachable {
+    crate::robot::Unreachable {
+        joint: "pose".into(),
+        value: f64::NAN,
+        min: f64::NAN,
+        max: f64::NAN,
+        excess: f64::NAN,
+    }
 }
 
 fn check_settings(req: &CompileRequest) -> Result<(), CompileError> {
@@ -163,4 +703,245 @@ fn check_settings(req: &CompileRequest) -> Result<(), CompileError> {
     non_negative("--gun-lag-s", req.gun_lag_s)?;
     non_negative("reach margin", req.reach_margin_m)?;
     Ok(())
+}
+
+/// Lead-in and lead-out length (m): the nozzle reaches the painting speed
+/// before a stroke's first rung and keeps it past the last. assumed: 0.05 m
+/// lets a path acceleration of 0.3 m/s² reach 0.17 m/s (a one-unit stroke
+/// at 8 ft); shorter leads are tried where the arm cannot reach that far.
+const LEAD_M: f64 = 0.05;
+/// Pseudo-knots per lead.
+const LEAD_KNOTS: usize = 5;
+
+/// A knot with the same spray moved `d` metres along `dir` (road frame).
+fn shifted(k: &Knot, dir: kurbo::Vec2, d: f64) -> Knot {
+    Knot {
+        mid: k.mid + dir * d,
+        tip: k.tip + dir * d,
+        ..*k
+    }
+}
+
+/// The run's knots with a lead-in and lead-out of `lead` metres along the
+/// stroke's end directions; returns (knots, index of the first and last
+/// painting knot).
+fn with_leads(ks: &[Knot], lead: f64) -> (Vec<Knot>, usize, usize) {
+    let n = ks.len();
+    if lead <= 0.0 || n < 2 {
+        return (ks.to_vec(), 0, n.saturating_sub(1));
+    }
+    let dir_in = (ks[0].tip - ks[1].tip).normalize();
+    let dir_out = (ks[n - 1].tip - ks[n - 2].tip).normalize();
+    if !(dir_in.is_finite() && dir_out.is_finite()) {
+        return (ks.to_vec(), 0, n - 1);
+    }
+    let mut out = Vec::with_capacity(n + 2 * LEAD_KNOTS);
+    for i in (1..=LEAD_KNOTS).rev() {
+        out.push(shifted(&ks[0], dir_in, lead * i as f64 / LEAD_KNOTS as f64));
+    }
+    out.extend_from_slice(ks);
+    for i in 1..=LEAD_KNOTS {
+        out.push(shifted(
+            &ks[n - 1],
+            dir_out,
+            lead * i as f64 / LEAD_KNOTS as f64,
+        ));
+    }
+    (out, LEAD_KNOTS, LEAD_KNOTS + n - 1)
+}
+
+/// One station's timed samples: joints, and for painting runs the run index
+/// and path parameter.
+struct Timed {
+    q: Q,
+    run: Option<usize>,
+    s: f64,
+}
+
+/// Nozzle arc length at each knot (road frame, m), strictly increasing:
+/// knots closer than 0.1 mm are nudged apart so the spline stays defined.
+fn arc_lengths(ks: &[Knot]) -> Vec<f64> {
+    let mut s = Vec::with_capacity(ks.len());
+    let mut acc = 0.0;
+    for (i, k) in ks.iter().enumerate() {
+        if i > 0 {
+            let d = (k.tip - ks[i - 1].tip).hypot();
+            acc += d.max(1e-4);
+        }
+        s.push(acc);
+    }
+    s
+}
+
+/// Time a station: stow → (air → run)* → air → stow, at `period`.
+fn time_station(
+    robot: &Robot,
+    stow: &Joints,
+    runs: &[Run],
+    period: f64,
+) -> Result<Vec<Timed>, CompileError> {
+    let limits = JointLimits::of(robot);
+    let mut out = vec![Timed {
+        q: q_of(stow),
+        run: None,
+        s: 0.0,
+    }];
+    let mut at = q_of(stow);
+    for (ri, run) in runs.iter().enumerate() {
+        let path = RunPath {
+            q: run.joints.iter().map(q_of).collect(),
+            s: arc_lengths(&run.knots),
+            v_max: run.knots.iter().map(|k| k.speed_mps).collect(),
+        };
+        let first = path.q[0];
+        for a in sampling::air_move(&at, &first, &limits, period) {
+            out.push(Timed {
+                q: a.q,
+                run: None,
+                s: 0.0,
+            });
+        }
+        let timed = sampling::time_run(&path, &limits, period)
+            .map_err(|e| CompileError::Timing(format!("stroke {}: {e}", run.stroke)))?;
+        // The run's first sample is its start, where the air move ended.
+        for p in timed.into_iter().skip(1) {
+            out.push(Timed {
+                q: p.q,
+                run: Some(ri),
+                s: p.s,
+            });
+        }
+        at = *path.q.last().unwrap_or(&first);
+    }
+    for a in sampling::air_move(&at, &q_of(stow), &limits, period) {
+        out.push(Timed {
+            q: a.q,
+            run: None,
+            s: 0.0,
+        });
+    }
+    Ok(out)
+}
+
+/// Append a station's samples to the job's columns.
+#[allow(clippy::too_many_arguments)]
+fn append_samples(
+    samples: &mut Samples,
+    robot: &Robot,
+    station: &Station,
+    station_index: u32,
+    runs: &[Run],
+    timed: &[Timed],
+    req: &CompileRequest,
+    slow: &mut [Option<(f64, f64, [f64; 2])>],
+) {
+    let period = req.period_s;
+    let t0 = samples.len();
+    let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
+    // Nozzle in the road frame at every sample.
+    let poses: Vec<(NozzlePose, [f64; 2], f64)> = timed
+        .iter()
+        .map(|p| {
+            let pose = robot.fk(&joints_of(&p.q));
+            let r = stations::base_to_road(station, [pose.x_m, pose.y_m]);
+            let yaw = wrap_pi(pose.yaw_rad + station.heading_rad - FRAC_PI_2);
+            (pose, r, yaw)
+        })
+        .collect();
+    // Gun windows: sample times of reaching each run's first and last
+    // painting knot, shifted by the lead and lag.
+    let lead_n = (req.gun_lead_s / period).round() as isize;
+    let lag_n = (req.gun_lag_s / period).round() as isize;
+    let mut gun = vec![None::<usize>; timed.len()];
+    for (ri, run) in runs.iter().enumerate() {
+        let (s_on, s_off) = (arcs[ri][run.paint_first], arcs[ri][run.paint_last]);
+        let inside: Vec<usize> = (0..timed.len())
+            .filter(|&i| {
+                timed[i].run == Some(ri) && timed[i].s >= s_on - 1e-12 && timed[i].s < s_off
+            })
+            .collect();
+        let (Some(&a), Some(&b)) = (inside.first(), inside.last()) else {
+            continue;
+        };
+        let on = (a as isize - lead_n).max(0) as usize;
+        let off = (b as isize - lag_n).max(on as isize - 1);
+        for g in gun.iter_mut().take((off + 1).max(0) as usize).skip(on) {
+            *g = Some(ri);
+        }
+    }
+    for (i, p) in timed.iter().enumerate() {
+        let (pose, r, yaw) = &poses[i];
+        let j = joints_of(&p.q);
+        // Central difference of the nozzle position (one-sided at the ends).
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(timed.len() - 1));
+        let speed = if b > a {
+            let (pa, pb) = (&poses[a], &poses[b]);
+            (pb.1[0] - pa.1[0]).hypot(pb.1[1] - pa.1[1]) / ((b - a) as f64 * period)
+        } else {
+            0.0
+        };
+        let act = robot.actuators(&j);
+        let enc = robot.encoders(&j);
+        let (stroke, paint, width) = match gun[i] {
+            Some(ri) => {
+                let run = &runs[ri];
+                let s = if p.run == Some(ri) {
+                    p.s
+                } else {
+                    arcs[ri][run.paint_first]
+                };
+                let (w, v) = interp_knot(&run.knots, &arcs[ri], s);
+                if speed > 0.0 && v / speed > SLOW_REPORT_FACTOR && p.run == Some(ri) {
+                    let f = v / speed;
+                    let slot = &mut slow[run.stroke];
+                    if slot.is_none_or(|(g, _, _)| f > g) {
+                        *slot = Some((f, (t0 + i) as f64 * period, *r));
+                    }
+                }
+                (run.stroke as i64, 1u8, w)
+            }
+            None => (-1, 0u8, 0.0),
+        };
+        samples.push(&SampleRow {
+            t_s: (t0 + i) as f64 * period,
+            station: station_index,
+            stroke,
+            paint,
+            x_m: r[0],
+            y_m: r[1],
+            z_m: pose.z_m,
+            yaw_rad: *yaw,
+            tilt_rad: j.tilt_rad,
+            speed_mps: speed,
+            width_m: width,
+            base_rot_rad: j.base_rot_rad,
+            extension_m: j.extension_m,
+            cylinder_m: act.cylinder_m,
+            vertical_m: j.vertical_m,
+            ee_yaw_rad: j.ee_yaw_rad,
+            tilt_nut_m: act.tilt_nut_m,
+            enc_base: enc.base,
+            enc_extension: enc.extension,
+            enc_yaw: enc.yaw,
+            enc_tilt: enc.tilt,
+            enc_vertical: enc.vertical,
+        });
+    }
+}
+
+/// Rung width and painting speed at arc length `s`, linear between knots.
+fn interp_knot(ks: &[Knot], arcs: &[f64], s: f64) -> (f64, f64) {
+    let n = ks.len();
+    let i = arcs.partition_point(|&a| a < s).clamp(1, n - 1);
+    let (s0, s1) = (arcs[i - 1], arcs[i]);
+    let f = if s1 > s0 {
+        ((s - s0) / (s1 - s0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let lerp = |a: f64, b: f64| a + f * (b - a);
+    (
+        lerp(ks[i - 1].width_m, ks[i].width_m),
+        lerp(ks[i - 1].speed_mps, ks[i].speed_mps),
+    )
 }

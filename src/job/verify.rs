@@ -1,0 +1,236 @@
+//! Checks of a job's setpoints beyond its hashes: the time base, indices,
+//! the robot's joint limits (position, velocity, acceleration) and the
+//! agreement of the nozzle columns with the joints. Reports every problem.
+
+use super::Job;
+use crate::robot::Joints;
+
+/// Relative slack on velocity and acceleration limits: finite differences of
+/// a trajectory that keeps a limit stay within it; this only absorbs the
+/// rounding of the JSON numbers.
+const REL_TOL: f64 = 1e-6;
+/// Absolute slack on positions (rad or m).
+const POS_TOL: f64 = 1e-9;
+/// Nozzle columns must match the joints' forward kinematics within this (m, rad).
+const FK_TOL: f64 = 1e-6;
+/// At most this many problems are listed per kind; the rest are counted.
+const LIST_PER_KIND: usize = 5;
+
+struct Collector {
+    out: Vec<String>,
+    counts: Vec<(String, usize)>,
+}
+
+impl Collector {
+    fn add(&mut self, kind: &str, msg: String) {
+        let n = match self.counts.iter_mut().find(|(k, _)| k == kind) {
+            Some((_, n)) => {
+                *n += 1;
+                *n
+            }
+            None => {
+                self.counts.push((kind.to_string(), 1));
+                1
+            }
+        };
+        if n <= LIST_PER_KIND {
+            self.out.push(msg);
+        }
+    }
+
+    fn finish(mut self, origin: &str) -> Vec<String> {
+        for (kind, n) in &self.counts {
+            if *n > LIST_PER_KIND {
+                self.out.push(format!(
+                    "{origin}: … and {} more {kind} problem(s)",
+                    n - LIST_PER_KIND
+                ));
+            }
+        }
+        self.out
+    }
+}
+
+fn joints_at(job: &Job, i: usize) -> Joints {
+    let s = &job.samples;
+    Joints {
+        base_rot_rad: s.base_rot_rad[i],
+        extension_m: s.extension_m[i],
+        vertical_m: s.vertical_m[i],
+        ee_yaw_rad: s.ee_yaw_rad[i],
+        tilt_rad: s.tilt_rad[i],
+    }
+}
+
+/// Every problem of a verified job's setpoints (empty when it is sound).
+/// `origin` names the job in the messages.
+pub fn problems(job: &Job, origin: &str) -> Vec<String> {
+    let mut c = Collector {
+        out: vec![],
+        counts: vec![],
+    };
+    let s = &job.samples;
+    let n = s.len();
+    let p = job.control_period_s;
+    if !(p.is_finite() && p > 0.0) {
+        c.add(
+            "period",
+            format!("{origin}: control_period_s is {p}, not a positive number"),
+        );
+        return c.finish(origin);
+    }
+    if n == 0 {
+        c.add("empty", format!("{origin}: the job has no setpoints"));
+        return c.finish(origin);
+    }
+    for i in 0..n {
+        let row = s.csv_fields(i);
+        if row.iter().any(|f| f == "NaN" || f.contains("inf")) {
+            c.add(
+                "not-finite",
+                format!("{origin}: row {i} holds a value that is not a finite number"),
+            );
+        }
+        let t = i as f64 * p;
+        if (s.t_s[i] - t).abs() > 1e-9 * t.max(1.0) {
+            c.add(
+                "time",
+                format!(
+                    "{origin}: row {i}: t_s = {} but the period {p} s puts it at {t}",
+                    s.t_s[i]
+                ),
+            );
+        }
+        if s.station[i] as usize >= job.stations.len() {
+            c.add(
+                "station",
+                format!(
+                    "{origin}: row {i}: station {} but the job has {} station(s)",
+                    s.station[i],
+                    job.stations.len()
+                ),
+            );
+        }
+        if s.paint[i] > 1 {
+            c.add(
+                "paint",
+                format!("{origin}: row {i}: paint is {} (0 or 1)", s.paint[i]),
+            );
+        }
+        if s.stroke[i] < -1 || s.stroke[i] >= job.summary.strokes as i64 {
+            c.add(
+                "stroke",
+                format!(
+                    "{origin}: row {i}: stroke {} outside −1..{}",
+                    s.stroke[i], job.summary.strokes
+                ),
+            );
+        }
+        if s.paint[i] == 1 && s.stroke[i] < 0 {
+            c.add(
+                "paint",
+                format!("{origin}: row {i}: the gun is on during an air move"),
+            );
+        }
+    }
+    // Joint limits, with velocity and acceleration by finite differences.
+    let robot = &job.robot;
+    for (name, lim) in robot.limits.iter() {
+        let col: Vec<f64> = (0..n)
+            .map(|i| {
+                let j = joints_at(job, i);
+                match name {
+                    "base_rot_rad" => j.base_rot_rad,
+                    "extension_m" => j.extension_m,
+                    "vertical_m" => j.vertical_m,
+                    "ee_yaw_rad" => j.ee_yaw_rad,
+                    _ => j.tilt_rad,
+                }
+            })
+            .collect();
+        for (i, &v) in col.iter().enumerate() {
+            if v < lim.min - POS_TOL || v > lim.max + POS_TOL {
+                c.add(
+                    name,
+                    format!(
+                        "{origin}: row {i} (t {:.3} s): {name} = {v:.6} outside its range [{}, {}]",
+                        s.t_s[i], lim.min, lim.max
+                    ),
+                );
+            }
+        }
+        for i in 1..n {
+            let v = (col[i] - col[i - 1]) / p;
+            if v.abs() > lim.max_vel * (1.0 + REL_TOL) + 1e-12 {
+                c.add(
+                    name,
+                    format!(
+                        "{origin}: row {i} (t {:.3} s): {name} moves at {:.6}/s, above its \
+                         velocity limit {}",
+                        s.t_s[i],
+                        v.abs(),
+                        lim.max_vel
+                    ),
+                );
+            }
+        }
+        for i in 1..n.saturating_sub(1) {
+            let a = (col[i + 1] - 2.0 * col[i] + col[i - 1]) / (p * p);
+            if a.abs() > lim.max_acc * (1.0 + REL_TOL) + 1e-9 {
+                c.add(
+                    name,
+                    format!(
+                        "{origin}: row {i} (t {:.3} s): {name} accelerates at {:.6}/s², above \
+                         its acceleration limit {}",
+                        s.t_s[i],
+                        a.abs(),
+                        lim.max_acc
+                    ),
+                );
+            }
+        }
+    }
+    // Ball-nut speed of the tilt drive (its own limit, SPEC §4).
+    let nut_lim = robot.end_effector.tilt_nut_max_speed_mps;
+    for i in 1..n {
+        let v = (s.tilt_nut_m[i] - s.tilt_nut_m[i - 1]) / p;
+        if v.abs() > nut_lim * (1.0 + REL_TOL) + 1e-12 {
+            c.add(
+                "tilt_nut_m",
+                format!(
+                    "{origin}: row {i} (t {:.3} s): the tilt ball nut moves at {:.6} m/s, above \
+                     its limit {nut_lim} m/s",
+                    s.t_s[i],
+                    v.abs()
+                ),
+            );
+        }
+    }
+    // Nozzle columns against the joints.
+    for i in 0..n {
+        let Some(st) = job.stations.get(s.station[i] as usize) else {
+            continue;
+        };
+        let pose = robot.fk(&joints_at(job, i));
+        let r = crate::plan::stations::base_to_road(st, [pose.x_m, pose.y_m]);
+        let yaw = crate::robot::kinematics::wrap_pi(
+            pose.yaw_rad + st.heading_rad - std::f64::consts::FRAC_PI_2,
+        );
+        let dyaw = crate::robot::kinematics::wrap_pi(yaw - s.yaw_rad[i]);
+        let dx = (r[0] - s.x_m[i]).hypot(r[1] - s.y_m[i]);
+        let dz = (pose.z_m - s.z_m[i]).abs();
+        if dx > FK_TOL || dz > FK_TOL || dyaw.abs() > FK_TOL {
+            c.add(
+                "nozzle",
+                format!(
+                    "{origin}: row {i}: the nozzle columns are {:.4} m, {:.4} m (height) and \
+                     {:.4} rad (yaw) away from where the joints put the nozzle",
+                    dx,
+                    dz,
+                    dyaw.abs()
+                ),
+            );
+        }
+    }
+    c.finish(origin)
+}

@@ -1,0 +1,306 @@
+//! End-to-end tests of `basr compile` through the binary: files written,
+//! CSV columns, time base, painting speed, joint limits, forward kinematics,
+//! determinism, multi-line layout and bad input. (BOSE: the letters the
+//! embedded font has so far; STOP once it has T and P.)
+
+use std::path::Path;
+
+use assert_cmd::Command;
+use basr::job::{Job, COLUMNS};
+use predicates::prelude::*;
+
+fn basr() -> Command {
+    Command::cargo_bin("basr").expect("the basr binary is built")
+}
+
+/// Compile `args` in a fresh folder; returns the folder.
+fn compile_in(args: &[&str]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    basr()
+        .current_dir(dir.path())
+        .arg("compile")
+        .args(args)
+        .arg("--quiet")
+        .assert()
+        .success();
+    dir
+}
+
+fn read_job(path: &Path) -> Job {
+    Job::read(path).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()))
+}
+
+/// Files in a folder (names), sorted.
+fn files(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn stop_writes_job_and_csv_with_spec_columns() {
+    let dir = compile_in(&["BOSE", "--csv", "stop.csv"]);
+    assert_eq!(files(dir.path()), vec!["BOSE.job.json", "stop.csv"]);
+    let job = read_job(&dir.path().join("BOSE.job.json"));
+    assert_eq!(job.message, "BOSE");
+    assert_eq!(job.stations.len(), 1);
+    // CSV: header = SPEC §3 columns in order, one row per sample.
+    let mut rdr = csv::Reader::from_path(dir.path().join("stop.csv")).unwrap();
+    let header: Vec<String> = rdr.headers().unwrap().iter().map(String::from).collect();
+    let spec = [
+        "t_s",
+        "station",
+        "stroke",
+        "paint",
+        "x_m",
+        "y_m",
+        "z_m",
+        "yaw_rad",
+        "tilt_rad",
+        "speed_mps",
+        "width_m",
+        "base_rot_rad",
+        "extension_m",
+        "cylinder_m",
+        "vertical_m",
+        "ee_yaw_rad",
+        "tilt_nut_m",
+        "enc_base",
+        "enc_extension",
+        "enc_yaw",
+        "enc_tilt",
+        "enc_vertical",
+    ];
+    assert_eq!(&header[..spec.len()], &spec[..]);
+    assert_eq!(header, COLUMNS);
+    let rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    assert_eq!(rows.len(), job.samples.len());
+    // t_s steps by exactly the period.
+    let p = job.control_period_s;
+    assert_eq!(p, 0.032);
+    for (i, r) in rows.iter().enumerate() {
+        let t: f64 = r[0].parse().unwrap();
+        assert_eq!(t, i as f64 * p, "row {i}");
+        // Encoder columns are integers.
+        for c in 17..22 {
+            r[c].parse::<i64>()
+                .unwrap_or_else(|_| panic!("row {i} col {c}: {}", &r[c]));
+        }
+    }
+    // Painting and air both happen, and the summary adds up.
+    let s = &job.summary;
+    assert!(s.paint_time_s > 0.0 && s.air_time_s > 0.0);
+    assert!((s.paint_time_s + s.air_time_s - s.duration_s).abs() < 1e-9);
+    let k = job.paint.k_m2ps;
+    assert!((s.paint_volume_m3 - job.robot.paint.flow_m3ps * s.paint_time_s).abs() < 1e-15);
+    assert!(k > 0.0);
+}
+
+#[test]
+fn no_sample_breaks_a_joint_limit() {
+    let dir = compile_in(&["BOSE"]);
+    let job = read_job(&dir.path().join("BOSE.job.json"));
+    let s = &job.samples;
+    let p = job.control_period_s;
+    let cols: [(&str, &Vec<f64>); 5] = [
+        ("base_rot_rad", &s.base_rot_rad),
+        ("extension_m", &s.extension_m),
+        ("vertical_m", &s.vertical_m),
+        ("ee_yaw_rad", &s.ee_yaw_rad),
+        ("tilt_rad", &s.tilt_rad),
+    ];
+    for (name, col) in cols {
+        let l = job.robot.limits.get(name).unwrap();
+        for (i, &v) in col.iter().enumerate() {
+            assert!(
+                v >= l.min - 1e-9 && v <= l.max + 1e-9,
+                "{name} row {i}: {v}"
+            );
+        }
+        for i in 1..col.len() {
+            let v = (col[i] - col[i - 1]) / p;
+            assert!(
+                v.abs() <= l.max_vel * (1.0 + 1e-9),
+                "{name} row {i}: vel {v}"
+            );
+        }
+        for i in 1..col.len() - 1 {
+            let a = (col[i + 1] - 2.0 * col[i] + col[i - 1]) / (p * p);
+            assert!(
+                a.abs() <= l.max_acc * (1.0 + 1e-9),
+                "{name} row {i}: acc {a}"
+            );
+        }
+    }
+    // The same through `basr check`.
+    basr()
+        .current_dir(dir.path())
+        .args(["check", "BOSE.job.json"])
+        .assert()
+        .success();
+}
+
+/// Forward kinematics written from SPEC §2 alone (not the robot module):
+/// yaw axis W = R(cos θ1, sin θ1) + a2(sin θ1, −cos θ1), fan direction
+/// θ1 + yaw joint, base → road by a rotation of heading − π/2; with the
+/// nozzle upright the tip is on the yaw axis at height top − vertical.
+#[test]
+fn independent_fk_reproduces_the_nozzle_columns() {
+    let dir = compile_in(&["BOSE", "--tilt", "none", "--csv", "s.csv"]);
+    let job = read_job(&dir.path().join("BOSE.job.json"));
+    let a2 = job.robot.arm.a2_m;
+    let top = job.robot.end_effector.tip_height_top_m;
+    let mut rdr = csv::Reader::from_path(dir.path().join("s.csv")).unwrap();
+    let mut n = 0;
+    for r in rdr.records() {
+        let r = r.unwrap();
+        let f = |c: usize| r[c].parse::<f64>().unwrap();
+        let st = &job.stations[r[1].parse::<usize>().unwrap()];
+        let (th, ext, vert, yaw, tilt) = (f(11), f(12), f(14), f(15), f(8));
+        assert_eq!(tilt, 0.0);
+        let w = [
+            ext * th.cos() + a2 * th.sin(),
+            ext * th.sin() - a2 * th.cos(),
+        ];
+        let rot = st.heading_rad - std::f64::consts::FRAC_PI_2;
+        let x = st.x_m + w[0] * rot.cos() - w[1] * rot.sin();
+        let y = st.y_m + w[0] * rot.sin() + w[1] * rot.cos();
+        assert!(
+            (x - f(4)).abs() < 1e-9 && (y - f(5)).abs() < 1e-9,
+            "xy {x} {y} vs {} {}",
+            f(4),
+            f(5)
+        );
+        assert!((top - vert - f(6)).abs() < 1e-9);
+        let psi = th + yaw + rot;
+        let d = (psi - f(7)).rem_euclid(std::f64::consts::TAU);
+        assert!(
+            d < 1e-9 || (std::f64::consts::TAU - d) < 1e-9,
+            "yaw {psi} vs {}",
+            f(7)
+        );
+        n += 1;
+    }
+    assert!(n > 100);
+}
+
+#[test]
+fn two_compiles_give_identical_bytes() {
+    let a = compile_in(&["BOSE", "--csv", "s.csv", "--adept", "s.v2"]);
+    let b = compile_in(&["BOSE", "--csv", "s.csv", "--adept", "s.v2"]);
+    for f in ["BOSE.job.json", "s.csv", "s.v2"] {
+        let x = std::fs::read(a.path().join(f)).unwrap();
+        let y = std::fs::read(b.path().join(f)).unwrap();
+        assert!(x == y, "{f} differs between two compiles");
+    }
+    let adept = std::fs::read_to_string(a.path().join("s.v2")).unwrap();
+    assert!(adept.lines().any(|l| l.starts_with("move trans(")));
+    assert!(adept.lines().any(|l| l.starts_with("speed (")));
+}
+
+#[test]
+fn stop_ahead_stacks_two_lines_with_the_gap_and_two_stations() {
+    let dir = compile_in(&["BOSE OBES"]);
+    let job = read_job(&dir.path().join("BOSE_OBES.job.json"));
+    assert_eq!(job.message, "BOSE\nOBES");
+    let g = &job.layout.glyphs;
+    let line = |l: usize| -> String {
+        g.iter()
+            .filter(|x| x.line == l)
+            .map(|x| x.char.as_str())
+            .collect()
+    };
+    assert_eq!(line(0), "BOSE");
+    assert_eq!(line(1), "OBES");
+    let ys = |l: usize| {
+        g.iter()
+            .filter(move |x| x.line == l)
+            .flat_map(|x| x.strokes.iter())
+            .flat_map(|s| s.left.iter().chain(s.right.iter()))
+            .map(|p| p[1])
+    };
+    let top0 = ys(0).fold(f64::NEG_INFINITY, f64::max);
+    let bottom1 = ys(1).fold(f64::INFINITY, f64::min);
+    assert!(
+        bottom1 - top0 >= 4.0 * 2.44 - 1e-6,
+        "clear gap {}",
+        bottom1 - top0
+    );
+    assert!(job.stations.len() >= 2);
+    // BOSE, nearest the driver, is painted first.
+    assert_eq!(job.samples.station[0], 0);
+    assert!(job.stations[0].y_m < job.stations[1].y_m);
+}
+
+#[test]
+fn marking_file_and_short_period() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("m.toml"), "[marking]\nlines = [\"BOSE\"]\n").unwrap();
+    basr()
+        .current_dir(dir.path())
+        .args(["compile", "--marking", "m.toml"])
+        .args(["--period-s", "0.005", "-o", "fine.json", "--json"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("\"stations\""));
+    let job = read_job(&dir.path().join("fine.json"));
+    assert_eq!(job.control_period_s, 0.005);
+    assert_eq!(job.samples.t_s[1], 0.005);
+    basr()
+        .current_dir(dir.path())
+        .args(["check", "fine.json"])
+        .assert()
+        .success();
+}
+
+fn refused(args: &[&str], says: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    basr()
+        .current_dir(dir.path())
+        .arg("compile")
+        .args(args)
+        .args(["--csv", "x.csv", "--adept", "x.v2"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(says));
+    assert!(files(dir.path()).is_empty(), "left {:?}", files(dir.path()));
+}
+
+#[test]
+fn bad_input_exits_2_and_leaves_nothing() {
+    refused(&["BO*E"], "unsupported character '*' at position 3");
+    refused(&["   "], "empty");
+    refused(&["BOSEBOSEBOSEBOSEBOSE"], "lane is 3.660 m");
+    refused(
+        &["BOSE", "--letter-height", "7", "--lane-width", "20"],
+        "cannot be reached",
+    );
+    refused(&["BOSE OBES", "--line-gap", "2"], "at least");
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("m.toml");
+    std::fs::write(&m, "[marking]\nlines = [\"BOSE\"]\ncolour = \"white\"\n").unwrap();
+    refused(
+        &["--marking", m.to_str().unwrap()],
+        "line 3, column 1: unknown field `colour`",
+    );
+}
+
+#[test]
+fn check_reports_a_sample_over_a_limit() {
+    let dir = compile_in(&["BOSE"]);
+    let mut job = read_job(&dir.path().join("BOSE.job.json"));
+    let i = job.samples.len() / 2;
+    job.samples.extension_m[i] += 0.2; // a jump no arm makes in 32 ms
+    job.seal();
+    job.write(&dir.path().join("bad.json")).unwrap();
+    basr()
+        .current_dir(dir.path())
+        .args(["check", "bad.json"])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("extension_m moves at"))
+        .stderr(predicate::str::contains("nozzle columns"));
+}
