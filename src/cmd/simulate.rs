@@ -1,11 +1,156 @@
-//! `basr simulate` (not yet implemented).
+//! `basr simulate JOB`: the arm, its hydraulics and its controller in closed
+//! loop; verdict against the tolerance (exit 0 pass, 1 fail, 2 bad input).
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
 
 use super::{Global, Outcome};
+use basr::sim::{self, ControllerKind};
 
-/// Not yet implemented.
+/// Controller choice for the command line (000 section III's four programs).
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum ControllerArg {
+    /// PID on both joints: stable, less accurate.
+    Pid,
+    /// SJCT + Sohl–Bobrow on the base rotation, PID on extension (the seed's best).
+    Sjct,
+    /// Simplified Cartesian Computed Torque: unstable without changes, as the seed warns.
+    Scct,
+    /// Dynamic inversion on the base rotation, PID on extension.
+    Dyninv,
+}
+
+impl From<ControllerArg> for ControllerKind {
+    fn from(c: ControllerArg) -> ControllerKind {
+        match c {
+            ControllerArg::Pid => ControllerKind::Pid,
+            ControllerArg::Sjct => ControllerKind::Sjct,
+            ControllerArg::Scct => ControllerKind::Scct,
+            ControllerArg::Dyninv => ControllerKind::Dyninv,
+        }
+    }
+}
+
+/// Simulate a job on the arm in closed loop and judge its nozzle accuracy.
+///
+/// Plays the job's setpoints through the controller (every 5 ms) into a model
+/// of the pantograph arm, its hydraulic motor and cylinder, servovalves,
+/// end-effector servos and linkage compliance, and measures how far the
+/// nozzle strays from the planned path while painting.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(after_help = "Examples:
+  basr simulate STOP.job.json
+  basr simulate STOP.job.json --controller pid --svg stop-sim.svg --trace stop-sim.csv
+  basr simulate STOP.job.json --json | jq .max_error_m
 
-pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`basr simulate` is not implemented yet")
+Exit codes: 0 pass, 1 over tolerance or a limit violated, 2 bad input
+(unreadable or edited job, job for another robot description).")]
+pub struct Args {
+    /// The job file written by `basr compile`.
+    pub job: PathBuf,
+
+    /// Controller program to run.
+    #[arg(long, value_enum, default_value = "sjct")]
+    pub controller: ControllerArg,
+
+    /// Largest allowed nozzle error while painting, in millimetres (1/4 in by default).
+    #[arg(long, default_value_t = 6.35)]
+    pub tolerance_mm: f64,
+
+    /// Robot description the job must have been compiled for (default: the embedded BASR).
+    #[arg(long)]
+    pub robot: Option<PathBuf>,
+
+    /// Write the desired and actual time series as CSV here.
+    #[arg(long, value_name = "CSV")]
+    pub trace: Option<PathBuf>,
+
+    /// Write an SVG of desired vs actual path (error magnified) and the error over time.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
+
+    /// Print the report as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+
+    /// RK4 sub-steps per 5 ms control period (default: the model's, 5).
+    #[arg(long, hide = true)]
+    pub substeps: Option<u32>,
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    if !(args.tolerance_mm.is_finite() && args.tolerance_mm > 0.0) {
+        anyhow::bail!(
+            "--tolerance-mm {} must be a positive number of millimetres",
+            args.tolerance_mm
+        );
+    }
+    let job = basr::job::Job::read(&args.job)?;
+    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+    let want = robot.sha256();
+    if job.robot_sha256 != want {
+        anyhow::bail!(
+            "{}: the job was compiled for another robot description (robot_sha256 {}), not {} ({}); compile it again for this robot or pass the right one with --robot",
+            args.job.display(),
+            job.robot_sha256,
+            args.robot
+                .as_ref()
+                .map_or("the embedded BASR".to_string(), |p| p.display().to_string()),
+            want
+        );
+    }
+    let model = sim::SimModel::from_robot(&job.robot).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: the robot description cannot be simulated: {e}",
+            args.job.display()
+        )
+    })?;
+    let opts = sim::Options {
+        controller: args.controller.into(),
+        tolerance_m: args.tolerance_mm * 1e-3,
+        keep_trace: args.trace.is_some() || args.svg.is_some(),
+        substeps: args.substeps,
+    };
+    let show = !global.quiet && !args.json && std::io::stderr().is_terminal();
+    let bar = if show {
+        let b = indicatif::ProgressBar::new(1);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "simulating {bar:40} {percent:>3}% of the job, {eta} left",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    let outcome = sim::simulate(&job, &model, &opts, &mut |done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+    })?;
+    bar.finish_and_clear();
+    let report = &outcome.report;
+
+    if let Some(p) = &args.trace {
+        basr::io::write_atomic_with(p, |w| {
+            let mut out = csv::Writer::from_writer(w);
+            for row in &outcome.trace {
+                out.serialize(row).map_err(std::io::Error::other)?;
+            }
+            out.flush()
+        })?;
+    }
+    if let Some(p) = &args.svg {
+        basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(report)?);
+    } else if !global.quiet {
+        eprint!("{}", report.human());
+    }
+    Ok(if report.passed() {
+        Outcome::Success
+    } else {
+        Outcome::Negative
+    })
 }

@@ -1,1 +1,722 @@
 //! Closed-loop simulation: arm and hydraulics plant, sensors, controllers, integrator, report.
+//!
+//! `simulate(job, model, options, progress)` plays a job's setpoints through
+//! the controller of 000 section III into the plant of section II, every
+//! 5 ms with RK4 sub-steps, and measures where the nozzle actually went.
+
+pub mod control;
+pub mod ee;
+pub mod model;
+pub mod plant;
+pub mod report;
+pub mod svg;
+pub mod synthetic;
+
+pub use control::{Command, Controller, ControllerKind, Measurement, Reference};
+pub use model::SimModel;
+pub use report::{Report, TraceRow};
+
+use crate::job::Job;
+use crate::robot::Joints;
+use plant::{Inputs, State};
+use report::{AxisErrors, LimitViolation, PeakPressures, Place, Saturation, StrokeError, Waviness};
+
+/// Errors from setting up a simulation (bad input: exit 2).
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    #[error("job cannot be simulated: {0}")]
+    Job(String),
+    #[error("robot dynamics invalid: {0}; fix the robot description's [dynamics] table")]
+    Model(String),
+    #[error("simulation option invalid: {0}")]
+    Option(String),
+}
+
+/// How to run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub controller: ControllerKind,
+    /// Verdict threshold on the nozzle error while painting (m).
+    pub tolerance_m: f64,
+    /// Keep one `TraceRow` per control tick.
+    pub keep_trace: bool,
+    /// Override the model's RK4 sub-steps per control period (convergence checks).
+    pub substeps: Option<u32>,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            controller: ControllerKind::Sjct,
+            tolerance_m: 6.35e-3, // SPEC §4: 1/4 in
+            keep_trace: false,
+            substeps: None,
+        }
+    }
+}
+
+/// What a run returns.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub report: Report,
+    /// Empty unless `Options::keep_trace`.
+    pub trace: Vec<TraceRow>,
+}
+
+/// Yaw axis meets the road: W = R·(cos θ1, sin θ1) + a2·(sin θ1, −cos θ1) (SPEC §2).
+pub fn nozzle_base(model: &SimModel, theta: f64, r: f64) -> [f64; 2] {
+    let (s, c) = theta.sin_cos();
+    let a2 = model.arm.a2_m;
+    [r * c + a2 * s, r * s - a2 * c]
+}
+
+/// Station pose helpers: base frame ↔ road frame (SPEC §2).
+#[derive(Clone, Copy, Debug)]
+struct Pose {
+    x: f64,
+    y: f64,
+    c: f64,
+    s: f64,
+}
+
+impl Pose {
+    fn new(st: &crate::job::Station) -> Pose {
+        let (s, c) = (st.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
+        Pose {
+            x: st.x_m,
+            y: st.y_m,
+            c,
+            s,
+        }
+    }
+    fn to_road(self, b: [f64; 2]) -> [f64; 2] {
+        [
+            self.x + self.c * b[0] - self.s * b[1],
+            self.y + self.s * b[0] + self.c * b[1],
+        ]
+    }
+    fn to_base(self, r: [f64; 2]) -> [f64; 2] {
+        let (dx, dy) = (r[0] - self.x, r[1] - self.y);
+        [self.c * dx + self.s * dy, -self.s * dx + self.c * dy]
+    }
+}
+
+/// Catmull-Rom interpolation of a uniformly sampled column: value, first and
+/// second time derivatives at `t` (the controller's trajectory generator
+/// between the job's setpoints).
+fn catmull_rom(v: &[f64], dt: f64, t: f64) -> [f64; 3] {
+    let n = v.len();
+    if n == 1 {
+        return [v[0], 0.0, 0.0];
+    }
+    let sidx = (t / dt).max(0.0);
+    let i = (sidx.floor() as usize).min(n - 2);
+    let u = (sidx - i as f64).clamp(0.0, 1.0);
+    let p0 = v[i.saturating_sub(1)];
+    let p1 = v[i];
+    let p2 = v[i + 1];
+    let p3 = v[(i + 2).min(n - 1)];
+    let a = -p0 + p2;
+    let b = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
+    let c = -p0 + 3.0 * p1 - 3.0 * p2 + p3;
+    [
+        0.5 * (2.0 * p1 + a * u + b * u * u + c * u * u * u),
+        0.5 * (a + 2.0 * b * u + 3.0 * c * u * u) / dt,
+        0.5 * (2.0 * b + 6.0 * c * u) / (dt * dt),
+    ]
+}
+
+/// Check the job's numbers before running (bad input → exit 2).
+fn validate_job(job: &Job) -> Result<(), SimError> {
+    let s = &job.samples;
+    let n = s.check_lengths().map_err(SimError::Job)?;
+    if n < 2 {
+        return Err(SimError::Job(format!(
+            "it has {n} setpoint rows; at least 2 are needed"
+        )));
+    }
+    if !(job.control_period_s.is_finite() && job.control_period_s > 0.0) {
+        return Err(SimError::Job(format!(
+            "control_period_s = {} must be a positive number of seconds",
+            job.control_period_s
+        )));
+    }
+    let cols: [(&str, &Vec<f64>); 8] = [
+        ("x_m", &s.x_m),
+        ("y_m", &s.y_m),
+        ("base_rot_rad", &s.base_rot_rad),
+        ("extension_m", &s.extension_m),
+        ("vertical_m", &s.vertical_m),
+        ("ee_yaw_rad", &s.ee_yaw_rad),
+        ("tilt_nut_m", &s.tilt_nut_m),
+        ("t_s", &s.t_s),
+    ];
+    for (name, col) in cols {
+        if let Some(i) = col.iter().position(|v| !v.is_finite()) {
+            return Err(SimError::Job(format!(
+                "samples.{name}[{i}] is not a finite number"
+            )));
+        }
+    }
+    for (i, st) in s.station.iter().enumerate() {
+        if *st as usize >= job.stations.len() {
+            return Err(SimError::Job(format!(
+                "samples.station[{i}] = {st} but the job has {} stations",
+                job.stations.len()
+            )));
+        }
+    }
+    for (i, st) in job.stations.iter().enumerate() {
+        if ![st.x_m, st.y_m, st.heading_rad]
+            .iter()
+            .all(|v| v.is_finite())
+        {
+            return Err(SimError::Job(format!(
+                "stations[{i}] has a non-finite value"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Accumulates one limit's violations.
+struct LimitTrack {
+    kind: &'static str,
+    fails: bool,
+    limit: f64,
+    first: Option<Place>,
+    worst: f64,
+    ticks: u64,
+    what: &'static str,
+}
+
+impl LimitTrack {
+    fn new(kind: &'static str, what: &'static str, fails: bool) -> LimitTrack {
+        LimitTrack {
+            kind,
+            fails,
+            limit: 0.0,
+            first: None,
+            worst: 0.0,
+            ticks: 0,
+            what,
+        }
+    }
+    /// Record `value` past `limit` by `excess` > 0 at `place`.
+    fn hit(&mut self, excess: f64, value: f64, limit: f64, place: &Place) {
+        if excess <= 0.0 {
+            return;
+        }
+        self.ticks += 1;
+        if self.first.is_none() || excess > (self.worst - self.limit).abs() {
+            self.worst = value;
+            self.limit = limit;
+        }
+        if self.first.is_none() {
+            self.first = Some(place.clone());
+        }
+    }
+    fn finish(self, period: f64) -> Option<LimitViolation> {
+        let first = self.first?;
+        let message = format!(
+            "{} (reached {:.4} against {:.4}) first at t = {:.3} s, stroke {}, road ({:.3}, {:.3}) m, for {:.3} s",
+            self.what,
+            self.worst,
+            self.limit,
+            first.t_s,
+            first.stroke,
+            first.x_m,
+            first.y_m,
+            self.ticks as f64 * period
+        );
+        Some(LimitViolation {
+            kind: self.kind.into(),
+            fails: self.fails,
+            first,
+            duration_s: self.ticks as f64 * period,
+            worst_value: self.worst,
+            limit: self.limit,
+            message,
+        })
+    }
+}
+
+#[derive(Default)]
+struct ErrStats {
+    max: f64,
+    sum2: f64,
+    n: u64,
+    worst: Place,
+}
+
+impl ErrStats {
+    fn add(&mut self, e: f64, p: &Place) {
+        if e > self.max || self.n == 0 {
+            self.max = e;
+            self.worst = p.clone();
+        }
+        self.sum2 += e * e;
+        self.n += 1;
+    }
+    fn rms(&self) -> f64 {
+        if self.n == 0 {
+            0.0
+        } else {
+            (self.sum2 / self.n as f64).sqrt()
+        }
+    }
+}
+
+/// Run `job` through `model` in closed loop. `progress(done, total)` is called
+/// now and then with control ticks.
+pub fn simulate(
+    job: &Job,
+    model: &SimModel,
+    opts: &Options,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
+    validate_job(job)?;
+    model.validate().map_err(SimError::Model)?;
+    if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
+        return Err(SimError::Option(format!(
+            "tolerance {} m must be positive",
+            opts.tolerance_m
+        )));
+    }
+    let substeps = opts.substeps.unwrap_or(model.substeps).max(1);
+    let s = &job.samples;
+    let n = s.len();
+    let dt_job = job.control_period_s;
+    let period = model.control.period_s;
+    let h = period / substeps as f64;
+    let duration = (n - 1) as f64 * dt_job;
+    let ticks = (duration / period + 1e-9).floor() as u64 + 1;
+
+    let poses: Vec<Pose> = job.stations.iter().map(Pose::new).collect();
+    // desired nozzle per row in its station's base frame
+    let (mut bx, mut by) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for i in 0..n {
+        let b = poses[s.station[i] as usize].to_base([s.x_m[i], s.y_m[i]]);
+        bx.push(b[0]);
+        by.push(b[1]);
+    }
+
+    let mut state: State = plant::rest_state(model, s.base_rot_rad[0], s.extension_m[0]);
+    let mut yaw = ee::Servo::at(s.ee_yaw_rad[0]);
+    let mut nut = ee::Servo::at(s.tilt_nut_m[0]);
+    let mut vert = ee::Servo::at(s.vertical_m[0]);
+
+    let sens = &model.sensors;
+    let base_q = std::f64::consts::TAU / sens.base_counts_per_turn;
+    let p_q = sens.adc_step_v * sens.pressure_pa_per_volt;
+    let measure = |st: &State, t: f64, reference: Reference| -> Measurement {
+        let quant = |v: f64, q: f64| if sens.exact { v } else { (v / q).round() * q };
+        // pressures go through the transducer's volts and the ADC's steps
+        let pres = |p: f64| quant(p, p_q);
+        let r = model.arm.r_of_x(st[plant::X]);
+        Measurement {
+            t_s: t,
+            base_rot_rad: quant(st[plant::TH], base_q),
+            extension_m: model.arm.r_min_m
+                + quant(r - model.arm.r_min_m, sens.extension_m_per_count),
+            motor_pa: [pres(st[plant::PA1]), pres(st[plant::PB1])],
+            cylinder_pa: [pres(st[plant::PA2]), pres(st[plant::PB2])],
+            reference,
+        }
+    };
+    let reference_at = |t: f64| -> Reference {
+        let nx = catmull_rom(&bx, dt_job, t);
+        let ny = catmull_rom(&by, dt_job, t);
+        Reference {
+            base_rot: catmull_rom(&s.base_rot_rad, dt_job, t),
+            extension: catmull_rom(&s.extension_m, dt_job, t),
+            nozzle: [[nx[0], ny[0]], [nx[1], ny[1]], [nx[2], ny[2]]],
+        }
+    };
+
+    let m0 = measure(&state, 0.0, reference_at(0.0));
+    let mut ctrl = opts.controller.build(model, &m0);
+
+    let mut all = ErrStats::default();
+    let mut paint = ErrStats::default();
+    let mut per_stroke: std::collections::BTreeMap<i64, ErrStats> = Default::default();
+    let mut sat = Saturation::default();
+    let mut peaks = PeakPressures::default();
+    let mut axis = AxisErrors::default();
+    let mut lim_window = LimitTrack::new(
+        "base_rot_window",
+        "base rotation left its safety window",
+        true,
+    );
+    let mut lim_stroke = LimitTrack::new(
+        "cylinder_stroke",
+        "extension cylinder hit its end of stroke",
+        true,
+    );
+    let mut lim_set_rot = LimitTrack::new(
+        "setpoint_base_rot",
+        "setpoint base rotation is outside the safety window",
+        true,
+    );
+    let mut lim_set_ext = LimitTrack::new(
+        "setpoint_extension",
+        "setpoint extension is outside the arm's reach",
+        true,
+    );
+    let mut lim_tilt = LimitTrack::new("tilt_travel", "tilt nut setpoint past its travel", true);
+    let mut lim_vert = LimitTrack::new(
+        "vertical_travel",
+        "vertical joint setpoint past its stroke",
+        true,
+    );
+    let mut lim_relief = LimitTrack::new(
+        "relief_valve",
+        "a relief valve opened (force demand above what the supply can give)",
+        false,
+    );
+    // painting segments for waviness: (segment id, ex, ey)
+    let mut wav: Vec<(u32, f64, f64)> = Vec::new();
+    let mut seg: u32 = 0;
+    let mut was_painting = false;
+    let mut turn_rates: Vec<f64> = Vec::new();
+    let mut trace = Vec::new();
+    let mut painting_ticks: u64 = 0;
+    let r_max = model.arm.r_of_x(model.arm.x_max_m());
+
+    for k in 0..ticks {
+        let t = k as f64 * period;
+        let row = ((t / dt_job + 1e-9).floor() as usize).min(n - 1);
+        let reference = reference_at(t);
+        let meas = measure(&state, t, reference);
+        let cmd = ctrl.step(&meas);
+        let station = s.station[row];
+        let station_pose = &poses[station as usize];
+        // the nozzle now: the robot's FK of the actual joints plus the
+        // linkage's deflection
+        let r_act = model.arm.r_of_x(state[plant::X]);
+        let tilt = job.robot.tilt_from_nut(nut.pos).unwrap_or(f64::NAN);
+        let pose = job.robot.fk(&Joints {
+            base_rot_rad: state[plant::TH],
+            extension_m: r_act,
+            vertical_m: vert.pos,
+            ee_yaw_rad: yaw.pos,
+            tilt_rad: if tilt.is_finite() { tilt } else { 0.0 },
+        });
+        let act = [pose.x_m + state[plant::DX], pose.y_m + state[plant::DY]];
+        let des = reference.nozzle[0];
+        let (ex, ey) = (act[0] - des[0], act[1] - des[1]);
+        let err = ex.hypot(ey);
+        let des_road = station_pose.to_road(des);
+        let place = Place {
+            t_s: t,
+            stroke: s.stroke[row],
+            station,
+            x_m: des_road[0],
+            y_m: des_road[1],
+        };
+        let painting = s.paint[row] != 0;
+        all.add(err, &place);
+        if painting {
+            painting_ticks += 1;
+            paint.add(err, &place);
+            per_stroke
+                .entry(s.stroke[row])
+                .or_default()
+                .add(err, &place);
+            if !was_painting {
+                seg += 1;
+            }
+            wav.push((seg, ex, ey));
+            let [_, v, a] = reference.nozzle;
+            let v2 = v[0] * v[0] + v[1] * v[1];
+            if v2 > 1e-6 {
+                turn_rates.push((v[0] * a[1] - v[1] * a[0]).abs() / v2);
+            }
+        }
+        was_painting = painting;
+        // limits
+        let th = state[plant::TH];
+        let (tlo, thi) = (model.arm.theta_min_rad, model.arm.theta_max_rad);
+        lim_window.hit(
+            (tlo - th).max(th - thi),
+            th,
+            if th < tlo { tlo } else { thi },
+            &place,
+        );
+        let x = state[plant::X];
+        let tol_x = 5e-4;
+        let (xlo, xhi) = (model.arm.x_min_m, model.arm.x_max_m());
+        lim_stroke.hit(
+            (xlo - tol_x - x).max(x - xhi - tol_x),
+            r_act,
+            if x < xlo { model.arm.r_min_m } else { r_max },
+            &place,
+        );
+        let thd = reference.base_rot[0];
+        lim_set_rot.hit(
+            (tlo - thd).max(thd - thi),
+            thd,
+            if thd < tlo { tlo } else { thi },
+            &place,
+        );
+        let rd = reference.extension[0];
+        let rlo = model.arm.r_min_m;
+        lim_set_ext.hit(
+            (rlo - 1e-3 - rd).max(rd - r_max - 1e-3),
+            rd,
+            if rd < rlo { rlo } else { r_max },
+            &place,
+        );
+        for p in [plant::PA1, plant::PB1, plant::PA2, plant::PB2] {
+            lim_relief.hit(
+                state[p] - model.hydraulics.relief_pa,
+                state[p],
+                model.hydraulics.relief_pa,
+                &place,
+            );
+        }
+        peaks.motor_a_pa = peaks.motor_a_pa.max(state[plant::PA1]);
+        peaks.motor_b_pa = peaks.motor_b_pa.max(state[plant::PB1]);
+        peaks.cylinder_a_pa = peaks.cylinder_a_pa.max(state[plant::PA2]);
+        peaks.cylinder_b_pa = peaks.cylinder_b_pa.max(state[plant::PB2]);
+        if cmd.u_motor.abs() >= model.motor.command_limit * 0.999 {
+            sat.motor_valve_s += period;
+        }
+        if cmd.u_cyl.abs() >= model.cylinder.command_limit * 0.999 {
+            sat.cylinder_valve_s += period;
+        }
+        // end-effector setpoints, clipped to their travel (noted if past it)
+        let yaw_ref = catmull_rom(&s.ee_yaw_rad, dt_job, t);
+        let nut_ref = catmull_rom(&s.tilt_nut_m, dt_job, t);
+        let vert_ref = catmull_rom(&s.vertical_m, dt_job, t);
+        let ax = &model.tilt_nut;
+        lim_tilt.hit(
+            (ax.min - nut_ref[0]).max(nut_ref[0] - ax.max),
+            nut_ref[0],
+            if nut_ref[0] < ax.min { ax.min } else { ax.max },
+            &place,
+        );
+        let av = &model.vertical;
+        lim_vert.hit(
+            (av.min - vert_ref[0]).max(vert_ref[0] - av.max),
+            vert_ref[0],
+            if vert_ref[0] < av.min { av.min } else { av.max },
+            &place,
+        );
+        axis.yaw_rad = axis.yaw_rad.max((yaw.pos - yaw_ref[0]).abs());
+        axis.tilt_nut_m = axis.tilt_nut_m.max((nut.pos - nut_ref[0]).abs());
+        axis.vertical_m = axis.vertical_m.max((vert.pos - vert_ref[0]).abs());
+        if opts.keep_trace {
+            let a_road = station_pose.to_road(act);
+            trace.push(TraceRow {
+                t_s: t,
+                station,
+                stroke: s.stroke[row],
+                paint: s.paint[row],
+                x_desired_m: des_road[0],
+                y_desired_m: des_road[1],
+                x_m: a_road[0],
+                y_m: a_road[1],
+                error_m: err,
+                deflection_m: state[plant::DX].hypot(state[plant::DY]),
+                base_rot_desired_rad: reference.base_rot[0],
+                base_rot_rad: th,
+                extension_desired_m: reference.extension[0],
+                extension_m: r_act,
+                motor_a_pa: state[plant::PA1],
+                motor_b_pa: state[plant::PB1],
+                cylinder_a_pa: state[plant::PA2],
+                cylinder_b_pa: state[plant::PB2],
+                u_motor: cmd.u_motor,
+                u_cylinder: cmd.u_cyl,
+                ee_yaw_desired_rad: yaw_ref[0],
+                ee_yaw_rad: yaw.pos,
+                tilt_nut_desired_m: nut_ref[0],
+                tilt_nut_m: nut.pos,
+                vertical_desired_m: vert_ref[0],
+                vertical_m: vert.pos,
+            });
+        }
+        if k + 1 == ticks {
+            break;
+        }
+        // advance one control period
+        let inputs = Inputs {
+            u_motor: cmd.u_motor,
+            u_cyl: cmd.u_cyl,
+        };
+        let (mut ys, mut ts, mut vs) = (false, false, false);
+        let clip = |v: f64, a: &model::ServoAxis| v.clamp(a.min, a.max);
+        for _ in 0..substeps {
+            plant::rk4_step(model, &mut state, &inputs, h);
+            ys |= yaw.step(&model.yaw, clip(yaw_ref[0], &model.yaw), yaw_ref[1], h);
+            ts |= nut.step(ax, clip(nut_ref[0], ax), nut_ref[1], h);
+            vs |= vert.step(av, clip(vert_ref[0], av), vert_ref[1], h);
+        }
+        if ys {
+            sat.yaw_s += period;
+        }
+        if ts {
+            sat.tilt_s += period;
+        }
+        if vs {
+            sat.vertical_s += period;
+        }
+        if state.iter().any(|v| !v.is_finite()) {
+            return Err(SimError::Model(format!(
+                "the state became non-finite at t = {t:.3} s (an unstable parameter set)"
+            )));
+        }
+        if k % 2000 == 0 {
+            progress(k, ticks);
+        }
+    }
+    progress(ticks, ticks);
+
+    // waviness: high-pass each painting segment's error above the path's content
+    turn_rates.sort_by(f64::total_cmp);
+    let f_path = turn_rates
+        .get(((turn_rates.len() as f64) * 0.95) as usize)
+        .or(turn_rates.last())
+        .copied()
+        .unwrap_or(0.0)
+        / std::f64::consts::TAU;
+    let cutoff = (4.0 * f_path).clamp(0.5, 5.0);
+    let mut waviness = Waviness {
+        cutoff_hz: cutoff,
+        ..Default::default()
+    };
+    let (mut w2, mut wn) = (0.0, 0u64);
+    let mut i = 0;
+    while i < wav.len() {
+        let id = wav[i].0;
+        let j = wav[i..]
+            .iter()
+            .position(|w| w.0 != id)
+            .map_or(wav.len(), |p| i + p);
+        let mut ex: Vec<f64> = wav[i..j].iter().map(|w| w.1).collect();
+        let mut ey: Vec<f64> = wav[i..j].iter().map(|w| w.2).collect();
+        highpass_and_measure(
+            &mut ex,
+            &mut ey,
+            cutoff,
+            period,
+            &mut waviness.max_m,
+            &mut w2,
+            &mut wn,
+        );
+        i = j;
+    }
+    waviness.rms_m = if wn > 0 { (w2 / wn as f64).sqrt() } else { 0.0 };
+
+    let verdict_stats = if paint.n > 0 { &paint } else { &all };
+    let mut reasons = Vec::new();
+    if verdict_stats.max > opts.tolerance_m {
+        let w = &verdict_stats.worst;
+        reasons.push(format!(
+            "nozzle error {:.3} mm exceeds the tolerance {:.3} mm at t = {:.3} s, stroke {}, road ({:.3}, {:.3}) m",
+            verdict_stats.max * 1e3,
+            opts.tolerance_m * 1e3,
+            w.t_s,
+            w.stroke,
+            w.x_m,
+            w.y_m
+        ));
+    }
+    let limits: Vec<LimitViolation> = [
+        lim_set_rot,
+        lim_set_ext,
+        lim_window,
+        lim_stroke,
+        lim_tilt,
+        lim_vert,
+        lim_relief,
+    ]
+    .into_iter()
+    .filter_map(|l| l.finish(period))
+    .collect();
+    for l in limits.iter().filter(|l| l.fails) {
+        reasons.push(l.message.clone());
+    }
+    let strokes = per_stroke
+        .into_iter()
+        .map(|(stroke, st)| StrokeError {
+            stroke,
+            max_error_m: st.max,
+            rms_error_m: st.rms(),
+            worst: st.worst.clone(),
+        })
+        .collect();
+    let report = Report {
+        controller: opts.controller.name().into(),
+        tolerance_m: opts.tolerance_m,
+        verdict: if reasons.is_empty() { "pass" } else { "fail" }.into(),
+        reasons,
+        max_error_m: verdict_stats.max,
+        rms_error_m: verdict_stats.rms(),
+        worst: verdict_stats.worst.clone(),
+        max_error_all_m: all.max,
+        rms_error_all_m: all.rms(),
+        strokes,
+        waviness,
+        saturation: sat,
+        peak_pressures: peaks,
+        axis_errors: axis,
+        limits,
+        duration_s: duration,
+        painting_s: painting_ticks as f64 * period,
+        control_period_s: period,
+        integrator_step_s: h,
+    };
+    Ok(Outcome { report, trace })
+}
+
+fn highpass_and_measure(
+    ex: &mut [f64],
+    ey: &mut [f64],
+    cutoff: f64,
+    dt: f64,
+    max: &mut f64,
+    sum2: &mut f64,
+    n: &mut u64,
+) {
+    report::highpass_zero_phase(ex, cutoff, dt);
+    report::highpass_zero_phase(ey, cutoff, dt);
+    for (a, b) in ex.iter().zip(ey.iter()) {
+        let e = a.hypot(*b);
+        *max = max.max(e);
+        *sum2 += e * e;
+        *n += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn catmull_rom_passes_through_samples_and_differentiates_lines() {
+        let v: Vec<f64> = (0..10).map(|i| 0.5 + 2.0 * i as f64 * 0.032).collect();
+        for i in 0..10 {
+            let r = catmull_rom(&v, 0.032, i as f64 * 0.032);
+            assert!((r[0] - v[i]).abs() < 1e-12);
+        }
+        let r = catmull_rom(&v, 0.032, 0.1);
+        assert!((r[1] - 2.0).abs() < 1e-9 && r[2].abs() < 1e-6);
+    }
+
+    #[test]
+    fn pose_round_trips() {
+        let p = Pose::new(&crate::job::Station {
+            x_m: 1.0,
+            y_m: 4.0,
+            heading_rad: -std::f64::consts::FRAC_PI_2,
+        });
+        let b = [0.3, 2.0];
+        let r = p.to_road(b);
+        let back = p.to_base(r);
+        assert!((back[0] - b[0]).abs() < 1e-12 && (back[1] - b[1]).abs() < 1e-12);
+        // heading −π/2: +y_B points to −y_R
+        assert!((r[1] - (4.0 - 2.0)).abs() < 1e-12);
+    }
+}

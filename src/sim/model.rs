@@ -1,0 +1,561 @@
+//! The constant numbers of the simulated robot: arm masses, hydraulics, valves,
+//! end-effector servos, linkage compliance, sensors and controller settings.
+//!
+//! This is the *model* (Pinocchio/Drake habit): immutable during a run; the
+//! changing values live in `plant::State`. Every number says where it comes
+//! from; `assumed` marks the ones no source gives.
+
+use serde::{Deserialize, Serialize};
+
+/// Standard gravity (m/s²).
+pub const G: f64 = 9.80665;
+
+/// The pantograph arm (000 section II eq. 1–8, appendix A eq. 12).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Arm {
+    /// Pantograph amplification k: extension R moves k × the A–C distance x (SPEC §4).
+    pub k: f64,
+    /// Half-length d of the base link BC; the links rise as √(4d² − x²) (000 App. A eq. 4).
+    pub d_m: f64,
+    /// A–C distance x at full retraction (000 App. A: 7.5 in).
+    pub x_min_m: f64,
+    /// Cylinder stroke: x_max = x_min + stroke (000 App. A: 25.5 − 7.5 in).
+    pub stroke_m: f64,
+    /// Extension R at full retraction (SPEC §4, encoder zero).
+    pub r_min_m: f64,
+    /// Arm–end-effector offset a2 (SPEC §2).
+    pub a2_m: f64,
+    /// Holding-force constant B of F(x) = B·x/√(4d² − x²) (000 App. A eq. 12: 709.9 lbf).
+    pub holding_b_n: f64,
+    /// End-effector mass m3 (SPEC §4, 001 ch. 3).
+    pub ee_mass_kg: f64,
+    /// End-effector inertia about its own vertical axis (assumed: 35 kg at 0.25 m).
+    pub ee_inertia_kgm2: f64,
+    /// Inertia of the turntable, motor and cylinder about the base axis (assumed).
+    pub base_inertia_kgm2: f64,
+    /// Base-rotation safety window (SPEC §4; 000 section III `q1_a` test).
+    pub theta_min_rad: f64,
+    pub theta_max_rad: f64,
+}
+
+impl Arm {
+    /// Mass of each of the two main links. The potential energy of the two
+    /// links is (m1+m2)·g·k·√(4d²−x²)/4 (000 eq. 1), and appendix A writes it
+    /// B·√(4d²−x²); so m1 = m2 = 2B/(g·k): the masses are fixed by the
+    /// measured holding force, not guessed.
+    pub fn link_mass_kg(&self) -> f64 {
+        2.0 * self.holding_b_n / (G * self.k)
+    }
+
+    /// Length of each main link, k·d (the links meet at height k·√(4d²−x²)/2).
+    pub fn link_length_m(&self) -> f64 {
+        self.k * self.d_m
+    }
+
+    /// Inertia of a main link about its centre, as a slender rod.
+    pub fn link_inertia_kgm2(&self) -> f64 {
+        let l = self.link_length_m();
+        self.link_mass_kg() * l * l / 12.0
+    }
+
+    pub fn x_max_m(&self) -> f64 {
+        self.x_min_m + self.stroke_m
+    }
+
+    /// Extension R from the A–C distance x.
+    pub fn r_of_x(&self, x: f64) -> f64 {
+        self.r_min_m + self.k * (x - self.x_min_m)
+    }
+
+    /// A–C distance x from the extension R.
+    pub fn x_of_r(&self, r: f64) -> f64 {
+        self.x_min_m + (r - self.r_min_m) / self.k
+    }
+
+    /// Gravity force on the extension coordinate x (N, positive = extends):
+    /// F(x) = B·x/√(4d² − x²) (000 App. A eq. 11).
+    pub fn holding_force_n(&self, x: f64) -> f64 {
+        let s2 = (4.0 * self.d_m * self.d_m - x * x).max(1e-6);
+        self.holding_b_n * x / s2.sqrt()
+    }
+}
+
+/// Friction per 000 eq. 10: viscous + Coulomb + exponentially decaying stiction.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Friction {
+    /// Viscous coefficient (N·s/m or N·m·s/rad).
+    pub viscous: f64,
+    /// Coulomb level (N or N·m).
+    pub coulomb: f64,
+    /// Stiction excess at zero speed (N or N·m).
+    pub stiction: f64,
+    /// Speed over which stiction decays (m/s or rad/s).
+    pub stribeck_speed: f64,
+    /// Speed of the smooth sign (tanh) used instead of sign() so the
+    /// fixed-step integrator does not chatter at rest.
+    pub smooth_speed: f64,
+}
+
+impl Friction {
+    /// Friction force opposing `v` (000 eq. 10 with a smooth sign).
+    pub fn force(&self, v: f64) -> f64 {
+        let sgn = (v / self.smooth_speed).tanh();
+        self.viscous * v
+            + (self.coulomb + self.stiction * (-(v.abs()) / self.stribeck_speed).exp()) * sgn
+    }
+}
+
+/// A hydraulic actuator with its servovalve (000 eq. 9, 11–17). For the motor
+/// `area` is the displacement (m³/rad), `alpha` = 1 and x is θ1.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Actuator {
+    /// Piston area A of chamber A (m²), or motor displacement (m³/rad).
+    pub area: f64,
+    /// Area ratio α of chamber B to chamber A (000 eq. 9).
+    pub alpha: f64,
+    /// Volume of chamber A at position 0 incl. pipes (m³): V_A = v0_a + A·pos.
+    pub v0_a_m3: f64,
+    /// Volume of chamber B at position 0 incl. pipes (m³): V_B = v0_b − α·A·pos.
+    pub v0_b_m3: f64,
+    /// Servovalve flow gain B_v·K_s per unit command (m³/(s·√Pa)) (eq. 15–17).
+    pub valve_gain: f64,
+    /// Servovalve time constant τ_s (s) (eq. 17).
+    pub valve_tau_s: f64,
+    /// Controller's command limit (000 section III: ±0.2 motor, ±1 cylinder).
+    pub command_limit: f64,
+    /// Command the controller writes when it refuses to drive (000 section III `zero1`, `zero2`).
+    pub off_command: f64,
+    /// Internal leakage A→B (m³/(s·Pa)).
+    pub leakage: f64,
+    pub friction: Friction,
+}
+
+/// Supply, tank, oil and relief valves.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Hydraulics {
+    /// Supply pressure p0 (SPEC §4; 000 section III 2.069e7).
+    pub supply_pa: f64,
+    /// Tank pressure p_T (SPEC §4; 000 section III 1e5).
+    pub tank_pa: f64,
+    /// Bulk modulus of pure oil E_oil (SPEC §4; 6.1782 = E·D²).
+    pub bulk_modulus_pa: f64,
+    /// Use eq. 13's pressure-dependent substitute bulk modulus (air content);
+    /// false keeps E constant.
+    pub bulk_law_eq13: bool,
+    /// Pressure constant p_κ of eq. 13 (assumed: E' reaches E_oil near supply).
+    pub bulk_p_kappa_pa: f64,
+    /// Relief-valve cracking pressure p_max (eq. 14; assumed just above supply).
+    pub relief_pa: f64,
+    /// Relief-valve flow gain G (eq. 14; assumed) — also used by the
+    /// anti-cavitation check valve that refills a chamber from tank.
+    pub relief_gain_m3_per_s_pa: f64,
+}
+
+impl Hydraulics {
+    /// Substitute bulk modulus at pressure `p` (000 eq. 13, log base 10).
+    pub fn bulk(&self, p: f64) -> f64 {
+        if !self.bulk_law_eq13 {
+            return self.bulk_modulus_pa;
+        }
+        let arg = 100.0 * (0.9 * p.max(0.0) / self.bulk_p_kappa_pa + 0.03);
+        (0.5 * self.bulk_modulus_pa * arg.log10()).min(self.bulk_modulus_pa)
+    }
+}
+
+/// One end-effector axis as a servo loop with rate and acceleration limits.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ServoAxis {
+    /// Position-loop bandwidth (rad/s) (assumed).
+    pub bandwidth_rad_s: f64,
+    /// Rate limit (unit/s).
+    pub rate_limit: f64,
+    /// Acceleration limit (unit/s²).
+    pub accel_limit: f64,
+    /// Travel [min, max] (unit).
+    pub min: f64,
+    pub max: f64,
+    /// Sensor resolution (unit per count).
+    pub resolution: f64,
+}
+
+/// The end-effector linkage as one lateral mode (001 table 3.2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Compliance {
+    /// Torsional stiffness at joint F (N·m/rad): 101.7 N·m gives 0.18–0.20°.
+    pub stiffness_nm_per_rad: f64,
+    /// Nozzle distance below joint F (m).
+    pub nozzle_below_f_m: f64,
+    /// Mass hanging below F (kg), taken as a uniform rod F→nozzle (assumed).
+    pub mass_kg: f64,
+    /// Damping ratio of the mode (assumed; welded steel linkage).
+    pub damping_ratio: f64,
+}
+
+impl Compliance {
+    /// Inertia about F of the uniform rod.
+    pub fn inertia(&self) -> f64 {
+        self.mass_kg * self.nozzle_below_f_m * self.nozzle_below_f_m / 3.0
+    }
+    /// Natural frequency (rad/s).
+    pub fn omega(&self) -> f64 {
+        (self.stiffness_nm_per_rad / self.inertia()).sqrt()
+    }
+    /// Nozzle deflection per unit base acceleration of F, static and
+    /// dynamic: δ̈ = −γ·a_F − 2ζωδ̇ − ω²δ with γ = m·(L/2)·L/I.
+    pub fn gamma(&self) -> f64 {
+        self.mass_kg * 0.5 * self.nozzle_below_f_m * self.nozzle_below_f_m / self.inertia()
+    }
+}
+
+/// Sensors (000 section III `readValues`; SPEC §4).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Sensors {
+    /// Base encoder counts per turn (88 000).
+    pub base_counts_per_turn: f64,
+    /// Extension encoder: metres of R per count (0.105833 mm).
+    pub extension_m_per_count: f64,
+    /// Pressure transducer: Pa per volt (5.175e6) and offset volts (1.0).
+    pub pressure_pa_per_volt: f64,
+    pub pressure_offset_v: f64,
+    /// ADC step (V) (assumed: 12 bits over ±10 V).
+    pub adc_step_v: f64,
+    /// Read exact values instead of counts and ADC steps (numerical checks
+    /// only: quantisation makes the closed loop sensitive to the last bit).
+    pub exact: bool,
+}
+
+/// Controller settings (000 section III).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ControlSettings {
+    /// Sampling time T (000 section III `const double T = 0.005`).
+    pub period_s: f64,
+    /// Time-delay estimate λ of the SJCT/SCCT disturbance (SPEC §4: 10 ms).
+    pub lambda_s: f64,
+}
+
+/// Everything the simulator needs about one robot.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SimModel {
+    pub arm: Arm,
+    pub hydraulics: Hydraulics,
+    pub motor: Actuator,
+    pub cylinder: Actuator,
+    pub yaw: ServoAxis,
+    pub tilt_nut: ServoAxis,
+    pub vertical: ServoAxis,
+    pub compliance: Compliance,
+    pub sensors: Sensors,
+    pub control: ControlSettings,
+    /// RK4 sub-steps per control period.
+    pub substeps: u32,
+}
+
+const IN: f64 = 0.0254;
+
+impl SimModel {
+    /// The default BASR numbers (seeds 000 and 001, SPEC §4).
+    pub fn basr() -> SimModel {
+        let bore = 2.5 * IN; // assumed: 2.5 in bore
+        let rod = 1.375 * IN; // assumed: 1 3/8 in rod
+        let area = std::f64::consts::PI * bore * bore / 4.0;
+        let annulus = area - std::f64::consts::PI * rod * rod / 4.0;
+        let alpha = annulus / area;
+        let stroke = 18.0 * IN; // 000 App. A: 7.5–25.5 in; SPEC §4 0.457 m
+        let dead = 2.0e-4; // assumed: hoses and end volumes, each side
+        SimModel {
+            arm: Arm {
+                k: 8.333,       // SPEC §4
+                d_m: 13.0 * IN, // 000 App. A eq. 12: 676 = 4d², d = 13 in
+                x_min_m: 7.5 * IN,
+                stroke_m: stroke,
+                r_min_m: 1.55, // SPEC §4; 000 section III `q2_a = 1.55 + …`
+                a2_m: 0.01,    // SPEC §2
+                holding_b_n: 709.9 * 4.4482, // 000 App. A eq. 12: 709.9 lbf
+                ee_mass_kg: 35.0, // SPEC §4
+                ee_inertia_kgm2: 35.0 * 0.25 * 0.25, // assumed
+                base_inertia_kgm2: 50.0, // assumed: turntable + cylinder + motor
+                theta_min_rad: std::f64::consts::FRAC_PI_4, // SPEC §4: 0.7854; 000 section III
+                theta_max_rad: 3.0 * std::f64::consts::FRAC_PI_4, // 2.3562
+            },
+            hydraulics: Hydraulics {
+                supply_pa: 20.69e6,               // SPEC §4
+                tank_pa: 0.1e6,                   // SPEC §4
+                bulk_modulus_pa: 1.6e9,           // SPEC §4 (6.1782 = E·D²)
+                bulk_law_eq13: true,              // 000 eq. 13
+                bulk_p_kappa_pa: 20.0e6,          // assumed
+                relief_pa: 22.0e6,                // assumed: just above supply
+                relief_gain_m3_per_s_pa: 2.5e-10, // assumed: 15 L/min per MPa of override
+            },
+            motor: Actuator {
+                area: 6.214e-5,      // SPEC §4; 000 section III (m³/rad)
+                alpha: 1.0,          // a motor is symmetric
+                v0_a_m3: 5.0e-4,     // SPEC §4: V_A = 5.0e-4 + D·θ1
+                v0_b_m3: 8.04e-4,    // SPEC §4: V_B = 8.04e-4 − D·θ1
+                valve_gain: 2.39e-7, // SPEC §4: 2.379e-2 / (E·D)
+                valve_tau_s: 0.004,  // assumed: a 40 Hz servovalve
+                command_limit: 0.2,  // 000 section III
+                off_command: 0.03,   // 000 section III `zero1`
+                leakage: 1.0e-15,    // assumed: good seals, 0.6 mL/min at 10 MPa
+                friction: Friction {
+                    viscous: 50.0,  // assumed (N·m·s/rad)
+                    coulomb: 25.0,  // assumed (N·m): 2 % of stall torque
+                    stiction: 15.0, // assumed
+                    stribeck_speed: 0.01,
+                    smooth_speed: 1.0e-3,
+                },
+            },
+            cylinder: Actuator {
+                area,
+                alpha,
+                v0_a_m3: dead,
+                v0_b_m3: dead + alpha * area * stroke,
+                valve_gain: 2.0e-7, // assumed: full command moves R at ≈1.5 m/s
+                valve_tau_s: 0.004, // assumed
+                command_limit: 1.0, // 000 section III
+                off_command: -0.37, // 000 section III `zero2` (retracts slowly)
+                leakage: 1.0e-15,   // assumed: good seals
+                friction: Friction {
+                    viscous: 2000.0, // assumed (N·s/m)
+                    coulomb: 300.0,  // assumed (N)
+                    stiction: 200.0, // assumed
+                    stribeck_speed: 0.005,
+                    smooth_speed: 2.0e-4,
+                },
+            },
+            yaw: ServoAxis {
+                bandwidth_rad_s: 2.0 * std::f64::consts::PI * 5.0, // assumed
+                rate_limit: 30f64.to_radians(),                    // SPEC §4: 30°/s
+                accel_limit: 30f64.to_radians() / 0.1,             // SPEC §4: reached in 0.1 s
+                min: -std::f64::consts::PI * 2.0,                  // assumed: cable wrap ±2 turns
+                max: std::f64::consts::PI * 2.0,
+                resolution: std::f64::consts::TAU / 10_000.0, // SPEC §4
+            },
+            tilt_nut: ServoAxis {
+                bandwidth_rad_s: 2.0 * std::f64::consts::PI * 5.0, // assumed
+                rate_limit: 0.11,                                  // SPEC §4: nut ≤ 0.11 m/s
+                accel_limit: 1.1, // assumed: 0.1 s to full speed like the yaw
+                min: -0.0073 * 15.0 + 0.0005, // SPEC §4: ±15° tilt
+                max: 0.0073 * 15.0 + 0.0005,
+                resolution: 3.175e-3 / 1.1 / 1000.0, // SPEC §4: pitch / ratio / counts
+            },
+            vertical: ServoAxis {
+                bandwidth_rad_s: 2.0 * std::f64::consts::PI * 10.0, // SPEC §4: follows 10 Hz
+                rate_limit: 0.8,      // assumed: 12.7 mm at 10 Hz needs 0.8 m/s
+                accel_limit: 50.0,    // assumed: 12.7 mm at 10 Hz needs 50 m/s²
+                min: 0.0,             // SPEC §4
+                max: 0.254,           // SPEC §4
+                resolution: 0.127e-3, // SPEC §4
+            },
+            compliance: Compliance {
+                stiffness_nm_per_rad: 101.7 / 0.19f64.to_radians(), // 001 table 3.2
+                nozzle_below_f_m: 0.914,                            // SPEC §4
+                mass_kg: 35.0,                                      // SPEC §4
+                damping_ratio: 0.05,                                // assumed
+            },
+            sensors: Sensors {
+                base_counts_per_turn: 88_000.0,    // SPEC §4
+                extension_m_per_count: 1.05833e-4, // SPEC §4
+                pressure_pa_per_volt: 5.175e6,     // 000 section III
+                pressure_offset_v: 1.0,            // 000 section III
+                adc_step_v: 20.0 / 4096.0,         // assumed: 12-bit ±10 V
+                exact: false,
+            },
+            control: ControlSettings {
+                period_s: 0.005, // 000 section III
+                lambda_s: 0.010, // SPEC §4; 000 section II
+            },
+            substeps: 5, // 1 ms RK4 step: 4× inside the valve's τ_s stability bound
+        }
+    }
+
+    /// The simulator's model of `robot`: kinematics, hydraulics, sensors,
+    /// limits and control timing from the description; the dynamic numbers
+    /// no description field gives yet (cylinder bore, friction, valve time
+    /// constants, servo bandwidths, inertias) keep the BASR values of
+    /// [`SimModel::basr`].
+    pub fn from_robot(robot: &crate::robot::Robot) -> Result<SimModel, String> {
+        let mut m = SimModel::basr();
+        let h = &robot.hydraulics;
+        let arm = &robot.arm;
+        m.arm.k = arm.pantograph_ratio;
+        m.arm.r_min_m = arm.retracted_extension_m;
+        m.arm.stroke_m = arm.cylinder_stroke_m;
+        m.arm.a2_m = arm.a2_m;
+        m.arm.d_m = h.gravity_d_m;
+        m.arm.x_min_m = h.gravity_x_min_m;
+        m.arm.holding_b_n = h.gravity_b_n;
+        m.arm.ee_mass_kg = robot.end_effector.mass_kg;
+        m.arm.theta_min_rad = robot.limits.base_rot_rad.min;
+        m.arm.theta_max_rad = robot.limits.base_rot_rad.max;
+        m.hydraulics.supply_pa = h.supply_pa;
+        m.hydraulics.tank_pa = h.tank_pa;
+        m.hydraulics.bulk_modulus_pa = h.bulk_modulus_pa;
+        m.motor.area = h.base_motor_displacement_m3prad / arm.base_motor_ratio.max(1e-12);
+        m.motor.v0_a_m3 = h.base_chamber_a_m3;
+        m.motor.v0_b_m3 = h.base_chamber_b_m3;
+        m.motor.valve_gain = h.valve_flow_gain;
+        m.motor.command_limit = h.command_limit;
+        let cyl_stroke = m.arm.stroke_m;
+        m.cylinder.v0_b_m3 = m.cylinder.v0_a_m3 + m.cylinder.alpha * m.cylinder.area * cyl_stroke;
+        let l = &robot.limits;
+        for (axis, lim) in [
+            (&mut m.yaw, &l.ee_yaw_rad),
+            (&mut m.vertical, &l.vertical_m),
+        ] {
+            axis.min = lim.min;
+            axis.max = lim.max;
+            axis.rate_limit = lim.max_vel;
+            axis.accel_limit = lim.max_acc;
+        }
+        let fb = &robot.end_effector.fourbar;
+        if let (Some(a), Some(b)) = (fb.nut_m(l.tilt_rad.min), fb.nut_m(l.tilt_rad.max)) {
+            m.tilt_nut.min = a.min(b);
+            m.tilt_nut.max = a.max(b);
+            // nut speed and acceleration from the tilt's, at the linkage's mean ratio
+            let per_rad = (b - a).abs() / (l.tilt_rad.max - l.tilt_rad.min).max(1e-9);
+            m.tilt_nut.rate_limit = robot
+                .end_effector
+                .tilt_nut_max_speed_mps
+                .min(l.tilt_rad.max_vel * per_rad);
+            m.tilt_nut.accel_limit = l.tilt_rad.max_acc * per_rad;
+        }
+        let enc = &robot.encoders;
+        m.sensors.base_counts_per_turn = enc.base_counts_per_rev as f64;
+        m.sensors.extension_m_per_count = enc.extension_m_per_count;
+        m.vertical.resolution = enc.vertical_m_per_count;
+        m.compliance.mass_kg = robot.end_effector.mass_kg;
+        m.compliance.nozzle_below_f_m = robot.end_effector.nozzle_below_joint_f_m;
+        // the softest stiffness of table 3.2 over the reach (the mode is
+        // linear; the stiffness changes by 10 % from retracted to extended)
+        let worst = robot
+            .end_effector
+            .joint_f_deflection_rad
+            .iter()
+            .copied()
+            .fold(0.0, f64::max);
+        if worst > 0.0 {
+            m.compliance.stiffness_nm_per_rad = robot.end_effector.joint_f_test_torque_nm / worst;
+        }
+        m.control.period_s = robot.control.controller_sample_s;
+        m.control.lambda_s = robot.control.delay_estimate_s;
+        m.validate()?;
+        Ok(m)
+    }
+
+    /// Check every number is finite and in its physical range.
+    pub fn validate(&self) -> Result<(), String> {
+        let checks: &[(&str, f64, bool)] = &[
+            ("arm.k", self.arm.k, self.arm.k > 0.0),
+            ("arm.d_m", self.arm.d_m, self.arm.d_m > 0.0),
+            (
+                "arm.stroke_m",
+                self.arm.stroke_m,
+                self.arm.stroke_m > 0.0 && self.arm.x_max_m() < 2.0 * self.arm.d_m,
+            ),
+            (
+                "arm.holding_b_n",
+                self.arm.holding_b_n,
+                self.arm.holding_b_n > 0.0,
+            ),
+            (
+                "arm.ee_mass_kg",
+                self.arm.ee_mass_kg,
+                self.arm.ee_mass_kg >= 0.0,
+            ),
+            (
+                "hydraulics.supply_pa",
+                self.hydraulics.supply_pa,
+                self.hydraulics.supply_pa > self.hydraulics.tank_pa,
+            ),
+            (
+                "hydraulics.bulk_modulus_pa",
+                self.hydraulics.bulk_modulus_pa,
+                self.hydraulics.bulk_modulus_pa > 0.0,
+            ),
+            ("motor.area", self.motor.area, self.motor.area > 0.0),
+            (
+                "cylinder.area",
+                self.cylinder.area,
+                self.cylinder.area > 0.0,
+            ),
+            (
+                "cylinder.alpha",
+                self.cylinder.alpha,
+                self.cylinder.alpha > 0.0 && self.cylinder.alpha <= 1.0,
+            ),
+            (
+                "motor.valve_tau_s",
+                self.motor.valve_tau_s,
+                self.motor.valve_tau_s > 0.0,
+            ),
+            (
+                "cylinder.valve_tau_s",
+                self.cylinder.valve_tau_s,
+                self.cylinder.valve_tau_s > 0.0,
+            ),
+            (
+                "compliance.stiffness_nm_per_rad",
+                self.compliance.stiffness_nm_per_rad,
+                self.compliance.stiffness_nm_per_rad > 0.0,
+            ),
+            (
+                "control.period_s",
+                self.control.period_s,
+                self.control.period_s > 0.0,
+            ),
+            (
+                "control.lambda_s",
+                self.control.lambda_s,
+                self.control.lambda_s >= self.control.period_s,
+            ),
+        ];
+        for (name, v, ok) in checks {
+            if !v.is_finite() || !ok {
+                return Err(format!("{name} = {v} is outside its physical range"));
+            }
+        }
+        if self.substeps == 0 {
+            return Err("substeps must be at least 1".into());
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn link_masses_reproduce_the_holding_force() {
+        let m = SimModel::basr();
+        // 000 App. A eq. 12 in its own units: F = 709.9·x/√(676 − x²) lbf, x in inches.
+        for x_in in [7.5, 12.0, 18.0, 25.5] {
+            let f_lbf = 709.9 * x_in / (676.0f64 - x_in * x_in).sqrt();
+            let f = m.arm.holding_force_n(x_in * IN);
+            assert!((f / 4.4482 - f_lbf).abs() < 1e-3 * f_lbf, "{x_in}: {f}");
+        }
+        // 2·m·g·k/4 = B
+        let b = 2.0 * m.arm.link_mass_kg() * G * m.arm.k / 4.0;
+        assert!((b - m.arm.holding_b_n).abs() < 1e-9);
+        // R spans 1.55 .. ≈5.36 m (SPEC §4)
+        assert!((m.arm.r_of_x(m.arm.x_max_m()) - 5.36).abs() < 0.01);
+    }
+
+    #[test]
+    fn compliance_matches_table_3_2() {
+        let c = SimModel::basr().compliance;
+        let deg = (101.7 / c.stiffness_nm_per_rad).to_degrees();
+        assert!((0.18..=0.20).contains(&deg));
+        // the mode sits near 9 Hz
+        let f = c.omega() / std::f64::consts::TAU;
+        assert!((5.0..15.0).contains(&f), "{f}");
+    }
+
+    #[test]
+    fn bulk_law_is_near_e_at_supply_and_softer_at_low_pressure() {
+        let h = SimModel::basr().hydraulics;
+        assert!(h.bulk(20.0e6) > 0.95 * h.bulk_modulus_pa);
+        assert!(h.bulk(1.0e6) < 0.7 * h.bulk_modulus_pa);
+        assert!(h.bulk(0.0) > 0.2 * h.bulk_modulus_pa);
+    }
+}

@@ -1,0 +1,353 @@
+//! The plant: pantograph arm (000 eq. 1–8), hydraulic motor and cylinder
+//! (eq. 9–14), servovalves (eq. 15–17) and the end-effector linkage mode, as
+//! one ODE integrated by fixed-step RK4.
+//!
+//! Generalised coordinates: θ1 (base rotation) and x, the pantograph's A–C
+//! distance (the cylinder moves x; R = R_min + k·(x − x_min)). The kinetic
+//! energy of the two main links (slender rods, 000 eq. 1–2), the end-effector
+//! point mass and the base gives a diagonal mass matrix A(x); Lagrange's
+//! equations (eq. 4) then read
+//!   A11·θ̈ = τ1 − A11'·ẋ·θ̇
+//!   A22·ẍ = τ2 − ½A22'·ẋ² + ½A11'·θ̇² + F(x)
+//! with F(x) = B·x/√(4d² − x²) the gravity pull of App. A eq. 11.
+
+use super::model::{Actuator, Hydraulics, SimModel};
+
+/// Indices into the state vector.
+pub const TH: usize = 0;
+pub const THD: usize = 1;
+pub const X: usize = 2;
+pub const XD: usize = 3;
+pub const PA1: usize = 4;
+pub const PB1: usize = 5;
+pub const PA2: usize = 6;
+pub const PB2: usize = 7;
+pub const Y1: usize = 8;
+pub const Y2: usize = 9;
+pub const DX: usize = 10;
+pub const DXD: usize = 11;
+pub const DY: usize = 12;
+pub const DYD: usize = 13;
+/// Number of state variables.
+pub const N: usize = 14;
+
+/// The continuous state of arm, hydraulics, valves and linkage mode.
+/// (Base frame; δ is the nozzle's deflection from the linkage mode.)
+pub type State = [f64; N];
+
+/// Valve commands held over one control period (zero-order hold).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Inputs {
+    /// Hydraulic-motor servovalve command.
+    pub u_motor: f64,
+    /// Extension-cylinder servovalve command.
+    pub u_cyl: f64,
+}
+
+/// Mass-matrix diagonal and its x-derivatives at A–C distance `x`.
+#[derive(Clone, Copy, Debug)]
+pub struct MassMatrix {
+    pub a11: f64,
+    pub a11_dx: f64,
+    pub a22: f64,
+    pub a22_dx: f64,
+}
+
+/// A(x) of the arm (see module docs).
+pub fn mass_matrix(m: &SimModel, x: f64) -> MassMatrix {
+    let arm = &m.arm;
+    let k = arm.k;
+    let d2 = arm.d_m * arm.d_m;
+    let ml = arm.link_mass_kg();
+    let il = arm.link_inertia_kgm2();
+    let me = arm.ee_mass_kg;
+    let e = arm.r_min_m - k * arm.x_min_m;
+    let s2 = (4.0 * d2 - x * x).max(1e-6);
+    let rr = k * x + e;
+    // links: m(kx/4)² + m(3kx/4)² = (10/16)·m·k²·x²; rotation I·cos²φ each, cos φ = x/2d
+    let a11 = 10.0 / 16.0 * ml * k * k * x * x
+        + me * rr * rr
+        + il * x * x / (2.0 * d2)
+        + arm.ee_inertia_kgm2
+        + arm.base_inertia_kgm2;
+    let a11_dx = 20.0 / 16.0 * ml * k * k * x + 2.0 * me * k * rr + il * x / d2;
+    // links: c·(4d² + x²)/s² + 9c with c = m·k²/16; pitch rate ẋ/s for each rod
+    let c = ml * k * k / 16.0;
+    let num = c * (4.0 * d2 + x * x) + 2.0 * il;
+    let a22 = num / s2 + 9.0 * c + me * k * k;
+    let a22_dx = (2.0 * c * x * s2 + 2.0 * x * num) / (s2 * s2);
+    MassMatrix {
+        a11,
+        a11_dx,
+        a22,
+        a22_dx,
+    }
+}
+
+/// Signed square root with a small linear (laminar) region so the flow law
+/// has a finite slope at zero pressure drop.
+#[inline]
+fn orifice(dp: f64) -> f64 {
+    const LAMINAR_PA: f64 = 2.0e4;
+    if dp.abs() >= LAMINAR_PA {
+        dp.signum() * dp.abs().sqrt()
+    } else {
+        dp / LAMINAR_PA.sqrt()
+    }
+}
+
+/// Servovalve flows into chambers A and B for spool `y` (000 eq. 15–16).
+#[inline]
+pub fn valve_flows(h: &Hydraulics, act: &Actuator, y: f64, pa: f64, pb: f64) -> (f64, f64) {
+    let bv = act.valve_gain;
+    if y >= 0.0 {
+        (
+            bv * y * orifice(h.supply_pa - pa),
+            -bv * y * orifice(pb - h.tank_pa),
+        )
+    } else {
+        (
+            bv * y * orifice(pa - h.tank_pa),
+            -bv * y * orifice(h.supply_pa - pb),
+        )
+    }
+}
+
+/// Relief (eq. 14) plus anti-cavitation refill from tank: net flow *into* a chamber.
+#[inline]
+fn relief_flow(h: &Hydraulics, p: f64) -> f64 {
+    let g = h.relief_gain_m3_per_s_pa;
+    if p > h.relief_pa {
+        -g * (p - h.relief_pa)
+    } else if p < h.tank_pa {
+        g * (h.tank_pa - p)
+    } else {
+        0.0
+    }
+}
+
+/// Chamber volumes at actuator position `pos` (x − x_min for the cylinder, θ1 for the motor).
+#[inline]
+pub fn volumes(act: &Actuator, pos: f64) -> (f64, f64) {
+    (
+        (act.v0_a_m3 + act.area * pos).max(1e-6),
+        (act.v0_b_m3 - act.alpha * act.area * pos).max(1e-6),
+    )
+}
+
+/// Pressure rates of one actuator (000 eq. 11–12, plus leakage and relief).
+#[inline]
+fn pressure_rates(
+    h: &Hydraulics,
+    act: &Actuator,
+    pos: f64,
+    vel: f64,
+    pa: f64,
+    pb: f64,
+    y: f64,
+) -> (f64, f64) {
+    let (va, vb) = volumes(act, pos);
+    let (qa, qb) = valve_flows(h, act, y, pa, pb);
+    let leak = act.leakage * (pa - pb);
+    let dpa = h.bulk(pa) / va * (qa - act.area * vel - leak + relief_flow(h, pa));
+    let dpb = h.bulk(pb) / vb * (qb + act.alpha * act.area * vel + leak + relief_flow(h, pb));
+    (dpa, dpb)
+}
+
+/// End-stop force of the cylinder (N): a stiff spring-damper past either end.
+#[inline]
+fn end_stop(m: &SimModel, x: f64, xd: f64) -> f64 {
+    const K: f64 = 2.0e7; // N/m; assumed steel stop behind a rubber pad
+    const C: f64 = 2.0e5; // N·s/m
+    let lo = m.arm.x_min_m - x;
+    let hi = x - m.arm.x_max_m();
+    if lo > 0.0 {
+        K * lo - C * xd.min(0.0)
+    } else if hi > 0.0 {
+        -K * hi - C * xd.max(0.0)
+    } else {
+        0.0
+    }
+}
+
+/// Actuator torque / force on the arm (000 eq. 9 minus friction eq. 10).
+#[inline]
+pub fn actuator_efforts(m: &SimModel, s: &State) -> (f64, f64) {
+    let tau1 = m.motor.area * (s[PA1] - s[PB1]) - m.motor.friction.force(s[THD]);
+    let tau2 = m.cylinder.area * (s[PA2] - m.cylinder.alpha * s[PB2])
+        - m.cylinder.friction.force(s[XD])
+        + end_stop(m, s[X], s[XD]);
+    (tau1, tau2)
+}
+
+/// Time derivative of the state for held inputs `u`; also returns the arm's
+/// tip acceleration in the base frame (for the linkage mode and reports).
+pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
+    let mut ds = [0.0; N];
+    let mm = mass_matrix(m, s[X]);
+    let (tau1, tau2) = actuator_efforts(m, s);
+    let (th, thd, x, xd) = (s[TH], s[THD], s[X], s[XD]);
+    let thdd = (tau1 - mm.a11_dx * xd * thd) / mm.a11;
+    let xdd =
+        (tau2 - 0.5 * mm.a22_dx * xd * xd + 0.5 * mm.a11_dx * thd * thd + m.arm.holding_force_n(x))
+            / mm.a22;
+    ds[TH] = thd;
+    ds[THD] = thdd;
+    ds[X] = xd;
+    ds[XD] = xdd;
+    let h = &m.hydraulics;
+    let (a1, b1) = pressure_rates(h, &m.motor, th, thd, s[PA1], s[PB1], s[Y1]);
+    let (a2, b2) = pressure_rates(h, &m.cylinder, x - m.arm.x_min_m, xd, s[PA2], s[PB2], s[Y2]);
+    ds[PA1] = a1;
+    ds[PB1] = b1;
+    ds[PA2] = a2;
+    ds[PB2] = b2;
+    // eq. 17 with K_s folded into the valve gain; the spool stops at ±1
+    let spool = |y: f64, cmd: f64, tau: f64| {
+        let r = (cmd.clamp(-1.0, 1.0) - y) / tau;
+        if (y >= 1.0 && r > 0.0) || (y <= -1.0 && r < 0.0) {
+            0.0
+        } else {
+            r
+        }
+    };
+    ds[Y1] = spool(s[Y1], u.u_motor, m.motor.valve_tau_s);
+    ds[Y2] = spool(s[Y2], u.u_cyl, m.cylinder.valve_tau_s);
+    // tip acceleration of W(θ1, R) (a2's contribution, 1 cm, is neglected here)
+    let k = m.arm.k;
+    let r = m.arm.r_of_x(x);
+    let (rd, rdd) = (k * xd, k * xdd);
+    let (sn, cs) = th.sin_cos();
+    let ar = rdd - r * thd * thd;
+    let at = r * thdd + 2.0 * rd * thd;
+    let acc = [ar * cs - at * sn, ar * sn + at * cs];
+    let c = &m.compliance;
+    let (w, g) = (c.omega(), c.gamma());
+    let z2w = 2.0 * c.damping_ratio * w;
+    ds[DX] = s[DXD];
+    ds[DXD] = -g * acc[0] - z2w * s[DXD] - w * w * s[DX];
+    ds[DY] = s[DYD];
+    ds[DYD] = -g * acc[1] - z2w * s[DYD] - w * w * s[DY];
+    (ds, acc)
+}
+
+/// One classical RK4 step of length `h`.
+pub fn rk4_step(m: &SimModel, s: &mut State, u: &Inputs, h: f64) {
+    let (k1, _) = derivative(m, s, u);
+    let mut t = *s;
+    for i in 0..N {
+        t[i] = s[i] + 0.5 * h * k1[i];
+    }
+    let (k2, _) = derivative(m, &t, u);
+    for i in 0..N {
+        t[i] = s[i] + 0.5 * h * k2[i];
+    }
+    let (k3, _) = derivative(m, &t, u);
+    for i in 0..N {
+        t[i] = s[i] + h * k3[i];
+    }
+    let (k4, _) = derivative(m, &t, u);
+    for i in 0..N {
+        s[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    }
+}
+
+/// The arm at rest at (θ1, R) with chamber pressures that hold it statically
+/// against gravity (the cylinder pulls with F(x)); pressures chosen with
+/// p_A + p_B = p0 + p_T (valve null of a critically lapped valve).
+pub fn rest_state(m: &SimModel, theta: f64, r: f64) -> State {
+    let mut s = [0.0; N];
+    let x = m.arm.x_of_r(r).clamp(m.arm.x_min_m, m.arm.x_max_m());
+    s[TH] = theta;
+    s[X] = x;
+    let h = &m.hydraulics;
+    let sum = h.supply_pa + h.tank_pa;
+    s[PA1] = 0.5 * sum;
+    s[PB1] = 0.5 * sum;
+    // (pA − α·pB)·A = −F(x), pA + pB = sum
+    let c = &m.cylinder;
+    let f = m.arm.holding_force_n(x);
+    let pb = (sum + f / c.area) / (1.0 + c.alpha);
+    s[PB2] = pb;
+    s[PA2] = sum - pb;
+    // the linkage hangs straight at rest
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn max_rate(m: &SimModel, s: &State) -> f64 {
+        let (ds, _) = derivative(m, s, &Inputs::default());
+        ds[THD].abs().max(ds[XD].abs())
+    }
+
+    #[test]
+    fn rest_state_is_static_equilibrium_at_f_of_x() {
+        let m = SimModel::basr();
+        for r in [1.6, 3.0, 4.5, 5.3] {
+            let s = rest_state(&m, 1.5, r);
+            let (_, tau2) = actuator_efforts(&m, &s);
+            let f = m.arm.holding_force_n(s[X]);
+            // the cylinder pulls with exactly F(x)
+            assert!((tau2 + f).abs() < 1e-6 * f, "r={r}: {tau2} vs {f}");
+            assert!(max_rate(&m, &s) < 1e-9, "r={r}");
+        }
+    }
+
+    #[test]
+    fn without_the_holding_force_the_arm_extends() {
+        let m = SimModel::basr();
+        let mut s = rest_state(&m, 1.5, 3.0);
+        s[PB2] = s[PA2]; // drop the pull
+        let (ds, _) = derivative(&m, &s, &Inputs::default());
+        assert!(ds[XD] > 0.0, "gravity extends the arm");
+    }
+
+    #[test]
+    fn mass_matrix_derivatives_match_finite_differences() {
+        let m = SimModel::basr();
+        for x in [0.2, 0.4, 0.6] {
+            let h = 1e-6;
+            let a = mass_matrix(&m, x);
+            let p = mass_matrix(&m, x + h);
+            let q = mass_matrix(&m, x - h);
+            assert!(((p.a11 - q.a11) / (2.0 * h) - a.a11_dx).abs() < 1e-4 * a.a11_dx.abs());
+            assert!(((p.a22 - q.a22) / (2.0 * h) - a.a22_dx).abs() < 1e-4 * a.a22_dx.abs());
+        }
+    }
+
+    #[test]
+    fn energy_is_conserved_without_hydraulics_and_friction() {
+        // Lagrange's equations conserve T + V when the actuators do no work:
+        // zero friction, a locked-out cylinder replaced by a constant force
+        // that exactly balances gravity at the start is not conservative, so
+        // instead let the arm fall freely (no pressures) and check T + V.
+        let mut m = SimModel::basr();
+        m.motor.friction.viscous = 0.0;
+        m.motor.friction.coulomb = 0.0;
+        m.motor.friction.stiction = 0.0;
+        m.cylinder.friction = m.motor.friction.clone();
+        m.hydraulics.bulk_modulus_pa = 1.0; // chambers exert ~no force
+        m.hydraulics.bulk_law_eq13 = false;
+        let mut s = rest_state(&m, 1.5, 2.0);
+        for p in [PA1, PB1, PA2, PB2] {
+            s[p] = 0.0;
+        }
+        s[THD] = 0.3;
+        let energy = |s: &State| {
+            let mm = mass_matrix(&m, s[X]);
+            let d = m.arm.d_m;
+            let v = m.arm.holding_b_n * (4.0 * d * d - s[X] * s[X]).sqrt();
+            0.5 * mm.a11 * s[THD] * s[THD] + 0.5 * mm.a22 * s[XD] * s[XD] + v
+        };
+        let e0 = energy(&s);
+        for _ in 0..300 {
+            rk4_step(&m, &mut s, &Inputs::default(), 1e-3);
+        }
+        assert!(s[X] > m.arm.x_of_r(2.0) + 0.01, "it fell outwards");
+        let e1 = energy(&s);
+        assert!((e1 - e0).abs() < 1e-6 * e0, "{e0} → {e1}");
+    }
+}

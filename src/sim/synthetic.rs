@@ -1,0 +1,302 @@
+//! Small synthetic jobs for the simulator's tests and benchmark: strokes
+//! drawn in a station's base frame, timed with smooth speed ramps, turned
+//! into joint setpoints by the arm's closed-form inverse kinematics.
+
+use crate::job::{FontRef, Job, Layout, Paint, SampleRow, Samples, Station, Summary};
+use crate::robot::Robot;
+
+/// A stroke in the base frame: `point(u)` for u ∈ [0, 1].
+pub struct Stroke {
+    pub point: Box<dyn Fn(f64) -> [f64; 2]>,
+    /// Painting speed (m/s).
+    pub speed: f64,
+}
+
+impl Stroke {
+    /// Straight stroke from `a` to `b`.
+    pub fn line(a: [f64; 2], b: [f64; 2], speed: f64) -> Stroke {
+        Stroke {
+            point: Box::new(move |u| [a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1])]),
+            speed,
+        }
+    }
+    /// Arc about `c` of radius `r` from angle `a0` to `a1` (rad).
+    pub fn arc(c: [f64; 2], r: f64, a0: f64, a1: f64, speed: f64) -> Stroke {
+        Stroke {
+            point: Box::new(move |u| {
+                let a = a0 + u * (a1 - a0);
+                [c[0] + r * a.cos(), c[1] + r * a.sin()]
+            }),
+            speed,
+        }
+    }
+    fn length(&self) -> f64 {
+        let n = 400;
+        (0..n)
+            .map(|i| {
+                let p = (self.point)(i as f64 / n as f64);
+                let q = (self.point)((i + 1) as f64 / n as f64);
+                (q[0] - p[0]).hypot(q[1] - p[1])
+            })
+            .sum()
+    }
+    /// u at arc length `s` (by bisection on the sampled length).
+    fn at_length(&self, s: f64, total: f64) -> [f64; 2] {
+        // strokes here are lines and arcs: arc length is linear in u
+        (self.point)((s / total).clamp(0.0, 1.0))
+    }
+}
+
+/// Distance travelled after `t` s of a move of length `l` at cruise `v` with
+/// acceleration ramps of `ta` s (cosine-smoothed); and its total time.
+fn profile(l: f64, v: f64, ta: f64) -> (f64, Box<dyn Fn(f64) -> f64>) {
+    // a raised-cosine speed ramp covers v·ta/2 in ta seconds
+    let (v, ta) = if l < v * ta {
+        let v2 = l / ta;
+        (v2, ta)
+    } else {
+        (v, ta)
+    };
+    let cruise = (l - v * ta) / v;
+    let total = 2.0 * ta + cruise;
+    let f = move |t: f64| -> f64 {
+        let ramp = |t: f64| {
+            v * (0.5 * t
+                - ta / (2.0 * std::f64::consts::PI) * (std::f64::consts::PI * t / ta).sin())
+        };
+        if t <= 0.0 {
+            0.0
+        } else if t < ta {
+            ramp(t)
+        } else if t < ta + cruise {
+            ramp(ta) + v * (t - ta)
+        } else if t < total {
+            l - ramp(total - t)
+        } else {
+            l
+        }
+    };
+    (total, Box::new(f))
+}
+
+/// Joints for a base-frame nozzle point: (θ1, R) with W = R·(c, s) + a2·(s, −c) (SPEC §2).
+pub fn ik(p: [f64; 2], a2: f64) -> (f64, f64) {
+    let r = (p[0] * p[0] + p[1] * p[1] - a2 * a2).max(0.0).sqrt();
+    (p[1].atan2(p[0]) + a2.atan2(r), r)
+}
+
+/// A sealed job painting `strokes` from one station at (0, `station_y`),
+/// heading −π/2, with air moves at `air_speed` between them and 0.5 s holds
+/// at start and end. Setpoints every `period` s.
+pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
+    let robot = Robot::basr();
+    let a2 = robot.arm.a2_m;
+    let k = robot.arm.pantograph_ratio;
+    let r0 = robot.arm.retracted_extension_m;
+    let nut0 = robot.end_effector.fourbar.nut_m(0.0).unwrap_or(0.0);
+    let station = Station {
+        x_m: 0.0,
+        y_m: 6.0,
+        heading_rad: -std::f64::consts::FRAC_PI_2,
+    };
+    // timeline of (duration, position(t), paint, stroke index)
+    type Seg = (f64, Box<dyn Fn(f64) -> [f64; 2]>, bool, i64);
+    let mut segs: Vec<Seg> = Vec::new();
+    let first = (strokes[0].point)(0.0);
+    segs.push((0.5, Box::new(move |_| first), false, -1));
+    let mut prev_end = first;
+    for (i, st) in strokes.iter().enumerate() {
+        let start = (st.point)(0.0);
+        let gap = (start[0] - prev_end[0]).hypot(start[1] - prev_end[1]);
+        if gap > 1e-9 {
+            let (t, f) = profile(gap, air_speed, 0.4);
+            let a = prev_end;
+            segs.push((
+                t,
+                Box::new(move |tt| {
+                    let s = f(tt) / gap;
+                    [a[0] + s * (start[0] - a[0]), a[1] + s * (start[1] - a[1])]
+                }),
+                false,
+                -1,
+            ));
+        }
+        let l = st.length();
+        let (t, f) = profile(l, st.speed, 0.3);
+        let pt: &Stroke = st;
+        let pts: Vec<[f64; 2]> = (0..=2000)
+            .map(|j| pt.at_length(j as f64 / 2000.0 * l, l))
+            .collect();
+        segs.push((
+            t,
+            Box::new(move |tt| {
+                let u = (f(tt) / l * 2000.0).clamp(0.0, 2000.0);
+                let j = (u.floor() as usize).min(1999);
+                let w = u - j as f64;
+                [
+                    pts[j][0] + w * (pts[j + 1][0] - pts[j][0]),
+                    pts[j][1] + w * (pts[j + 1][1] - pts[j][1]),
+                ]
+            }),
+            true,
+            i as i64,
+        ));
+        prev_end = (st.point)(1.0);
+    }
+    let last = prev_end;
+    segs.push((0.5, Box::new(move |_| last), false, -1));
+
+    let total: f64 = segs.iter().map(|s| s.0).sum();
+    let n = (total / period).ceil() as usize + 1;
+    let mut samples = Samples::default();
+    let (mut seg, mut seg_t0) = (0usize, 0.0);
+    let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
+    let mut prev: Option<[f64; 2]> = None;
+    let mut paint_time = 0.0;
+    for i in 0..n {
+        let t = i as f64 * period;
+        while seg + 1 < segs.len() && t > seg_t0 + segs[seg].0 {
+            seg_t0 += segs[seg].0;
+            seg += 1;
+        }
+        let (_, f, paint, stroke) = &segs[seg];
+        let p = f(t - seg_t0);
+        let (th, r) = ik(p, a2);
+        let v = prev.map_or([0.0, 0.0], |q| {
+            [(p[0] - q[0]) / period, (p[1] - q[1]) / period]
+        });
+        prev = Some(p);
+        let yaw_b = v[1].atan2(v[0]);
+        if *paint {
+            paint_time += period;
+        }
+        samples.push(&SampleRow {
+            t_s: t,
+            station: 0,
+            stroke: *stroke,
+            paint: u8::from(*paint),
+            x_m: station.x_m + c * p[0] - s * p[1],
+            y_m: station.y_m + s * p[0] + c * p[1],
+            z_m: robot.end_effector.tip_height_top_m - 0.1,
+            yaw_rad: yaw_b + station.heading_rad - std::f64::consts::FRAC_PI_2,
+            tilt_rad: 0.0,
+            speed_mps: v[0].hypot(v[1]),
+            width_m: if *paint { 0.15 } else { 0.0 },
+            base_rot_rad: th,
+            extension_m: r,
+            cylinder_m: (r - r0) / k,
+            vertical_m: 0.1,
+            ee_yaw_rad: 0.0,
+            tilt_nut_m: nut0,
+            enc_base: (th / (std::f64::consts::TAU / 88_000.0)).round() as i64,
+            enc_extension: ((r - r0) / robot.encoders.extension_m_per_count).round() as i64,
+            enc_yaw: 0,
+            enc_tilt: 0,
+            enc_vertical: 0,
+        });
+    }
+    let mut job = Job {
+        format: crate::job::FORMAT.into(),
+        version: crate::job::VERSION,
+        message: "synthetic".into(),
+        font: FontRef {
+            name: "none".into(),
+            sha256: String::new(),
+        },
+        robot,
+        robot_sha256: String::new(),
+        paint: Paint {
+            fan_angle_rad: 63.5f64.to_radians(),
+            flow_m3ps: 0.4e-3 / 60.0,
+            transfer_efficiency: 0.9,
+            film_m: 3.8e-4,
+            k_m2ps: 0.4e-3 / 60.0 * 0.9 / 3.8e-4,
+        },
+        control_period_s: period,
+        layout: Layout {
+            letter_height_m: 2.44,
+            lane_width_m: 3.66,
+            tilt_method: "none".into(),
+            glyphs: vec![],
+        },
+        stations: vec![station],
+        samples,
+        summary: Summary {
+            duration_s: (n - 1) as f64 * period,
+            paint_time_s: paint_time,
+            air_time_s: (n - 1) as f64 * period - paint_time,
+            strokes: strokes.len(),
+            paint_volume_m3: 0.0,
+            warnings: vec![],
+        },
+        sha256: String::new(),
+    };
+    job.seal();
+    job
+}
+
+/// A letter-sized workout: an S-like pair of arcs at mid reach, a long
+/// straight stroke near full reach and one near full retraction.
+pub fn letter_job() -> Job {
+    let v = 0.16; // SPEC §4: ≈ 6 in/s painting
+    job(
+        &[
+            Stroke::arc([0.0, 3.4], 0.3, 0.0, std::f64::consts::PI * 1.5, v),
+            Stroke::arc(
+                [0.0, 2.8],
+                0.3,
+                std::f64::consts::FRAC_PI_2,
+                -std::f64::consts::PI,
+                v,
+            ),
+            Stroke::line([-0.6, 5.0], [0.6, 5.0], v),
+            Stroke::line([0.5, 2.0], [-0.5, 2.0], v),
+        ],
+        0.5,
+        0.032,
+    )
+}
+
+/// `letter_job` with a deliberate 20 mm step in every setpoint halfway
+/// through the first stroke (a job the arm cannot follow).
+pub fn step_job() -> Job {
+    let model = crate::sim::SimModel::basr();
+    let mut j = letter_job();
+    let s = &mut j.samples;
+    let first = s.stroke.iter().position(|&k| k == 0).unwrap_or(0);
+    let len = s.stroke.iter().filter(|&&k| k == 0).count();
+    for i in first + len / 2..s.len() {
+        s.y_m[i] += 0.02;
+        // the station heading is −π/2: road +y is base −y
+        let w = crate::sim::nozzle_base(&model, s.base_rot_rad[i], s.extension_m[i]);
+        let (th, r) = ik([w[0], w[1] - 0.02], model.arm.a2_m);
+        s.base_rot_rad[i] = th;
+        s.extension_m[i] = r;
+    }
+    j.seal();
+    j
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ik_inverts_the_forward_formula() {
+        let m = crate::sim::SimModel::basr();
+        for p in [[0.3, 3.0], [-1.0, 4.5], [0.0, 1.6]] {
+            let (th, r) = ik(p, m.arm.a2_m);
+            let w = crate::sim::nozzle_base(&m, th, r);
+            assert!((w[0] - p[0]).abs() < 1e-12 && (w[1] - p[1]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn letter_job_is_valid_and_paints() {
+        let j = letter_job();
+        let text = String::from_utf8(j.to_bytes()).unwrap();
+        let back = Job::from_str_verified(&text, "t").unwrap();
+        assert!(back.summary.paint_time_s > 10.0);
+        assert!(back.samples.paint.contains(&1));
+    }
+}

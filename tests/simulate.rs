@@ -1,0 +1,166 @@
+//! End-to-end tests of `basr simulate` through the binary, on synthetic jobs.
+
+use assert_cmd::Command;
+use basr::sim::synthetic;
+use predicates::prelude::*;
+
+fn write_job(dir: &tempfile::TempDir, name: &str, job: &basr::job::Job) -> std::path::PathBuf {
+    let p = dir.path().join(name);
+    job.write(&p).unwrap();
+    p
+}
+
+fn basr() -> Command {
+    Command::cargo_bin("basr").unwrap()
+}
+
+#[test]
+fn letter_job_passes_with_json_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    let out = basr()
+        .arg("simulate")
+        .arg(&job)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict"], "pass");
+    let max = v["max_error_m"].as_f64().unwrap();
+    let rms = v["rms_error_m"].as_f64().unwrap();
+    assert!(max > 0.0 && max < 6.35e-3, "{max}");
+    assert!(rms > 0.0 && rms <= max);
+    assert_eq!(v["strokes"].as_array().unwrap().len(), 4);
+    assert!(out.stderr.is_empty(), "--json keeps stderr quiet");
+}
+
+#[test]
+fn tiny_tolerance_fails_with_exit_1_and_says_where() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    basr()
+        .arg("simulate")
+        .arg(&job)
+        .args(["--tolerance-mm", "0.001"])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("FAIL").and(predicate::str::contains("stroke")));
+}
+
+#[test]
+fn a_step_in_the_setpoints_fails_and_is_located() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "step.job.json", &synthetic::step_job());
+    let out = basr()
+        .arg("simulate")
+        .arg(&job)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict"], "fail");
+    // the step is halfway through stroke 0
+    assert_eq!(v["worst"]["stroke"], 0);
+    assert!(v["max_error_m"].as_f64().unwrap() > 0.01);
+}
+
+#[test]
+fn hand_edited_job_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    let text = std::fs::read_to_string(&job).unwrap();
+    let edited = text.replacen(
+        "\"control_period_s\": 0.032",
+        "\"control_period_s\": 0.033",
+        1,
+    );
+    assert_ne!(edited, text);
+    std::fs::write(&job, edited).unwrap();
+    basr()
+        .arg("simulate")
+        .arg(&job)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("integrity"));
+}
+
+#[test]
+fn job_for_another_robot_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut job = synthetic::letter_job();
+    // change one value of the embedded robot description and reseal: a job
+    // that is internally consistent but for a different robot
+    let mut v = serde_json::to_value(&job.robot).unwrap();
+    fn bump(v: &mut serde_json::Value) -> bool {
+        match v {
+            serde_json::Value::String(s) => {
+                s.push('X');
+                true
+            }
+            serde_json::Value::Number(n) => {
+                *v = serde_json::json!(n.as_f64().unwrap() * 1.5 + 1.0);
+                true
+            }
+            serde_json::Value::Object(m) => m.values_mut().any(bump),
+            serde_json::Value::Array(a) => a.iter_mut().any(bump),
+            _ => false,
+        }
+    }
+    assert!(bump(&mut v));
+    job.robot = serde_json::from_value(v).unwrap();
+    job.seal();
+    let p = write_job(&dir, "other.job.json", &job);
+    basr()
+        .arg("simulate")
+        .arg(&p)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("another robot"));
+}
+
+#[test]
+fn trace_and_svg_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    let csv = dir.path().join("t.csv");
+    let svg = dir.path().join("t.svg");
+    basr()
+        .arg("simulate")
+        .arg(&job)
+        .arg("--quiet")
+        .arg("--trace")
+        .arg(&csv)
+        .arg("--svg")
+        .arg(&svg)
+        .assert()
+        .code(0)
+        .stderr(predicate::str::is_empty());
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let header = text.lines().next().unwrap();
+    assert!(header.starts_with("t_s,station,stroke,paint,x_desired_m,y_desired_m,x_m,y_m,error_m"));
+    assert!(text.lines().count() > 1000);
+    let s = std::fs::read_to_string(&svg).unwrap();
+    let tree = resvg::usvg::Tree::from_str(&s, &Default::default()).unwrap();
+    assert!(tree.size().width() > 100.0);
+}
+
+#[test]
+fn failed_output_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("t.csv");
+    basr()
+        .arg("simulate")
+        .arg(dir.path().join("missing.job.json"))
+        .arg("--trace")
+        .arg(&csv)
+        .assert()
+        .code(2);
+    assert!(!csv.exists());
+}
