@@ -38,6 +38,7 @@ pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String
     );
     let mut station: Option<u32> = None;
     let mut gun = 0u8;
+    let mut tilt_sent: Option<u8> = None;
     for i in 0..samples.len() {
         let st = samples.station[i];
         if station != Some(st) {
@@ -76,11 +77,12 @@ pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String
             "speed ({:.1}*scale), rotate MMPS",
             samples.speed_mps[i] * 1e3
         );
-        let _ = writeln!(
-            out,
-            "bits {TILT_FIRST_SIGNAL},8 = {}",
-            (tilt_code as i8) as u8
-        );
+        // The tilt code only when it changes (the Zworld holds the last one).
+        let code = (tilt_code as i8) as u8;
+        if tilt_sent != Some(code) {
+            let _ = writeln!(out, "bits {TILT_FIRST_SIGNAL},8 = {code}");
+            tilt_sent = Some(code);
+        }
         let p = samples.paint[i];
         if p != gun {
             let _ = writeln!(out, "signal {}", if p == 1 { "1" } else { "-1" });
