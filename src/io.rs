@@ -55,11 +55,16 @@ pub fn write_atomic_with(
         path: path.to_path_buf(),
         source,
     };
-    let tmp = tempfile::Builder::new()
-        .prefix(".basr-")
-        .suffix(".part")
-        .tempfile_in(folder_of(path))
-        .map_err(err)?;
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".basr-").suffix(".part");
+    // tempfile creates 0600 files; an output file is an ordinary document
+    // the crew shares, so give it the usual rw-r--r--.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    let tmp = builder.tempfile_in(folder_of(path)).map_err(err)?;
     let tmp_path = tmp.path().to_path_buf();
     if let Ok(mut v) = IN_FLIGHT.lock() {
         v.push(tmp_path.clone());
@@ -127,6 +132,12 @@ mod tests {
         write_atomic(&p, b"second").unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), b"second");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(&p).unwrap().permissions().mode();
+            assert_eq!(mode & 0o777, 0o644, "outputs are world-readable documents");
+        }
     }
 
     #[test]
