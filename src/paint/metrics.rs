@@ -1,0 +1,652 @@
+//! Judging a film raster against the letters' true outlines: mean film,
+//! evenness, coverage, overspray, edge sharpness and the seed's tile area
+//! ratio U (001 eq. 2.7–2.8), overall and per glyph.
+//!
+//! Definitions (all documented in README "Preview"):
+//! - letter area: the union of the strokes' outline polygons, rasterised
+//!   with exact horizontal coverage on `SUB_ROWS` sub-rows per cell row, so
+//!   each cell carries the fraction of it inside a letter;
+//! - interior: cells wholly inside whose 8 neighbours are wholly inside; the
+//!   mean film and the coefficient of variation are taken there, so that the
+//!   raster's one-cell blur at the outline does not count as unevenness;
+//! - coverage: share of the letter area whose film is ≥ 50 % of target;
+//! - overspray: share of the volume on the road lying outside the outlines;
+//! - edge width: along true letter edges (film-free road just outside), the
+//!   distance over which the film falls from 90 % to 10 % of the film just
+//!   inside; median and 90th percentile over points every cell along edges;
+//! - U: for each pair of consecutive painted poses of a stroke, the fan
+//!   lines as laid and the points where the nozzle axis meets the road split
+//!   the swept quadrilateral into two tiles; U = A/(A_i + A_j) of each tile
+//!   (0.5 ideal; above 0.5 the same paint covers more road, so a lighter film).
+
+use serde::Serialize;
+
+use super::raster::{Bounds, Film, Grid};
+use super::spray::{equivalent_fan, Pose, SprayModel};
+use super::PaintError;
+
+/// Sub-rows per cell row when rasterising outlines.
+const SUB_ROWS: usize = 8;
+/// Film threshold of coverage, as a share of target (issue 5).
+pub const COVERAGE_SHARE: f64 = 0.5;
+/// A cell is "wholly inside" above this fraction.
+const INSIDE: f64 = 0.999;
+
+/// One glyph's outlines in the road frame: each stroke's closed polygon.
+#[derive(Clone, Debug)]
+pub struct GlyphOutline {
+    pub label: String,
+    pub line: usize,
+    pub strokes: Vec<Vec<[f64; 2]>>,
+}
+
+impl GlyphOutline {
+    /// From the job's placed glyph: each stroke's outline is the left edge
+    /// forward then the right edge reversed (src/job/mod.rs).
+    pub fn from_placed(g: &crate::job::PlacedGlyph) -> GlyphOutline {
+        GlyphOutline {
+            label: g.char.clone(),
+            line: g.line,
+            strokes: g
+                .strokes
+                .iter()
+                .map(|s| {
+                    s.left
+                        .iter()
+                        .copied()
+                        .chain(s.right.iter().rev().copied())
+                        .collect()
+                })
+                .collect(),
+        }
+    }
+
+    pub fn bounds(&self) -> Bounds {
+        let mut b = Bounds::EMPTY;
+        self.strokes.iter().flatten().for_each(|&p| b.include(p));
+        b
+    }
+
+    /// Even-odd inside test against each stroke polygon.
+    pub fn contains(&self, p: [f64; 2]) -> bool {
+        self.strokes.iter().any(|poly| polygon_contains(poly, p))
+    }
+}
+
+fn polygon_contains(poly: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let n = poly.len();
+    let mut inside = false;
+    for k in 0..n {
+        let (a, b) = (poly[k], poly[(k + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+            if p[0] < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+fn signed_area(poly: &[[f64; 2]]) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
+/// Fraction of each grid cell inside a glyph (sparse: cell index, fraction).
+pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<(usize, f64)> {
+    let h = grid.cell_m;
+    let sh = h / SUB_ROWS as f64;
+    let b = glyph.bounds();
+    if b.is_empty() {
+        return Vec::new();
+    }
+    let clamp_row = |v: f64| (v.max(0.0) as usize).min(grid.ny * SUB_ROWS);
+    let s0 = clamp_row(((b.min[1] - grid.y0) / sh - 0.5).floor());
+    let s1 = clamp_row(((b.max[1] - grid.y0) / sh + 0.5).ceil());
+    if s1 <= s0 {
+        return Vec::new();
+    }
+    let i0 = (((b.min[0] - grid.x0) / h).floor().max(0.0) as usize).min(grid.nx);
+    let i1 = (((b.max[0] - grid.x0) / h).ceil().max(0.0) as usize).min(grid.nx);
+    let (wx, rows) = (i1.saturating_sub(i0), s1 - s0);
+    let mut local = vec![0.0f64; wx * rows.div_ceil(SUB_ROWS) + wx];
+    let row_j0 = s0 / SUB_ROWS;
+    // Per sub-row, per stroke: crossings.
+    let mut crossings: Vec<Vec<f64>> = vec![Vec::new(); rows];
+    let mut intervals: Vec<Vec<(f64, f64)>> = vec![Vec::new(); rows];
+    for poly in &glyph.strokes {
+        crossings.iter_mut().for_each(|c| c.clear());
+        let n = poly.len();
+        for k in 0..n {
+            let (a, c) = (poly[k], poly[(k + 1) % n]);
+            if a[1] == c[1] {
+                continue;
+            }
+            let (lo, hi) = if a[1] < c[1] { (a, c) } else { (c, a) };
+            // Sub-rows whose centre y lies in [lo.y, hi.y).
+            let first = ((lo[1] - grid.y0) / sh - 0.5).ceil().max(s0 as f64) as usize;
+            let last = ((hi[1] - grid.y0) / sh - 0.5).ceil().min(s1 as f64) as usize;
+            for s in first..last {
+                let y = grid.y0 + (s as f64 + 0.5) * sh;
+                let x = lo[0] + (y - lo[1]) / (hi[1] - lo[1]) * (hi[0] - lo[0]);
+                crossings[s - s0].push(x);
+            }
+        }
+        for (r, c) in crossings.iter_mut().enumerate() {
+            c.sort_by(f64::total_cmp);
+            for pair in c.chunks_exact(2) {
+                intervals[r].push((pair[0], pair[1]));
+            }
+        }
+    }
+    for (r, iv) in intervals.iter_mut().enumerate() {
+        if iv.is_empty() {
+            continue;
+        }
+        iv.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let jl = (s0 + r) / SUB_ROWS - row_j0;
+        let mut merged: Vec<(f64, f64)> = Vec::new();
+        for &(a, b) in iv.iter() {
+            match merged.last_mut() {
+                Some(m) if a <= m.1 => m.1 = m.1.max(b),
+                _ => merged.push((a, b)),
+            }
+        }
+        for (a, b) in merged {
+            // Exact covered length in each cell of this sub-row.
+            let fa = ((a - grid.x0) / h).max(i0 as f64).min(i1 as f64);
+            let fb = ((b - grid.x0) / h).max(i0 as f64).min(i1 as f64);
+            if fb <= fa {
+                continue;
+            }
+            let (ca, cb) = (fa.floor() as usize, (fb.ceil() as usize).max(1) - 1);
+            for i in ca..=cb.min(i1.saturating_sub(1)) {
+                let lo = fa.max(i as f64);
+                let hi = fb.min(i as f64 + 1.0);
+                if hi > lo {
+                    local[jl * wx + (i - i0)] += (hi - lo) / SUB_ROWS as f64;
+                }
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (k, &f) in local.iter().enumerate() {
+        if f > 0.0 {
+            let (jl, il) = (k / wx, k % wx);
+            let j = row_j0 + jl;
+            if j < grid.ny {
+                out.push((j * grid.nx + i0 + il, f.min(1.0)));
+            }
+        }
+    }
+    out
+}
+
+/// Min and max of U over a set of tiles.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct URange {
+    pub u_min: f64,
+    pub u_max: f64,
+    pub tiles: usize,
+}
+
+/// U over the tiles of one stroke (job stroke index).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StrokeU {
+    pub stroke: i64,
+    /// Index into the glyph table, when the stroke lies on a glyph.
+    pub glyph: Option<usize>,
+    #[serde(flatten)]
+    pub u: URange,
+}
+
+/// Metrics of one glyph.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GlyphMetrics {
+    pub char: String,
+    pub line: usize,
+    pub area_m2: f64,
+    pub mean_film_m: Option<f64>,
+    pub cv: Option<f64>,
+    pub coverage: Option<f64>,
+    pub overspray: Option<f64>,
+    pub u_min: Option<f64>,
+    pub u_max: Option<f64>,
+}
+
+/// Everything the preview measures.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Metrics {
+    pub target_film_m: f64,
+    /// Mean film over the letters' interior.
+    pub mean_film_m: Option<f64>,
+    /// Coefficient of variation of the film over the letters' interior.
+    pub cv: Option<f64>,
+    /// Share of letter area with film ≥ 50 % of target.
+    pub coverage: Option<f64>,
+    /// Share of the volume on the road outside the letters.
+    pub overspray: Option<f64>,
+    pub u_min: Option<f64>,
+    pub u_max: Option<f64>,
+    /// Median 90 %→10 % edge width over true letter edges (m).
+    pub edge_width_m: Option<f64>,
+    pub edge_width_p90_m: Option<f64>,
+    /// Edge points measured / considered.
+    pub edge_points: usize,
+    pub letter_area_m2: f64,
+    pub volume_on_road_m3: f64,
+    /// Flow × efficiency × gun-on time (m³).
+    pub volume_laid_m3: f64,
+    pub gun_on_s: f64,
+    pub resolution_m: f64,
+    pub glyphs: Vec<GlyphMetrics>,
+    pub strokes: Vec<StrokeU>,
+}
+
+/// Mean and CV of `values` weighted by `weights`.
+fn mean_cv(cells: impl Iterator<Item = (f64, f64)>) -> (Option<f64>, Option<f64>) {
+    let (mut sw, mut s1, mut s2) = (0.0, 0.0, 0.0);
+    for (v, w) in cells {
+        sw += w;
+        s1 += w * v;
+        s2 += w * v * v;
+    }
+    if sw <= 0.0 {
+        return (None, None);
+    }
+    let mean = s1 / sw;
+    let var = (s2 / sw - mean * mean).max(0.0);
+    let cv = if mean > 0.0 {
+        Some(var.sqrt() / mean)
+    } else {
+        None
+    };
+    (Some(mean), cv)
+}
+
+/// Measure `film` against `glyphs` (outlines) for a `target_film_m`, with
+/// `poses` (and their job stroke index, −1 when none) for U.
+pub fn measure(
+    film: &Film,
+    glyphs: &[GlyphOutline],
+    target_film_m: f64,
+    model: &SprayModel,
+    poses: &[Pose],
+    stroke_of: &[i64],
+) -> Result<Metrics, PaintError> {
+    let g = &film.grid;
+    let n = g.nx * g.ny;
+    let area = g.cell_m * g.cell_m;
+    let masks: Vec<Vec<(usize, f64)>> = glyphs.iter().map(|gl| coverage_mask(g, gl)).collect();
+    let mut frac = vec![0.0f64; n];
+    for m in &masks {
+        for &(k, f) in m {
+            frac[k] = (frac[k] + f).min(1.0);
+        }
+    }
+    let interior = |k: usize| -> bool {
+        let (i, j) = (k % g.nx, k / g.nx);
+        if i == 0 || j == 0 || i + 1 >= g.nx || j + 1 >= g.ny {
+            return false;
+        }
+        (j - 1..=j + 1).all(|jj| (i - 1..=i + 1).all(|ii| frac[jj * g.nx + ii] >= INSIDE))
+    };
+    let letter_area: f64 = frac.iter().sum::<f64>() * area;
+    let volume: f64 = g.volume();
+    let covered = |cells: &mut dyn Iterator<Item = (usize, f64)>| -> Option<f64> {
+        let (mut a, mut c) = (0.0, 0.0);
+        for (k, f) in cells {
+            a += f;
+            if g.data[k] >= COVERAGE_SHARE * target_film_m {
+                c += f;
+            }
+        }
+        (a > 0.0).then(|| c / a)
+    };
+
+    let (mean, cv) = mean_cv(
+        (0..n)
+            .filter(|&k| frac[k] >= INSIDE && interior(k))
+            .map(|k| (g.data[k], 1.0)),
+    );
+    let coverage = covered(&mut (0..n).filter(|&k| frac[k] > 0.0).map(|k| (k, frac[k])));
+    let outside: f64 = (0..n).map(|k| g.data[k] * (1.0 - frac[k])).sum::<f64>() * area;
+    let overspray = (volume > 0.0).then(|| outside / volume);
+
+    // U per stroke, then the stroke's glyph by majority of its rung centres.
+    let strokes = stroke_u(model, poses, stroke_of, glyphs)?;
+    let all_u = merge_u(strokes.iter().map(|s| s.u));
+
+    // Per glyph: cells inside it; outside cells go to the nearest glyph box.
+    let boxes: Vec<Bounds> = glyphs.iter().map(|gl| gl.bounds()).collect();
+    let mut owner_vol = vec![(0.0f64, 0.0f64); glyphs.len()]; // (total, outside)
+    if !glyphs.is_empty() {
+        for k in 0..n {
+            let v = g.data[k];
+            if v <= 0.0 {
+                continue;
+            }
+            let c = g.centre(k % g.nx, k / g.nx);
+            let best = nearest_box(&boxes, c);
+            owner_vol[best].0 += v * area;
+            owner_vol[best].1 += v * (1.0 - frac[k]) * area;
+        }
+    }
+    let glyph_rows = glyphs
+        .iter()
+        .enumerate()
+        .map(|(gi, gl)| {
+            let m = &masks[gi];
+            let (gm, gcv) = mean_cv(
+                m.iter()
+                    .filter(|&&(k, f)| f >= INSIDE && interior(k))
+                    .map(|&(k, _)| (g.data[k], 1.0)),
+            );
+            let u = merge_u(
+                strokes
+                    .iter()
+                    .filter(|s| s.glyph == Some(gi))
+                    .map(|s| s.u),
+            );
+            GlyphMetrics {
+                char: gl.label.clone(),
+                line: gl.line,
+                area_m2: m.iter().map(|c| c.1).sum::<f64>() * area,
+                mean_film_m: gm,
+                cv: gcv,
+                coverage: covered(&mut m.iter().copied()),
+                overspray: (owner_vol[gi].0 > 0.0).then(|| owner_vol[gi].1 / owner_vol[gi].0),
+                u_min: u.map(|u| u.u_min),
+                u_max: u.map(|u| u.u_max),
+            }
+        })
+        .collect();
+
+    let (edge_width, edge_p90, edge_points) = edge_widths(g, glyphs, &frac, target_film_m);
+    Ok(Metrics {
+        target_film_m,
+        mean_film_m: mean,
+        cv,
+        coverage,
+        overspray,
+        u_min: all_u.map(|u| u.u_min),
+        u_max: all_u.map(|u| u.u_max),
+        edge_width_m: edge_width,
+        edge_width_p90_m: edge_p90,
+        edge_points,
+        letter_area_m2: letter_area,
+        volume_on_road_m3: volume,
+        volume_laid_m3: film.laid_m3,
+        gun_on_s: film.gun_on_s,
+        resolution_m: g.cell_m,
+        glyphs: glyph_rows,
+        strokes,
+    })
+}
+
+fn nearest_box(boxes: &[Bounds], c: [f64; 2]) -> usize {
+    let d = |b: &Bounds| {
+        let dx = (b.min[0] - c[0]).max(c[0] - b.max[0]).max(0.0);
+        let dy = (b.min[1] - c[1]).max(c[1] - b.max[1]).max(0.0);
+        dx * dx + dy * dy
+    };
+    let mut best = 0;
+    for (k, b) in boxes.iter().enumerate() {
+        if d(b) < d(&boxes[best]) {
+            best = k;
+        }
+    }
+    best
+}
+
+fn merge_u(it: impl Iterator<Item = URange>) -> Option<URange> {
+    it.fold(None, |acc: Option<URange>, u| {
+        Some(match acc {
+            None => u,
+            Some(a) => URange {
+                u_min: a.u_min.min(u.u_min),
+                u_max: a.u_max.max(u.u_max),
+                tiles: a.tiles + u.tiles,
+            },
+        })
+    })
+}
+
+fn quad_area(p: [[f64; 2]; 4]) -> f64 {
+    signed_area(&p).abs()
+}
+
+/// The seed's tile ratio U (001 eq. 2.7–2.8) over each stroke's tiles.
+pub fn stroke_u(
+    model: &SprayModel,
+    poses: &[Pose],
+    stroke_of: &[i64],
+    glyphs: &[GlyphOutline],
+) -> Result<Vec<StrokeU>, PaintError> {
+    let mut out: Vec<StrokeU> = Vec::new();
+    let mut votes: Vec<Vec<usize>> = Vec::new();
+    for k in 0..poses.len().saturating_sub(1) {
+        let (a, b) = (&poses[k], &poses[k + 1]);
+        let s = stroke_of.get(k).copied().unwrap_or(-1);
+        if !a.gun || s < 0 || stroke_of.get(k + 1).copied() != Some(s) {
+            continue;
+        }
+        let fa = model.footprint(a)?;
+        let (yaw, tilt) = equivalent_fan(a.yaw_rad, b.yaw_rad, b.tilt_rad);
+        let fb = model.footprint(&Pose {
+            yaw_rad: yaw,
+            tilt_rad: tilt,
+            ..*b
+        })?;
+        let aj = quad_area([fa.minus(), fa.divider(), fb.divider(), fb.minus()]);
+        let ai = quad_area([fa.divider(), fa.plus(), fb.plus(), fb.divider()]);
+        let total = ai + aj; // 001 eq. 2.8
+        if out.last().map(|o| o.stroke) != Some(s) {
+            out.push(StrokeU {
+                stroke: s,
+                glyph: None,
+                u: URange {
+                    u_min: f64::INFINITY,
+                    u_max: f64::NEG_INFINITY,
+                    tiles: 0,
+                },
+            });
+            votes.push(vec![0; glyphs.len()]);
+        }
+        let last = out.len() - 1;
+        if let Some(gi) = glyphs.iter().position(|g| g.contains(fa.at(0.5 * (fa.r_minus + fa.r_plus)))) {
+            votes[last][gi] += 1;
+        }
+        // assumed: tiles under 1 mm² (the gun starting or stopping in place)
+        // carry no information about the distribution.
+        if total < 1e-6 {
+            continue;
+        }
+        let ui = ai / total; // 001 eq. 2.7
+        let u = &mut out[last].u;
+        u.u_min = u.u_min.min(ui).min(1.0 - ui);
+        u.u_max = u.u_max.max(ui).max(1.0 - ui);
+        u.tiles += 1;
+    }
+    for (o, v) in out.iter_mut().zip(&votes) {
+        let best = v.iter().enumerate().max_by_key(|(i, c)| (**c, usize::MAX - i));
+        o.glyph = best.filter(|(_, c)| **c > 0).map(|(i, _)| i);
+    }
+    // A stroke can appear in several runs (e.g. split by a pause): merge.
+    let mut merged: Vec<StrokeU> = Vec::new();
+    for s in out.into_iter().filter(|s| s.u.tiles > 0) {
+        match merged.iter_mut().find(|m| m.stroke == s.stroke) {
+            Some(m) => {
+                m.u = merge_u([m.u, s.u].into_iter()).unwrap_or(m.u);
+                m.glyph = m.glyph.or(s.glyph);
+            }
+            None => merged.push(s),
+        }
+    }
+    merged.sort_by_key(|s| s.stroke);
+    Ok(merged)
+}
+
+/// Median and 90th-percentile 90 %→10 % edge widths along true letter edges.
+fn edge_widths(
+    g: &Grid,
+    glyphs: &[GlyphOutline],
+    frac: &[f64],
+    target: f64,
+) -> (Option<f64>, Option<f64>, usize) {
+    let h = g.cell_m;
+    let frac_at = |p: [f64; 2]| -> Option<f64> {
+        let i = ((p[0] - g.x0) / h).floor();
+        let j = ((p[1] - g.y0) / h).floor();
+        if i < 0.0 || j < 0.0 || i >= g.nx as f64 || j >= g.ny as f64 {
+            return None;
+        }
+        Some(frac[j as usize * g.nx + i as usize])
+    };
+    // assumed: profiles reach 6 cells or 40 mm either side, whichever is
+    // wider, enough for the fan's depth and the raster's blur.
+    let reach = (6.0 * h).max(0.04);
+    let step = h / 4.0;
+    let steps = (2.0 * reach / step).round() as usize;
+    let mut widths = Vec::new();
+    let mut considered = 0usize;
+    for gl in glyphs {
+        for poly in &gl.strokes {
+            let ccw = signed_area(poly) > 0.0;
+            let n = poly.len();
+            for k in 0..n {
+                let (a, b) = (poly[k], poly[(k + 1) % n]);
+                let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                if len <= 0.0 {
+                    continue;
+                }
+                let d = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+                let out = if ccw { [d[1], -d[0]] } else { [-d[1], d[0]] };
+                let count = (len / h).floor() as usize;
+                for m in 0..count {
+                    let t = (m as f64 + 0.5) * len / count as f64;
+                    let p = [a[0] + t * d[0], a[1] + t * d[1]];
+                    let at = |s: f64| [p[0] + s * out[0], p[1] + s * out[1]];
+                    // A true edge: road just outside, letter just inside.
+                    let (fo, fi) = (frac_at(at(3.0 * h)), frac_at(at(-3.0 * h)));
+                    if !(fo == Some(0.0) && fi.is_some_and(|f| f >= INSIDE)) {
+                        continue;
+                    }
+                    considered += 1;
+                    let profile: Vec<(f64, f64)> = (0..=steps)
+                        .map(|s| {
+                            let off = -reach + s as f64 * step;
+                            (off, g.sample(at(off)))
+                        })
+                        .collect();
+                    if let Some(w) = fall_width(&profile, target) {
+                        widths.push(w);
+                    }
+                }
+            }
+        }
+    }
+    if widths.is_empty() {
+        return (None, None, considered);
+    }
+    widths.sort_by(f64::total_cmp);
+    let pick = |q: f64| widths[((widths.len() - 1) as f64 * q).round() as usize];
+    (Some(pick(0.5)), Some(pick(0.9)), widths.len())
+}
+
+/// Distance over which a profile (offset, film), inside to outside, falls
+/// from 90 % to 10 % of its level inside the edge (the largest film in the
+/// inner half). `None` when the inside is unpainted or the film never falls.
+fn fall_width(profile: &[(f64, f64)], target: f64) -> Option<f64> {
+    let half = profile.len() / 2;
+    let level = profile[..half].iter().map(|p| p.1).fold(0.0, f64::max);
+    if level < COVERAGE_SHARE * target {
+        return None;
+    }
+    let peak = profile[..half].iter().position(|p| p.1 == level)?;
+    let (hi, lo) = (0.9 * level, 0.1 * level);
+    let i10 = (peak..profile.len()).find(|&i| profile[i].1 < lo)?;
+    let i90 = (peak..i10).rev().find(|&i| profile[i].1 >= hi)?;
+    let cross = |i: usize, v: f64| {
+        let (a, b) = (profile[i], profile[i + 1]);
+        if (b.1 - a.1).abs() < f64::MIN_POSITIVE {
+            a.0
+        } else {
+            a.0 + (v - a.1) / (b.1 - a.1) * (b.0 - a.0)
+        }
+    };
+    Some(cross(i10 - 1, lo) - cross(i90, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x0: f64, y0: f64, s: f64) -> GlyphOutline {
+        GlyphOutline {
+            label: "□".into(),
+            line: 0,
+            strokes: vec![vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]]],
+        }
+    }
+
+    #[test]
+    fn mask_area_is_exact_for_axis_aligned_and_close_for_slanted() {
+        let grid = Grid::covering(
+            Bounds {
+                min: [-1.0, -1.0],
+                max: [1.0, 1.0],
+            },
+            0.01,
+        )
+        .unwrap();
+        let sq = square(-0.123, 0.0, 0.5);
+        let a: f64 = coverage_mask(&grid, &sq).iter().map(|c| c.1).sum::<f64>() * 1e-4;
+        assert!((a - 0.25).abs() < 0.25 * 2e-3, "{a}");
+        let tri = GlyphOutline {
+            label: "t".into(),
+            line: 0,
+            strokes: vec![vec![[0.0, 0.0], [0.7, 0.1], [0.2, 0.6]]],
+        };
+        let want = signed_area(&tri.strokes[0]).abs();
+        let a: f64 = coverage_mask(&grid, &tri).iter().map(|c| c.1).sum::<f64>() * 1e-4;
+        assert!((a / want - 1.0).abs() < 0.01, "{a} vs {want}");
+        assert!(tri.contains([0.3, 0.2]) && !tri.contains([0.6, 0.5]));
+    }
+
+    #[test]
+    fn overlapping_strokes_count_once() {
+        let grid = Grid::covering(
+            Bounds {
+                min: [0.0, 0.0],
+                max: [1.0, 1.0],
+            },
+            0.02,
+        )
+        .unwrap();
+        let mut g = square(0.1, 0.1, 0.4);
+        g.strokes.push(square(0.3, 0.1, 0.4).strokes.remove(0));
+        let a: f64 = coverage_mask(&grid, &g).iter().map(|c| c.1).sum::<f64>() * 4e-4;
+        assert!((a - 0.24).abs() < 1e-3, "{a}");
+    }
+
+    #[test]
+    fn fall_width_of_a_linear_ramp() {
+        // Level 1 until 0, linear to 0 at 0.1: 90 %→10 % over 0.08.
+        let p: Vec<(f64, f64)> = (0..=400)
+            .map(|k| {
+                let x = -0.2 + k as f64 * 0.001;
+                (x, (1.0 - x / 0.1).clamp(0.0, 1.0))
+            })
+            .collect();
+        let w = fall_width(&p, 1.0).unwrap();
+        assert!((w - 0.08).abs() < 1e-9, "{w}");
+    }
+}

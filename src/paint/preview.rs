@@ -1,0 +1,512 @@
+//! A job's preview: its samples as poses, the film they lay, the metrics
+//! against the letters' outlines, and the SVG that shows it all.
+
+use serde::Serialize;
+use svg::node::element::{Circle, Group, Path, Rectangle};
+use svg::Document;
+
+use super::metrics::{self, GlyphOutline, Metrics};
+use super::raster::{self, Bounds, Film};
+use super::spray::{Depth, Pose, Profile, SprayModel};
+use super::PaintError;
+use crate::job::{Job, Samples};
+use crate::plot::{self, palette, Frame, HeatMap};
+
+/// Default raster cell (issue 5: `--resolution-mm` default 5).
+pub const DEFAULT_RESOLUTION_M: f64 = 0.005;
+/// The colour scale tops out at this multiple of the target film.
+// assumed: 1.5× shows both thin (< 50 %) and heavy (overlaps) film.
+const SCALE_TOP: f64 = 1.5;
+/// Colour steps of the film map (5 % of target each).
+const LEVELS: usize = 30;
+/// Film below this share of target is drawn as bare road.
+const HIDE_BELOW: f64 = 0.02;
+
+/// How to run the preview.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    pub resolution_m: f64,
+    pub profile: Profile,
+    pub depth: Depth,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            resolution_m: DEFAULT_RESOLUTION_M,
+            profile: Profile::Uniform,
+            depth: Depth::default(),
+        }
+    }
+}
+
+/// A computed preview of one job.
+#[derive(Clone, Debug)]
+pub struct Preview {
+    pub film: Film,
+    pub metrics: Metrics,
+    pub outlines: Vec<GlyphOutline>,
+    pub poses: Vec<Pose>,
+    pub profile: String,
+}
+
+/// The job's setpoints as poses (SPEC §3 columns).
+pub fn poses_from_samples(s: &Samples) -> Vec<Pose> {
+    (0..s.len())
+        .map(|i| Pose {
+            t_s: s.t_s[i],
+            x_m: s.x_m[i],
+            y_m: s.y_m[i],
+            z_m: s.z_m[i],
+            yaw_rad: s.yaw_rad[i],
+            tilt_rad: s.tilt_rad[i],
+            gun: s.paint[i] != 0,
+        })
+        .collect()
+}
+
+fn check_paint(job: &Job) -> Result<(), PaintError> {
+    let p = &job.paint;
+    for (name, v) in [
+        ("paint.fan_angle_rad", p.fan_angle_rad),
+        ("paint.flow_m3ps", p.flow_m3ps),
+        ("paint.transfer_efficiency", p.transfer_efficiency),
+        ("paint.film_m", p.film_m),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(PaintError::Job(format!(
+                "{name} is {v}: it must be a number above zero"
+            )));
+        }
+    }
+    if p.transfer_efficiency > 1.0 {
+        return Err(PaintError::Job(format!(
+            "paint.transfer_efficiency is {}: it must be at most 1",
+            p.transfer_efficiency
+        )));
+    }
+    Ok(())
+}
+
+/// Simulate the film of `job` and measure it.
+pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
+    check_paint(job)?;
+    let poses = poses_from_samples(&job.samples);
+    let outlines: Vec<GlyphOutline> = job
+        .layout
+        .glyphs
+        .iter()
+        .map(GlyphOutline::from_placed)
+        .collect();
+    preview_poses(
+        &poses,
+        &job.samples.stroke,
+        &outlines,
+        &job.paint,
+        opts,
+    )
+}
+
+/// Simulate and measure the film of any pose sequence (e.g. the simulator's
+/// trace) with `stroke_of[i]` the stroke index of pose i (−1 none).
+pub fn preview_poses(
+    poses: &[Pose],
+    stroke_of: &[i64],
+    outlines: &[GlyphOutline],
+    paint: &crate::job::Paint,
+    opts: &Options,
+) -> Result<Preview, PaintError> {
+    let model = SprayModel::new(paint.fan_angle_rad, opts.profile.clone(), opts.depth)?;
+    let letters = outlines
+        .iter()
+        .fold(Bounds::EMPTY, |b, g| b.union(g.bounds()));
+    let film = raster::deposit(
+        poses,
+        &model,
+        paint.flow_m3ps * paint.transfer_efficiency,
+        opts.resolution_m,
+        letters,
+    )?;
+    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, poses, stroke_of)?;
+    Ok(Preview {
+        film,
+        metrics,
+        outlines: outlines.to_vec(),
+        poses: poses.to_vec(),
+        profile: opts.profile.name(),
+    })
+}
+
+/// One panel of the SVG: a job, its preview and a caption.
+pub struct Panel<'a> {
+    pub job: &'a Job,
+    pub preview: &'a Preview,
+}
+
+fn pct(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{:.1} %", v * 100.0))
+}
+
+fn um(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{:.0} µm", v * 1e6))
+}
+
+fn mm(v: Option<f64>) -> String {
+    v.map_or("–".into(), |v| format!("{:.1} mm", v * 1e3))
+}
+
+fn u_range(a: Option<f64>, b: Option<f64>) -> String {
+    match (a, b) {
+        (Some(a), Some(b)) => format!("{:.1}–{:.1}", a * 100.0, b * 100.0),
+        _ => "–".into(),
+    }
+}
+
+/// The metric lines of the title block.
+fn metric_lines(m: &Metrics) -> Vec<(String, String)> {
+    vec![
+        (
+            "mean film".into(),
+            format!(
+                "{} (target {:.0} µm, {})",
+                um(m.mean_film_m),
+                m.target_film_m * 1e6,
+                pct(m.mean_film_m.map(|f| f / m.target_film_m))
+            ),
+        ),
+        ("CV inside letters".into(), pct(m.cv)),
+        ("coverage (≥ 50 %)".into(), pct(m.coverage)),
+        ("overspray".into(), pct(m.overspray)),
+        ("U range (50 ideal)".into(), u_range(m.u_min, m.u_max)),
+        (
+            "edge 90→10 %".into(),
+            format!("{} median, {} p90", mm(m.edge_width_m), mm(m.edge_width_p90_m)),
+        ),
+        (
+            "paint".into(),
+            format!(
+                "{:.2} L on the road of {:.2} L laid, gun on {:.1} s",
+                m.volume_on_road_m3 * 1e3,
+                m.volume_laid_m3 * 1e3,
+                m.gun_on_s
+            ),
+        ),
+    ]
+}
+
+fn glyph_rows(m: &Metrics) -> Vec<Vec<String>> {
+    m.glyphs
+        .iter()
+        .map(|g| {
+            vec![
+                g.char.clone(),
+                g.line.to_string(),
+                format!("{:.3}", g.area_m2),
+                um(g.mean_film_m),
+                pct(g.cv),
+                pct(g.coverage),
+                pct(g.overspray),
+                u_range(g.u_min, g.u_max),
+            ]
+        })
+        .collect()
+}
+
+const GLYPH_HEADER: [&str; 8] = [
+    "glyph", "line", "area m²", "mean", "CV", "coverage", "overspray", "U",
+];
+const GLYPH_WIDTHS: [f64; 8] = [40.0, 35.0, 60.0, 60.0, 55.0, 65.0, 65.0, 70.0];
+
+/// Road extent a panel shows: the film raster, the nozzle path and stations.
+fn panel_bounds(p: &Panel) -> Bounds {
+    let mut b = p.preview.film.grid.bounds();
+    for pose in &p.preview.poses {
+        if pose.x_m.is_finite() && pose.y_m.is_finite() {
+            b.include([pose.x_m, pose.y_m]);
+        }
+    }
+    for s in &p.job.stations {
+        if s.x_m.is_finite() && s.y_m.is_finite() {
+            b.include([s.x_m, s.y_m]);
+        }
+    }
+    b.grow(0.1)
+}
+
+/// Draw one or more previews side by side (one colour scale) as an SVG
+/// document.
+pub fn render_svg(panels: &[Panel], title: &str) -> String {
+    let margin = 60.0;
+    let target = panels
+        .first()
+        .map_or(1.0, |p| p.preview.metrics.target_film_m);
+    // Every panel at one scale, so letters compare at a glance.
+    let extents: Vec<Bounds> = panels.iter().map(panel_bounds).collect();
+    let max_w = extents.iter().map(|b| b.width()).fold(0.0, f64::max);
+    let max_h = extents.iter().map(|b| b.height()).fold(0.0, f64::max);
+    let per_panel_px = if panels.len() > 1 { 560.0 } else { 900.0 };
+    let px_per_m = (per_panel_px / max_w.max(1e-3)).min(760.0 / max_h.max(1e-3));
+
+    let first = panels.first();
+    let mut header: Vec<(String, String)> = Vec::new();
+    if let Some(p) = first {
+        header.push(("message".into(), p.job.message.replace('\n', " / ")));
+        header.push((
+            "robot".into(),
+            format!("{} ({} stations)", p.job.robot.name, p.job.stations.len()),
+        ));
+        if panels.len() == 1 {
+            header.push(("tilt method".into(), p.job.layout.tilt_method.clone()));
+        }
+        header.push((
+            "spray".into(),
+            format!(
+                "fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {:.1} mm",
+                p.job.paint.fan_angle_rad.to_degrees(),
+                p.preview.profile,
+                p.job.paint.flow_m3ps * 60e3,
+                p.job.paint.transfer_efficiency,
+                p.preview.metrics.resolution_m * 1e3
+            ),
+        ));
+        if panels.len() == 1 {
+            header.extend(metric_lines(&p.preview.metrics));
+        }
+    }
+    let head_h = plot::title_block_height(header.len()) + 20.0;
+    let caption_h = if panels.len() > 1 {
+        plot::title_block_height(metric_lines(&panels[0].preview.metrics).len()) + 10.0
+    } else {
+        0.0
+    };
+    let map_top = margin + head_h + caption_h;
+    let mut doc_g = Group::new().add(plot::title_block(margin, margin, title, &header));
+
+    let mut x = margin;
+    let mut bottom: f64 = map_top;
+    let scale_map_vmax = SCALE_TOP * target;
+    for (p, ext) in panels.iter().zip(&extents) {
+        let frame = Frame::new(x, map_top, px_per_m, ext.min, ext.max);
+        if panels.len() > 1 {
+            doc_g = doc_g.add(plot::title_block(
+                x,
+                margin + head_h,
+                &format!("tilt: {}", p.job.layout.tilt_method),
+                &metric_lines(&p.preview.metrics),
+            ));
+        }
+        doc_g = doc_g.add(draw_panel(p, &frame, scale_map_vmax));
+        let table_top = map_top + frame.height_px() + 50.0;
+        let rows = glyph_rows(&p.preview.metrics);
+        doc_g = doc_g.add(plot::table(x, table_top, &GLYPH_WIDTHS, &GLYPH_HEADER, &rows));
+        bottom = bottom.max(table_top + plot::table_height(rows.len()));
+        x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+    }
+    // The shared colour bar.
+    let dummy = [0.0];
+    let scale = HeatMap {
+        values: &dummy,
+        nx: 1,
+        ny: 1,
+        origin: [0.0, 0.0],
+        cell_m: 1.0,
+        vmin: 0.0,
+        vmax: scale_map_vmax,
+        levels: LEVELS,
+        hide_below: HIDE_BELOW * target,
+    };
+    let bar_h = 300.0_f64.min((bottom - map_top).max(100.0));
+    doc_g = doc_g.add(plot::colour_bar(
+        &scale,
+        x,
+        map_top + 20.0,
+        18.0,
+        bar_h,
+        "film (µm)",
+        1e6,
+        6,
+    ));
+    let legend_top = map_top + bar_h + 60.0;
+    doc_g = doc_g.add(legend(x, legend_top));
+    let width = x + 160.0;
+    let height = bottom.max(legend_top + 80.0) + margin;
+    let doc = Document::new()
+        .set("width", plot::num(width))
+        .set("height", plot::num(height))
+        .set("viewBox", format!("0 0 {} {}", plot::num(width), plot::num(height)))
+        .add(
+            Rectangle::new()
+                .set("width", "100%")
+                .set("height", "100%")
+                .set("fill", "#ffffff"),
+        )
+        .add(doc_g);
+    let mut out = doc.to_string();
+    out.push('\n');
+    out
+}
+
+fn legend(x: f64, y: f64) -> Group {
+    let item = |k: usize, colour: &str, dash: Option<&str>, label: &str| {
+        let ty = y + 18.0 * k as f64;
+        let mut l = plot::line(x, ty, x + 24.0, ty, colour, 2.0);
+        if let Some(d) = dash {
+            l = l.set("stroke-dasharray", d);
+        }
+        Group::new()
+            .add(l)
+            .add(plot::text(x + 30.0, ty + 4.0, label, 11.0, "start"))
+    };
+    Group::new()
+        .add(
+            Rectangle::new()
+                .set("x", plot::num(x - 4.0))
+                .set("y", plot::num(y - 10.0))
+                .set("width", 34)
+                .set("height", plot::num(18.0 * 3.0 + 4.0))
+                .set("fill", "#9a9a9a"),
+        )
+        .add(item(0, palette::OUTLINE, None, "letter outline"))
+        .add(item(1, palette::PATH_ON, None, "nozzle, gun on"))
+        .add(item(2, palette::PATH_OFF, Some("4 3"), "nozzle, gun off"))
+        .add(
+            Circle::new()
+                .set("cx", plot::num(x + 12.0))
+                .set("cy", plot::num(y + 54.0))
+                .set("r", 5)
+                .set("fill", palette::STATION),
+        )
+        .add(plot::text(x + 30.0, y + 58.0, "truck station", 11.0, "start"))
+}
+
+fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
+    let grid = &p.preview.film.grid;
+    let target = p.preview.metrics.target_film_m;
+    let map = HeatMap {
+        values: &grid.data,
+        nx: grid.nx,
+        ny: grid.ny,
+        origin: [grid.x0, grid.y0],
+        cell_m: grid.cell_m,
+        vmin: 0.0,
+        vmax,
+        levels: LEVELS,
+        hide_below: HIDE_BELOW * target,
+    };
+    let (x0, y0) = frame.px([frame.road_min[0], frame.road_max[1]]);
+    let mut g = Group::new()
+        .add(
+            Rectangle::new()
+                .set("x", plot::num(x0))
+                .set("y", plot::num(y0))
+                .set("width", plot::num(frame.width_px()))
+                .set("height", plot::num(frame.height_px()))
+                .set("fill", palette::ROAD),
+        )
+        .add(map.draw(frame));
+    // Letter outlines.
+    let mut d = String::new();
+    for gl in &p.preview.outlines {
+        for poly in &gl.strokes {
+            d.push_str(&frame.path_data(poly, true));
+        }
+    }
+    g = g.add(
+        Path::new()
+            .set("d", d)
+            .set("fill", "none")
+            .set("stroke", palette::OUTLINE)
+            .set("stroke-width", 0.8)
+            .set("stroke-linejoin", "round"),
+    );
+    // Nozzle path, split into gun-on and gun-off runs.
+    let (on, off) = path_runs(&p.preview.poses, frame);
+    g = g
+        .add(
+            Path::new()
+                .set("d", off)
+                .set("fill", "none")
+                .set("stroke", palette::PATH_OFF)
+                .set("stroke-width", 0.8)
+                .set("stroke-dasharray", "4 3"),
+        )
+        .add(
+            Path::new()
+                .set("d", on)
+                .set("fill", "none")
+                .set("stroke", palette::PATH_ON)
+                .set("stroke-width", 0.8)
+                .set("stroke-opacity", 0.8),
+        );
+    for (k, s) in p.job.stations.iter().enumerate() {
+        let (sx, sy) = frame.px([s.x_m, s.y_m]);
+        let (hx, hy) = frame.px([
+            s.x_m + 0.4 * s.heading_rad.cos(),
+            s.y_m + 0.4 * s.heading_rad.sin(),
+        ]);
+        g = g
+            .add(plot::line(sx, sy, hx, hy, palette::STATION, 1.5))
+            .add(
+                Circle::new()
+                    .set("cx", plot::num(sx))
+                    .set("cy", plot::num(sy))
+                    .set("r", 5)
+                    .set("fill", palette::STATION),
+            )
+            .add(plot::text(sx + 8.0, sy - 6.0, &format!("S{k}"), 11.0, "start"));
+    }
+    g.add(plot::axes(frame, tick_spacing(frame)))
+}
+
+/// Metre ticks about every 100 px.
+fn tick_spacing(frame: &Frame) -> f64 {
+    let raw = 100.0 / frame.px_per_m;
+    [0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0]
+        .into_iter()
+        .find(|&t| t >= raw)
+        .unwrap_or(50.0)
+}
+
+/// SVG path data of the nozzle's path (tip's foot) with the gun on and off;
+/// points closer than half a pixel to the previous are dropped.
+fn path_runs(poses: &[Pose], frame: &Frame) -> (String, String) {
+    let (mut on, mut off) = (String::new(), String::new());
+    // The run's gun state and the pen's last drawn point.
+    let mut pen: Option<(bool, (f64, f64))> = None;
+    for w in poses.windows(2) {
+        let state = w[0].gun;
+        let a = frame.px([w[0].x_m, w[0].y_m]);
+        let b = frame.px([w[1].x_m, w[1].y_m]);
+        if !(a.0.is_finite() && a.1.is_finite() && b.0.is_finite() && b.1.is_finite()) {
+            pen = None;
+            continue;
+        }
+        let d = if state { &mut on } else { &mut off };
+        let from = match pen {
+            Some((s, p)) if s == state => p,
+            _ => {
+                d.push_str(&format!("M{} {}", plot::num(a.0), plot::num(a.1)));
+                a
+            }
+        };
+        if (from.0 - b.0).hypot(from.1 - b.1) >= 0.5 {
+            d.push_str(&format!("L{} {}", plot::num(b.0), plot::num(b.1)));
+            pen = Some((state, b));
+        } else {
+            pen = Some((state, from));
+        }
+    }
+    (on, off)
+}
+
+/// What `--json` prints.
+#[derive(Serialize)]
+pub struct JsonReport<'a> {
+    pub job: &'a str,
+    pub message: &'a str,
+    pub tilt_method: &'a str,
+    pub profile: &'a str,
+    pub svg: Option<&'a str>,
+    #[serde(flatten)]
+    pub metrics: &'a Metrics,
+}
