@@ -1,11 +1,211 @@
-//! `basr preview` (not yet implemented).
+//! `basr preview JOB`: simulate the paint film a job lays and draw it as an
+//! SVG with its metrics (coverage, evenness, overspray, edges, U).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use basr::job::Job;
+use basr::paint::preview::{self, JsonReport, Options, Panel, Preview};
+use basr::paint::{Depth, Profile};
+use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
 
 use super::{Global, Outcome};
 
-/// Not yet implemented.
+/// Simulate the paint film of a job and draw it.
+///
+/// The airless flat fan at every setpoint's tip pose (height, fan direction,
+/// tilt) lays flow × transfer efficiency on a road-frame raster; the film is
+/// measured against the letters' true outlines. Writes an SVG (film map in
+/// µm with colour bar, outlines, nozzle path, stations, metrics, per-glyph
+/// table); without -o it is the job's name with `.svg` (STOP.job.json →
+/// STOP.svg) in the current folder.
 #[derive(clap::Args)]
-pub struct Args {}
+#[command(after_help = "\
+Examples:
+  basr preview STOP.job.json                   # writes STOP.svg here
+  basr preview STOP.job.json -o stop.svg --json
+  basr preview STOP.job.json --resolution-mm 2 --profile beta:2,2
+  basr preview STOP.job.json --compare none,trapezoid,quadrilateral
 
-pub fn run(_args: Args, _global: &Global) -> anyhow::Result<Outcome> {
-    anyhow::bail!("`basr preview` is not implemented yet")
+Metrics: coverage = share of letter area with >= 50 % of target film;
+cv = std/mean of the film inside the letters (one cell in from the edge);
+overspray = share of the paint on the road outside the letters; U = the
+tile area ratio of 001 eq. 2.7 (50 % ideal).")]
+pub struct Args {
+    /// The job file written by `basr compile`.
+    pub job: PathBuf,
+
+    /// SVG to write (default: the job's name with .svg, in the current folder).
+    #[arg(short, long, value_name = "SVG")]
+    pub output: Option<PathBuf>,
+
+    /// Print the metrics as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+
+    /// Raster cell size in millimetres.
+    #[arg(long, value_name = "R", default_value_t = 5.0)]
+    pub resolution_mm: f64,
+
+    /// Flux across the fan: `uniform` (even on the road, the seed's
+    /// assumption), `uniform-angle`, `gauss[:w,mean,sigma;…]` (lobes per unit
+    /// angle, mean and sigma as fractions of the half fan angle) or
+    /// `beta[:p,q]`.
+    #[arg(long, value_name = "PROFILE", default_value = "uniform")]
+    pub profile: String,
+
+    /// Depth of the fan sheet on the road along the travel direction:
+    /// `gauss:MM` (standard deviation) or `tophat:MM` (full width).
+    #[arg(long, value_name = "KIND:MM", default_value = "gauss:6")]
+    pub fan_depth: String,
+
+    /// Re-plan the job's message under each listed tilt method
+    /// (none, trapezoid, quadrilateral) and draw them side by side.
+    #[arg(long, value_name = "METHODS", value_delimiter = ',')]
+    pub compare: Vec<String>,
+}
+
+/// `STOP.job.json` → `STOP.svg` in the current folder.
+fn default_output(job: &Path) -> PathBuf {
+    let name = job
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "job".into());
+    let stem = name.strip_suffix(".json").unwrap_or(&name);
+    let stem = stem.strip_suffix(".job").unwrap_or(stem);
+    PathBuf::from(format!("{stem}.svg"))
+}
+
+fn parse_tilt(s: &str) -> anyhow::Result<Tilt> {
+    match s.trim() {
+        "none" => Ok(Tilt::None),
+        "trapezoid" => Ok(Tilt::Trapezoid),
+        "quadrilateral" => Ok(Tilt::Quadrilateral),
+        other => anyhow::bail!(
+            "--compare: unknown tilt method {other:?}; use none, trapezoid or quadrilateral"
+        ),
+    }
+}
+
+/// The job re-planned with another tilt method, keeping its message, letter
+/// height and lane width.
+fn replan(job: &Job, tilt: Tilt) -> anyhow::Result<Job> {
+    let mut req = CompileRequest::message(&job.message.replace('\n', " "));
+    req.source = Source::Message(job.message.replace('\n', " "));
+    req.overrides.letter_height_m = Some(job.layout.letter_height_m);
+    req.overrides.lane_width_m = Some(job.layout.lane_width_m);
+    req.tilt = tilt;
+    compile_job(&req).with_context(|| {
+        format!(
+            "--compare: re-planning {:?} with tilt {}",
+            job.message,
+            tilt.name()
+        )
+    })
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    if !(args.resolution_mm.is_finite() && args.resolution_mm > 0.0) {
+        anyhow::bail!(
+            "--resolution-mm {}: give a cell size in millimetres above zero, e.g. 5",
+            args.resolution_mm
+        );
+    }
+    let opts = Options {
+        resolution_m: args.resolution_mm / 1000.0,
+        profile: Profile::parse(&args.profile)?,
+        depth: Depth::parse(&args.fan_depth)?,
+    };
+    let job = Job::read(&args.job)?;
+    let jobs: Vec<Job> = if args.compare.is_empty() {
+        vec![job]
+    } else {
+        let mut v = Vec::new();
+        for m in &args.compare {
+            let tilt = parse_tilt(m)?;
+            if job.layout.tilt_method == tilt.name() {
+                v.push(job.clone());
+            } else {
+                v.push(replan(&job, tilt)?);
+            }
+        }
+        v
+    };
+    let origin = args.job.display().to_string();
+    let previews: Vec<Preview> = jobs
+        .iter()
+        .map(|j| preview::preview_job(j, &opts).with_context(|| format!("{origin}: preview")))
+        .collect::<anyhow::Result<_>>()?;
+    let panels: Vec<Panel> = jobs
+        .iter()
+        .zip(&previews)
+        .map(|(job, preview)| Panel { job, preview })
+        .collect();
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| default_output(&args.job));
+    let title = format!("basr preview: {}", jobs[0].message.replace('\n', " / "));
+    let svg = preview::render_svg(&panels, &title);
+    basr::io::write_atomic(&out, svg.as_bytes())?;
+
+    if !global.quiet {
+        for (j, p) in jobs.iter().zip(&previews) {
+            let m = &p.metrics;
+            let f = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{:.3}", v));
+            eprintln!(
+                "{} [tilt {}]: coverage {}, cv {}, overspray {}, mean film {} µm (target {:.0}), U {}–{}",
+                origin,
+                j.layout.tilt_method,
+                f(m.coverage),
+                f(m.cv),
+                f(m.overspray),
+                m.mean_film_m.map_or("–".into(), |v| format!("{:.0}", v * 1e6)),
+                m.target_film_m * 1e6,
+                f(m.u_min),
+                f(m.u_max),
+            );
+        }
+        eprintln!("wrote {}", out.display());
+    }
+    if args.json {
+        let svg_name = out.display().to_string();
+        let reports: Vec<JsonReport> = jobs
+            .iter()
+            .zip(&previews)
+            .map(|(j, p)| JsonReport {
+                job: &origin,
+                message: &j.message,
+                tilt_method: &j.layout.tilt_method,
+                profile: &p.profile,
+                svg: Some(&svg_name),
+                metrics: &p.metrics,
+            })
+            .collect();
+        let text = if reports.len() == 1 {
+            serde_json::to_string_pretty(&reports[0])?
+        } else {
+            serde_json::to_string_pretty(&reports)?
+        };
+        println!("{text}");
+    }
+    Ok(Outcome::Success)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_output_drops_job_suffixes() {
+        assert_eq!(
+            default_output(Path::new("a/STOP.job.json")),
+            PathBuf::from("STOP.svg")
+        );
+        assert_eq!(default_output(Path::new("x.json")), PathBuf::from("x.svg"));
+        assert_eq!(
+            default_output(Path::new("plain")),
+            PathBuf::from("plain.svg")
+        );
+    }
 }

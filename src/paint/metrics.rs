@@ -328,15 +328,14 @@ pub fn measure(
     let boxes: Vec<Bounds> = glyphs.iter().map(|gl| gl.bounds()).collect();
     let mut owner_vol = vec![(0.0f64, 0.0f64); glyphs.len()]; // (total, outside)
     if !glyphs.is_empty() {
-        for k in 0..n {
-            let v = g.data[k];
+        for (k, (&v, &f)) in g.data.iter().zip(&frac).enumerate() {
             if v <= 0.0 {
                 continue;
             }
             let c = g.centre(k % g.nx, k / g.nx);
             let best = nearest_box(&boxes, c);
             owner_vol[best].0 += v * area;
-            owner_vol[best].1 += v * (1.0 - frac[k]) * area;
+            owner_vol[best].1 += v * (1.0 - f) * area;
         }
     }
     let glyph_rows = glyphs
@@ -349,12 +348,7 @@ pub fn measure(
                     .filter(|&&(k, f)| f >= INSIDE && interior(k))
                     .map(|&(k, _)| (g.data[k], 1.0)),
             );
-            let u = merge_u(
-                strokes
-                    .iter()
-                    .filter(|s| s.glyph == Some(gi))
-                    .map(|s| s.u),
-            );
+            let u = merge_u(strokes.iter().filter(|s| s.glyph == Some(gi)).map(|s| s.u));
             GlyphMetrics {
                 char: gl.label.clone(),
                 line: gl.line,
@@ -461,7 +455,10 @@ pub fn stroke_u(
             votes.push(vec![0; glyphs.len()]);
         }
         let last = out.len() - 1;
-        if let Some(gi) = glyphs.iter().position(|g| g.contains(fa.at(0.5 * (fa.r_minus + fa.r_plus)))) {
+        if let Some(gi) = glyphs
+            .iter()
+            .position(|g| g.contains(fa.at(0.5 * (fa.r_minus + fa.r_plus))))
+        {
             votes[last][gi] += 1;
         }
         // assumed: tiles under 1 mm² (the gun starting or stopping in place)
@@ -476,7 +473,10 @@ pub fn stroke_u(
         u.tiles += 1;
     }
     for (o, v) in out.iter_mut().zip(&votes) {
-        let best = v.iter().enumerate().max_by_key(|(i, c)| (**c, usize::MAX - i));
+        let best = v
+            .iter()
+            .enumerate()
+            .max_by_key(|(i, c)| (**c, usize::MAX - i));
         o.glyph = best.filter(|(_, c)| **c > 0).map(|(i, _)| i);
     }
     // A stroke can appear in several runs (e.g. split by a pause): merge.

@@ -17,8 +17,10 @@ pub const DEFAULT_RESOLUTION_M: f64 = 0.005;
 /// The colour scale tops out at this multiple of the target film.
 // assumed: 1.5× shows both thin (< 50 %) and heavy (overlaps) film.
 const SCALE_TOP: f64 = 1.5;
-/// Colour steps of the film map (5 % of target each).
+/// Colour steps of the film map, each 5 % of target; the scale starts half a
+/// step below zero so the target film sits in the middle of a step.
 const LEVELS: usize = 30;
+const SCALE_BOTTOM: f64 = -0.025;
 /// Film below this share of target is drawn as bare road.
 const HIDE_BELOW: f64 = 0.02;
 
@@ -98,13 +100,7 @@ pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
         .iter()
         .map(GlyphOutline::from_placed)
         .collect();
-    preview_poses(
-        &poses,
-        &job.samples.stroke,
-        &outlines,
-        &job.paint,
-        opts,
-    )
+    preview_poses(&poses, &job.samples.stroke, &outlines, &job.paint, opts)
 }
 
 /// Simulate and measure the film of any pose sequence (e.g. the simulator's
@@ -180,7 +176,11 @@ fn metric_lines(m: &Metrics) -> Vec<(String, String)> {
         ("U range (50 ideal)".into(), u_range(m.u_min, m.u_max)),
         (
             "edge 90→10 %".into(),
-            format!("{} median, {} p90", mm(m.edge_width_m), mm(m.edge_width_p90_m)),
+            format!(
+                "{} median, {} p90",
+                mm(m.edge_width_m),
+                mm(m.edge_width_p90_m)
+            ),
         ),
         (
             "paint".into(),
@@ -213,7 +213,14 @@ fn glyph_rows(m: &Metrics) -> Vec<Vec<String>> {
 }
 
 const GLYPH_HEADER: [&str; 8] = [
-    "glyph", "line", "area m²", "mean", "CV", "coverage", "overspray", "U",
+    "glyph",
+    "line",
+    "area m²",
+    "mean",
+    "CV",
+    "coverage",
+    "overspray",
+    "U",
 ];
 const GLYPH_WIDTHS: [f64; 8] = [40.0, 35.0, 60.0, 60.0, 55.0, 65.0, 65.0, 70.0];
 
@@ -233,23 +240,25 @@ fn panel_bounds(p: &Panel) -> Bounds {
     b.grow(0.1)
 }
 
-/// Draw one or more previews side by side (one colour scale) as an SVG
-/// document.
-pub fn render_svg(panels: &[Panel], title: &str) -> String {
+/// Page geometry shared by the drawing and by tests that look at pixels.
+struct Page {
+    margin: f64,
+    header: Vec<(String, String)>,
+    head_h: f64,
+    map_top: f64,
+    frames: Vec<Frame>,
+}
+
+fn page(panels: &[Panel]) -> Page {
     let margin = 60.0;
-    let target = panels
-        .first()
-        .map_or(1.0, |p| p.preview.metrics.target_film_m);
     // Every panel at one scale, so letters compare at a glance.
     let extents: Vec<Bounds> = panels.iter().map(panel_bounds).collect();
     let max_w = extents.iter().map(|b| b.width()).fold(0.0, f64::max);
     let max_h = extents.iter().map(|b| b.height()).fold(0.0, f64::max);
     let per_panel_px = if panels.len() > 1 { 560.0 } else { 900.0 };
     let px_per_m = (per_panel_px / max_w.max(1e-3)).min(760.0 / max_h.max(1e-3));
-
-    let first = panels.first();
     let mut header: Vec<(String, String)> = Vec::new();
-    if let Some(p) = first {
+    if let Some(p) = panels.first() {
         header.push(("message".into(), p.job.message.replace('\n', " / ")));
         header.push((
             "robot".into(),
@@ -274,33 +283,67 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         }
     }
     let head_h = plot::title_block_height(header.len()) + 20.0;
-    let caption_h = if panels.len() > 1 {
-        plot::title_block_height(metric_lines(&panels[0].preview.metrics).len()) + 10.0
-    } else {
-        0.0
+    let caption_h = match panels {
+        [first, _, ..] => {
+            plot::title_block_height(metric_lines(&first.preview.metrics).len()) + 10.0
+        }
+        _ => 0.0,
     };
     let map_top = margin + head_h + caption_h;
-    let mut doc_g = Group::new().add(plot::title_block(margin, margin, title, &header));
-
     let mut x = margin;
-    let mut bottom: f64 = map_top;
-    let scale_map_vmax = SCALE_TOP * target;
-    for (p, ext) in panels.iter().zip(&extents) {
+    let mut frames = Vec::new();
+    for ext in &extents {
         let frame = Frame::new(x, map_top, px_per_m, ext.min, ext.max);
+        x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+        frames.push(frame);
+    }
+    Page {
+        margin,
+        header,
+        head_h,
+        map_top,
+        frames,
+    }
+}
+
+/// Where each panel's road frame lands on the page [`render_svg`] draws.
+pub fn panel_frames(panels: &[Panel]) -> Vec<Frame> {
+    page(panels).frames
+}
+
+/// Draw one or more previews side by side (one colour scale) as an SVG
+/// document.
+pub fn render_svg(panels: &[Panel], title: &str) -> String {
+    let target = panels
+        .first()
+        .map_or(1.0, |p| p.preview.metrics.target_film_m);
+    let pg = page(panels);
+    let (margin, map_top) = (pg.margin, pg.map_top);
+    let mut doc_g = Group::new().add(plot::title_block(margin, margin, title, &pg.header));
+    let mut bottom: f64 = map_top;
+    let mut right: f64 = margin;
+    let vmax = (SCALE_BOTTOM + SCALE_TOP) * target;
+    for (p, frame) in panels.iter().zip(&pg.frames) {
         if panels.len() > 1 {
             doc_g = doc_g.add(plot::title_block(
-                x,
-                margin + head_h,
+                frame.left_px,
+                margin + pg.head_h,
                 &format!("tilt: {}", p.job.layout.tilt_method),
                 &metric_lines(&p.preview.metrics),
             ));
         }
-        doc_g = doc_g.add(draw_panel(p, &frame, scale_map_vmax));
+        doc_g = doc_g.add(draw_panel(p, frame, vmax));
         let table_top = map_top + frame.height_px() + 50.0;
         let rows = glyph_rows(&p.preview.metrics);
-        doc_g = doc_g.add(plot::table(x, table_top, &GLYPH_WIDTHS, &GLYPH_HEADER, &rows));
+        doc_g = doc_g.add(plot::table(
+            frame.left_px,
+            table_top,
+            &GLYPH_WIDTHS,
+            &GLYPH_HEADER,
+            &rows,
+        ));
         bottom = bottom.max(table_top + plot::table_height(rows.len()));
-        x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+        right = frame.left_px + frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
     }
     // The shared colour bar.
     let dummy = [0.0];
@@ -310,15 +353,15 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         ny: 1,
         origin: [0.0, 0.0],
         cell_m: 1.0,
-        vmin: 0.0,
-        vmax: scale_map_vmax,
+        vmin: SCALE_BOTTOM * target,
+        vmax,
         levels: LEVELS,
         hide_below: HIDE_BELOW * target,
     };
     let bar_h = 300.0_f64.min((bottom - map_top).max(100.0));
     doc_g = doc_g.add(plot::colour_bar(
         &scale,
-        x,
+        right,
         map_top + 20.0,
         18.0,
         bar_h,
@@ -327,13 +370,16 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         6,
     ));
     let legend_top = map_top + bar_h + 60.0;
-    doc_g = doc_g.add(legend(x, legend_top));
-    let width = x + 160.0;
+    doc_g = doc_g.add(legend(right, legend_top));
+    let width = right + 160.0;
     let height = bottom.max(legend_top + 80.0) + margin;
     let doc = Document::new()
         .set("width", plot::num(width))
         .set("height", plot::num(height))
-        .set("viewBox", format!("0 0 {} {}", plot::num(width), plot::num(height)))
+        .set(
+            "viewBox",
+            format!("0 0 {} {}", plot::num(width), plot::num(height)),
+        )
         .add(
             Rectangle::new()
                 .set("width", "100%")
@@ -376,7 +422,13 @@ fn legend(x: f64, y: f64) -> Group {
                 .set("r", 5)
                 .set("fill", palette::STATION),
         )
-        .add(plot::text(x + 30.0, y + 58.0, "truck station", 11.0, "start"))
+        .add(plot::text(
+            x + 30.0,
+            y + 58.0,
+            "truck station",
+            11.0,
+            "start",
+        ))
 }
 
 fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
@@ -388,7 +440,7 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
         ny: grid.ny,
         origin: [grid.x0, grid.y0],
         cell_m: grid.cell_m,
-        vmin: 0.0,
+        vmin: SCALE_BOTTOM * target,
         vmax,
         levels: LEVELS,
         hide_below: HIDE_BELOW * target,
@@ -453,7 +505,13 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
                     .set("r", 5)
                     .set("fill", palette::STATION),
             )
-            .add(plot::text(sx + 8.0, sy - 6.0, &format!("S{k}"), 11.0, "start"));
+            .add(plot::text(
+                sx + 8.0,
+                sy - 6.0,
+                &format!("S{k}"),
+                11.0,
+                "start",
+            ));
     }
     g.add(plot::axes(frame, tick_spacing(frame)))
 }

@@ -41,9 +41,9 @@ impl Bounds {
     };
 
     pub fn include(&mut self, p: [f64; 2]) {
-        for k in 0..2 {
-            self.min[k] = self.min[k].min(p[k]);
-            self.max[k] = self.max[k].max(p[k]);
+        for (k, v) in p.into_iter().enumerate() {
+            self.min[k] = self.min[k].min(v);
+            self.max[k] = self.max[k].max(v);
         }
     }
 
@@ -279,7 +279,7 @@ pub fn deposit(
         )));
     }
     for (i, w) in poses.windows(2).enumerate() {
-        if !(w[1].t_s >= w[0].t_s) {
+        if w[1].t_s.partial_cmp(&w[0].t_s).is_none_or(|o| o.is_lt()) {
             return Err(PaintError::Pose(format!(
                 "time goes backwards (or is not a number) between samples {i} and {}",
                 i + 1

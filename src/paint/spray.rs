@@ -109,7 +109,9 @@ impl Profile {
             ("gauss", Some(p)) => {
                 let v = numbers(p)?;
                 if v.is_empty() || v.len() % 3 != 0 {
-                    return Err(bad("give lobes as weight,mean,sigma triples separated by ';'"));
+                    return Err(bad(
+                        "give lobes as weight,mean,sigma triples separated by ';'",
+                    ));
                 }
                 Profile::GaussianSum(
                     v.chunks(3)
@@ -444,7 +446,7 @@ impl SprayModel {
                 pose.t_s
             )));
         }
-        if !(b.abs() + a < MAX_RAY_ANGLE_RAD) || !pose.yaw_rad.is_finite() {
+        if !b.is_finite() || b.abs() + a >= MAX_RAY_ANGLE_RAD || !pose.yaw_rad.is_finite() {
             return Err(PaintError::Pose(format!(
                 "tilt {b} rad with a {} rad fan at t = {} s sends the fan's edge \
                  nearly parallel to the road",
@@ -491,7 +493,7 @@ pub fn planned_tip(
     let (dx, dy) = (p_plus[0] - p_minus[0], p_plus[1] - p_minus[1]);
     let l = dx.hypot(dy);
     let psi = dy.atan2(dx); // 001 eq. 2.4
-    // 001 eq. 2.21, simplified: the sines reduce to L/2 · sin 2β / sin α.
+                            // 001 eq. 2.21, simplified: the sines reduce to L/2 · sin 2β / sin α.
     let x_o = 0.5 * l * (2.0 * tilt_rad).sin() / (2.0 * a).sin();
     let mid = [
         (p_minus[0] + p_plus[0]) / 2.0,

@@ -44,7 +44,13 @@ pub struct Frame {
 impl Frame {
     /// A frame showing `road_min..road_max` with its top-left corner at
     /// (`left_px`, `top_px`) and `px_per_m`.
-    pub fn new(left_px: f64, top_px: f64, px_per_m: f64, road_min: [f64; 2], road_max: [f64; 2]) -> Self {
+    pub fn new(
+        left_px: f64,
+        top_px: f64,
+        px_per_m: f64,
+        road_min: [f64; 2],
+        road_max: [f64; 2],
+    ) -> Self {
         Frame {
             left_px,
             top_px,
@@ -108,7 +114,7 @@ pub struct HeatMap<'a> {
 impl HeatMap<'_> {
     /// The colour step of a value, `None` when hidden.
     pub fn level(&self, v: f64) -> Option<usize> {
-        if !(v >= self.hide_below) || self.levels == 0 {
+        if v.is_nan() || v < self.hide_below || self.levels == 0 {
             return None;
         }
         let t = (v - self.vmin) / (self.vmax - self.vmin);
@@ -126,7 +132,10 @@ impl HeatMap<'_> {
     /// under one transform (compact, and crisp in browsers and resvg).
     pub fn draw(&self, frame: &Frame) -> Group {
         // Top-left of the grid on the page.
-        let (gx, gy) = frame.px([self.origin[0], self.origin[1] + self.ny as f64 * self.cell_m]);
+        let (gx, gy) = frame.px([
+            self.origin[0],
+            self.origin[1] + self.ny as f64 * self.cell_m,
+        ]);
         let scale = self.cell_m * frame.px_per_m;
         // Rectangles (col0, row0, width, height) per level; rows counted
         // from the top of the page.
@@ -182,8 +191,19 @@ impl HeatMap<'_> {
 }
 
 /// A vertical colour bar for a heat map at (`x`, `y`) of size `w`×`h` px,
-/// labelled with `ticks` values (in display units: value × `unit_scale`).
-pub fn colour_bar(map: &HeatMap, x: f64, y: f64, w: f64, h: f64, label: &str, unit_scale: f64, ticks: usize) -> Group {
+/// with ticks at round numbers in display units (value × `unit_scale`),
+/// about `ticks` of them.
+#[allow(clippy::too_many_arguments)] // a drawing call: position, size, scale
+pub fn colour_bar(
+    map: &HeatMap,
+    x: f64,
+    y: f64,
+    w: f64,
+    h: f64,
+    label: &str,
+    unit_scale: f64,
+    ticks: usize,
+) -> Group {
     let mut g = Group::new();
     let step = h / map.levels.max(1) as f64;
     for l in 0..map.levels {
@@ -207,15 +227,33 @@ pub fn colour_bar(map: &HeatMap, x: f64, y: f64, w: f64, h: f64, label: &str, un
             .set("stroke", palette::INK)
             .set("stroke-width", 0.5),
     );
-    for k in 0..=ticks.max(1) {
-        let t = k as f64 / ticks.max(1) as f64;
-        let v = map.vmin + t * (map.vmax - map.vmin);
-        let ty = y + h - t * h;
-        g = g
-            .add(line(x + w, ty, x + w + 4.0, ty, palette::INK, 0.8))
-            .add(text(x + w + 6.0, ty + 4.0, &format!("{:.0}", v * unit_scale), 11.0, "start"));
+    let (lo, hi) = (map.vmin * unit_scale, map.vmax * unit_scale);
+    let tick = nice_step((hi - lo) / ticks.max(1) as f64);
+    if tick > 0.0 {
+        let mut k = (lo / tick).ceil() as i64;
+        while (k as f64) * tick <= hi {
+            let v = k as f64 * tick;
+            let ty = y + h - (v - lo) / (hi - lo) * h;
+            g = g
+                .add(line(x + w, ty, x + w + 4.0, ty, palette::INK, 0.8))
+                .add(text(x + w + 6.0, ty + 4.0, &num(v), 11.0, "start"));
+            k += 1;
+        }
     }
     g.add(text(x, y - 8.0, label, 12.0, "start"))
+}
+
+/// The smallest of 1, 2, 5 × 10ⁿ at least `raw` (0 for non-positive input).
+pub fn nice_step(raw: f64) -> f64 {
+    if !(raw > 0.0 && raw.is_finite()) {
+        return 0.0;
+    }
+    let p = 10f64.powf(raw.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&s| s >= raw * (1.0 - 1e-9))
+        .unwrap_or(10.0 * p)
 }
 
 /// Axes around a frame: a box and metre ticks along the bottom and left.
@@ -232,7 +270,7 @@ pub fn axes(frame: &Frame, tick_m: f64) -> Group {
             .set("stroke", palette::INK)
             .set("stroke-width", 0.8),
     );
-    if !(tick_m > 0.0) {
+    if tick_m.is_nan() || tick_m <= 0.0 {
         return g;
     }
     let first = |lo: f64| (lo / tick_m).ceil() as i64;
@@ -333,6 +371,14 @@ mod tests {
     }
 
     #[test]
+    fn nice_steps() {
+        assert_eq!(nice_step(83.0), 100.0);
+        assert_eq!(nice_step(0.3), 0.5);
+        assert_eq!(nice_step(2.0), 2.0);
+        assert_eq!(nice_step(-1.0), 0.0);
+    }
+
+    #[test]
     fn frame_flips_y() {
         let f = Frame::new(10.0, 20.0, 100.0, [0.0, 0.0], [2.0, 1.0]);
         assert_eq!(f.px([0.0, 1.0]), (10.0, 20.0));
@@ -354,7 +400,9 @@ mod tests {
             levels: 4,
             hide_below: 0.5,
         };
-        let s = m.draw(&Frame::new(0.0, 0.0, 1.0, [0.0, 0.0], [3.0, 2.0])).to_string();
+        let s = m
+            .draw(&Frame::new(0.0, 0.0, 1.0, [0.0, 0.0], [3.0, 2.0]))
+            .to_string();
         assert!(s.contains("M0 0h2v2h-2z"), "{s}");
         assert_eq!(s.matches("<path").count(), 1);
     }

@@ -1,0 +1,221 @@
+//! Synthetic jobs for the preview tests, built in code and sealed, until
+//! `basr compile` writes real ones: a straight stroke, a ring and a tilted
+//! pass, each with its true outline in `layout.glyphs`.
+
+#![allow(dead_code)] // each test file uses some of these
+
+use std::f64::consts::PI;
+
+use basr::job::{
+    FontRef, Job, Layout, Paint, PlacedGlyph, PlacedStroke, SampleRow, Samples, Station, Summary,
+    FORMAT, VERSION,
+};
+use basr::paint::planned_tip;
+use basr::robot::Robot;
+
+pub const ALPHA: f64 = 63.5 * PI / 180.0; // SPEC §4 fan angle
+pub const FLOW: f64 = 0.4e-3 / 60.0; // SPEC §4 example: 0.4 L/min
+pub const EFF: f64 = 0.9;
+pub const FILM: f64 = 3.8e-4;
+pub const PERIOD: f64 = 0.032;
+
+pub fn k() -> f64 {
+    FLOW * EFF / FILM // 001 eq. 2.6
+}
+
+/// One rung: its −ψ and +ψ ends and the tilt to paint it with.
+pub struct Rung {
+    pub a: [f64; 2],
+    pub b: [f64; 2],
+    pub tilt: f64,
+}
+
+/// Samples that paint `rungs` in order at v = k/w (speed of the rung's
+/// midpoint), preceded and followed by a short air move.
+pub fn samples_for(rungs: &[Rung]) -> Samples {
+    let mut s = Samples::default();
+    let mut t = 0.0;
+    let mut push = |t: f64, pose: (f64, f64, f64, f64), tilt: f64, on: bool, w: f64| {
+        s.push(&SampleRow {
+            t_s: t,
+            station: 0,
+            stroke: if on { 0 } else { -1 },
+            paint: on as u8,
+            x_m: pose.0,
+            y_m: pose.1,
+            z_m: pose.2,
+            yaw_rad: pose.3,
+            tilt_rad: tilt,
+            speed_mps: if on { k() / w } else { 0.0 },
+            width_m: if on { w } else { 0.0 },
+            ..Default::default()
+        });
+    };
+    // Dense path along the rung midpoints, resampled in time at v = k/w.
+    let mid = |r: &Rung| [(r.a[0] + r.b[0]) / 2.0, (r.a[1] + r.b[1]) / 2.0];
+    let width = |r: &Rung| (r.b[0] - r.a[0]).hypot(r.b[1] - r.a[1]);
+    let first = planned_tip(rungs[0].a, rungs[0].b, rungs[0].tilt, ALPHA);
+    push(
+        t,
+        (first.0, first.1 - 0.2, first.2, first.3),
+        0.0,
+        false,
+        0.0,
+    );
+    t += PERIOD;
+    let mut u = 0.0; // position along the rung sequence, in rungs
+    let last = (rungs.len() - 1) as f64;
+    while u < last {
+        let k0 = (u.floor() as usize).min(rungs.len() - 2);
+        let f = u - k0 as f64;
+        let (r0, r1) = (&rungs[k0], &rungs[k0 + 1]);
+        let lerp = |p: [f64; 2], q: [f64; 2]| [p[0] + f * (q[0] - p[0]), p[1] + f * (q[1] - p[1])];
+        let r = Rung {
+            a: lerp(r0.a, r1.a),
+            b: lerp(r0.b, r1.b),
+            tilt: r0.tilt + f * (r1.tilt - r0.tilt),
+        };
+        let tip = planned_tip(r.a, r.b, r.tilt, ALPHA);
+        push(t, tip, r.tilt, true, width(&r));
+        // Advance the midpoint by v·dt.
+        let step_len = {
+            let (m0, m1) = (mid(r0), mid(r1));
+            (m1[0] - m0[0]).hypot(m1[1] - m0[1]).max(1e-9)
+        };
+        u += k() / width(&r) * PERIOD / step_len;
+        t += PERIOD;
+    }
+    let r = rungs.last().unwrap();
+    let tip = planned_tip(r.a, r.b, r.tilt, ALPHA);
+    push(t, tip, r.tilt, false, 0.0);
+    t += PERIOD;
+    push(t, (tip.0, tip.1 + 0.2, tip.2, tip.3), 0.0, false, 0.0);
+    s
+}
+
+/// A sealed job painting `rungs`, with `glyph` as its true outline.
+pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedGlyph) -> Job {
+    let samples = samples_for(rungs);
+    let duration = *samples.t_s.last().unwrap();
+    let on = samples.paint.iter().filter(|&&p| p == 1).count() as f64 * PERIOD;
+    let mut job = Job {
+        format: FORMAT.into(),
+        version: VERSION,
+        message: message.into(),
+        font: FontRef {
+            name: "synthetic".into(),
+            sha256: String::new(),
+        },
+        robot: Robot::basr(),
+        robot_sha256: String::new(),
+        paint: Paint {
+            fan_angle_rad: ALPHA,
+            flow_m3ps: FLOW,
+            transfer_efficiency: EFF,
+            film_m: FILM,
+            k_m2ps: k(),
+        },
+        control_period_s: PERIOD,
+        layout: Layout {
+            letter_height_m: 1.0,
+            lane_width_m: 3.66,
+            tilt_method: tilt_method.into(),
+            glyphs: vec![glyph],
+        },
+        stations: vec![Station {
+            x_m: 0.0,
+            y_m: 2.5,
+            heading_rad: -PI / 2.0,
+        }],
+        samples,
+        summary: Summary {
+            duration_s: duration,
+            paint_time_s: on,
+            air_time_s: duration - on,
+            strokes: 1,
+            paint_volume_m3: on * FLOW,
+            warnings: vec![],
+        },
+        sha256: String::new(),
+    };
+    job.seal();
+    job
+}
+
+/// A straight bar `w` wide from y = 0 to y = `len`, painted along +y with the
+/// fan across it.
+pub fn straight_job(w: f64, len: f64) -> Job {
+    let n = 50;
+    let rungs: Vec<Rung> = (0..=n)
+        .map(|i| {
+            let y = len * i as f64 / n as f64;
+            Rung {
+                a: [-w / 2.0, y],
+                b: [w / 2.0, y],
+                tilt: 0.0,
+            }
+        })
+        .collect();
+    let glyph = PlacedGlyph {
+        char: "I".into(),
+        line: 0,
+        strokes: vec![PlacedStroke {
+            left: rungs.iter().map(|r| r.a).collect(),
+            right: rungs.iter().map(|r| r.b).collect(),
+        }],
+    };
+    job_with("I", "none", &rungs, glyph)
+}
+
+/// A ring (inner radius `r0`, outer `r1`) round (0, 1), painted once round
+/// with the fan along the radius; `tilt` = 0 or the tilt that evens it
+/// (a constant trapezoid-style tilt given by the caller).
+pub fn ring_job(r0: f64, r1: f64, tilt: f64, method: &str) -> Job {
+    let n = 240;
+    let c = [0.0, 1.0];
+    let rungs: Vec<Rung> = (0..=n)
+        .map(|i| {
+            let phi = 2.0 * PI * i as f64 / n as f64;
+            let (cs, sn) = (phi.cos(), phi.sin());
+            Rung {
+                a: [c[0] + r0 * cs, c[1] + r0 * sn],
+                b: [c[0] + r1 * cs, c[1] + r1 * sn],
+                tilt,
+            }
+        })
+        .collect();
+    let glyph = PlacedGlyph {
+        char: "O".into(),
+        line: 0,
+        strokes: vec![PlacedStroke {
+            left: rungs.iter().map(|r| r.b).collect(),
+            right: rungs.iter().map(|r| r.a).collect(),
+        }],
+    };
+    job_with("O", method, &rungs, glyph)
+}
+
+/// The straight bar painted with a constant tilt `beta` (tip placed by
+/// 001 eq. 2.21–2.24 so the fan still lays the bar's width).
+pub fn tilted_job(w: f64, len: f64, beta: f64) -> Job {
+    let n = 50;
+    let rungs: Vec<Rung> = (0..=n)
+        .map(|i| {
+            let y = len * i as f64 / n as f64;
+            Rung {
+                a: [-w / 2.0, y],
+                b: [w / 2.0, y],
+                tilt: beta,
+            }
+        })
+        .collect();
+    let glyph = PlacedGlyph {
+        char: "I".into(),
+        line: 0,
+        strokes: vec![PlacedStroke {
+            left: rungs.iter().map(|r| r.a).collect(),
+            right: rungs.iter().map(|r| r.b).collect(),
+        }],
+    };
+    job_with("I", "trapezoid", &rungs, glyph)
+}
