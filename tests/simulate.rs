@@ -164,3 +164,21 @@ fn failed_output_leaves_no_file() {
         .code(2);
     assert!(!csv.exists());
 }
+
+#[test]
+fn robot_with_impossible_dynamics_exits_2_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    let text = basr::robot::BASR_TOML.replace("cylinder_rod_m = 0.034925", "cylinder_rod_m = 0.09");
+    assert_ne!(text, basr::robot::BASR_TOML);
+    let robot = dir.path().join("bad.toml");
+    std::fs::write(&robot, text).unwrap();
+    basr()
+        .arg("simulate")
+        .arg(&job)
+        .arg("--robot")
+        .arg(&robot)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("dynamics.cylinder_rod_m"));
+}

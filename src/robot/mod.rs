@@ -5,6 +5,7 @@
 //! The description is an immutable model (DESIGN: model apart from state);
 //! every computation takes it by reference.
 
+pub mod dynamics;
 pub mod fourbar;
 pub mod kinematics;
 pub mod workspace;
@@ -12,6 +13,7 @@ pub mod workspace;
 mod describe;
 
 pub use describe::{check_source, RobotError};
+pub use dynamics::Dynamics;
 pub use fourbar::FourBar;
 pub use kinematics::{Actuators, Encoders, Joints, NozzlePose, RateViolation, Unreachable};
 pub use workspace::Region;
@@ -39,6 +41,8 @@ pub struct Robot {
     pub encoders: EncoderScales,
     pub hydraulics: Hydraulics,
     pub limits: Limits,
+    /// What `basr simulate` needs beyond kinematics (src/robot/dynamics.rs).
+    pub dynamics: Dynamics,
 }
 
 /// The pantograph arm on its rotating base (SPEC §2, §4).

@@ -1,0 +1,136 @@
+//! The `[dynamics]` table of a robot description: the numbers `basr
+//! simulate` needs beyond kinematics — inertias, cylinder geometry, valve,
+//! friction and relief data, servo bandwidths, pressure transducers. Most
+//! have no source in the seeds and are marked *assumed* in robots/basr.toml.
+
+use serde::{Deserialize, Serialize};
+
+/// Dynamic parameters of the arm, its hydraulics and the end-effector servos.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Dynamics {
+    /// Inertia of turntable, motor and cylinder about the base axis.
+    pub base_inertia_kgm2: f64,
+    /// End-effector inertia about its own vertical axis.
+    pub ee_inertia_kgm2: f64,
+    /// Extension cylinder bore and rod diameters.
+    pub cylinder_bore_m: f64,
+    pub cylinder_rod_m: f64,
+    /// Oil volume of each cylinder chamber at its end of stroke (hoses, ports).
+    pub cylinder_dead_volume_m3: f64,
+    /// Cylinder servovalve flow gain B_v·K_s per unit command (m³/(s·√Pa)).
+    pub cylinder_valve_flow_gain: f64,
+    /// Cylinder valve command limit (the motor's is `hydraulics.command_limit`).
+    pub cylinder_command_limit: f64,
+    /// Servovalve time constant τ_s of both valves (000 eq. 17).
+    pub valve_time_constant_s: f64,
+    /// Commands written when the controller refuses to drive (000 §III `zero1`, `zero2`).
+    pub motor_off_command: f64,
+    pub cylinder_off_command: f64,
+    /// Internal leakage across piston and motor (m³/(s·Pa)).
+    pub leakage_m3_per_s_pa: f64,
+    /// Motor friction per 000 eq. 10: viscous (N·m·s/rad), Coulomb and
+    /// stiction (N·m), stiction decay speed (rad/s).
+    pub motor_viscous_nms_per_rad: f64,
+    pub motor_coulomb_nm: f64,
+    pub motor_stiction_nm: f64,
+    pub motor_stribeck_rad_per_s: f64,
+    /// Cylinder friction per 000 eq. 10: viscous (N·s/m), Coulomb and
+    /// stiction (N), stiction decay speed (m/s).
+    pub cylinder_viscous_ns_per_m: f64,
+    pub cylinder_coulomb_n: f64,
+    pub cylinder_stiction_n: f64,
+    pub cylinder_stribeck_m_per_s: f64,
+    /// Use the pressure-dependent bulk modulus of 000 eq. 13 (else constant).
+    pub bulk_law_eq13: bool,
+    /// Pressure constant p_κ of eq. 13.
+    pub bulk_p_kappa_pa: f64,
+    /// Relief-valve cracking pressure p_max and flow gain G (000 eq. 14).
+    pub relief_pa: f64,
+    pub relief_gain_m3_per_s_pa: f64,
+    /// Position-loop bandwidths of the end-effector servos (rad/s).
+    pub yaw_bandwidth_rad_per_s: f64,
+    pub tilt_bandwidth_rad_per_s: f64,
+    pub vertical_bandwidth_rad_per_s: f64,
+    /// Damping ratio of the end-effector linkage's lateral mode.
+    pub linkage_damping_ratio: f64,
+    /// Pressure transducers: Pa per volt and offset volts (000 §III), ADC step (V).
+    pub pressure_pa_per_volt: f64,
+    pub pressure_offset_v: f64,
+    pub adc_step_v: f64,
+}
+
+impl Dynamics {
+    /// What is wrong: (dotted field, message).
+    pub fn problems(&self) -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        let positive: [(&str, f64); 19] = [
+            ("base_inertia_kgm2", self.base_inertia_kgm2),
+            ("ee_inertia_kgm2", self.ee_inertia_kgm2),
+            ("cylinder_bore_m", self.cylinder_bore_m),
+            ("cylinder_rod_m", self.cylinder_rod_m),
+            ("cylinder_dead_volume_m3", self.cylinder_dead_volume_m3),
+            ("cylinder_valve_flow_gain", self.cylinder_valve_flow_gain),
+            ("cylinder_command_limit", self.cylinder_command_limit),
+            ("valve_time_constant_s", self.valve_time_constant_s),
+            ("motor_stribeck_rad_per_s", self.motor_stribeck_rad_per_s),
+            ("cylinder_stribeck_m_per_s", self.cylinder_stribeck_m_per_s),
+            ("bulk_p_kappa_pa", self.bulk_p_kappa_pa),
+            ("relief_pa", self.relief_pa),
+            ("relief_gain_m3_per_s_pa", self.relief_gain_m3_per_s_pa),
+            ("yaw_bandwidth_rad_per_s", self.yaw_bandwidth_rad_per_s),
+            ("tilt_bandwidth_rad_per_s", self.tilt_bandwidth_rad_per_s),
+            (
+                "vertical_bandwidth_rad_per_s",
+                self.vertical_bandwidth_rad_per_s,
+            ),
+            ("linkage_damping_ratio", self.linkage_damping_ratio),
+            ("pressure_pa_per_volt", self.pressure_pa_per_volt),
+            ("adc_step_v", self.adc_step_v),
+        ];
+        for (name, v) in positive {
+            if v <= 0.0 {
+                out.push((
+                    format!("dynamics.{name}"),
+                    format!("must be positive (got {v})"),
+                ));
+            }
+        }
+        let non_negative: [(&str, f64); 7] = [
+            ("leakage_m3_per_s_pa", self.leakage_m3_per_s_pa),
+            ("motor_viscous_nms_per_rad", self.motor_viscous_nms_per_rad),
+            ("motor_coulomb_nm", self.motor_coulomb_nm),
+            ("motor_stiction_nm", self.motor_stiction_nm),
+            ("cylinder_viscous_ns_per_m", self.cylinder_viscous_ns_per_m),
+            ("cylinder_coulomb_n", self.cylinder_coulomb_n),
+            ("cylinder_stiction_n", self.cylinder_stiction_n),
+        ];
+        for (name, v) in non_negative {
+            if v < 0.0 {
+                out.push((
+                    format!("dynamics.{name}"),
+                    format!("must not be negative (got {v})"),
+                ));
+            }
+        }
+        if self.cylinder_rod_m >= self.cylinder_bore_m {
+            out.push((
+                "dynamics.cylinder_rod_m".into(),
+                format!(
+                    "the rod ({} m) must be thinner than the bore ({} m)",
+                    self.cylinder_rod_m, self.cylinder_bore_m
+                ),
+            ));
+        }
+        if self.valve_time_constant_s > 0.0 && self.valve_time_constant_s < 1.0e-3 {
+            out.push((
+                "dynamics.valve_time_constant_s".into(),
+                format!(
+                    "{} s is below the simulator's 1 ms integration step; use at least 0.001",
+                    self.valve_time_constant_s
+                ),
+            ));
+        }
+        out
+    }
+}
