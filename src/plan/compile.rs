@@ -14,8 +14,8 @@ use crate::job::{
 use crate::layout::{self, LayoutError, Marking, Overrides};
 use crate::plan::knots::{self, HeightLaw, Knot, PaintLaw, Rung, TiltMethod};
 use crate::plan::order::{self, Ends};
-use crate::plan::sampling::{self, joints_of, q_of, JointLimits, RunPath, Q};
 use crate::plan::stations::{self, StationError};
+use crate::plan::timing;
 use crate::robot::kinematics::wrap_pi;
 use crate::robot::{Joints, NozzlePose, Robot};
 
@@ -122,12 +122,21 @@ pub enum CompileError {
     Timing(String),
 }
 
+/// Knots keep this far inside the tilt range, so the time law's smooth
+/// joint curves between knots (which may overshoot a knot held at a limit
+/// by a fraction of a milliradian) stay inside it. assumed: forty times the
+/// overshoot seen on STOP. (Narrow rungs hold the vertical joint at the
+/// bottom of its stroke, where a millimetre of inset would widen the fan
+/// past 3 %; there the setpoints are clamped instead, see `clamp_to_range`.)
+const TILT_INSET_RAD: f64 = 0.0044; // 0.25°
+/// Largest joint overshoot `clamp_to_range` absorbs (m or rad); anything
+/// larger is a planning error.
+const CLAMP_MAX: f64 = 1e-3;
+
 /// Outline samples of `layout.glyphs` are at most this far apart (m).
 const OUTLINE_STEP_M: f64 = 0.01;
 /// Points of one item offered to the station planner (its knots, thinned).
 const STATION_POINTS_PER_ITEM: usize = 32;
-/// A painting sample slower than planned by more than this is reported.
-const SLOW_REPORT_FACTOR: f64 = 1.03;
 
 /// One continuous gun-on path: a stroke, or one pass of a wide stroke.
 struct Item {
@@ -191,7 +200,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
         Tilt::Quadrilateral => TiltMethod::Quadrilateral,
     };
     let tl = &robot.limits.tilt_rad;
-    let max_tilt = tl.max.min(-tl.min).max(0.0);
+    let max_tilt = (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0);
     let mut glyphs = vec![];
     let mut items: Vec<Item> = vec![];
     let mut strokes: Vec<StrokeInfo> = vec![];
@@ -308,7 +317,6 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     // Per station: order, inverse kinematics, time law, setpoints.
     let stow = stow_joints(&robot);
     let mut samples = Samples::default();
-    let mut slow: Vec<Option<(f64, f64, [f64; 2])>> = vec![None; strokes.len()];
     for (si, station) in splan.stations.iter().enumerate() {
         let mine: Vec<usize> = (0..items.len())
             .filter(|&i| splan.station_of[i] == si)
@@ -376,13 +384,47 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                 paint_last: b,
             });
         }
-        let timed = time_station(&robot, &stow, &runs, req.period_s)?;
+        let t0 = samples.len() as f64 * req.period_s;
+        let (mut timed, slows) = time_station(&robot, &stow, &runs, req)?;
+        clamp_to_range(&robot, &mut timed)?;
         // The robot's own check of the sampled joints (speeds, accelerations,
         // ball-nut speed): no job that breaks a limit leaves the compiler.
         let js: Vec<Joints> = timed.iter().map(|p| joints_of(&p.q)).collect();
         robot
             .check_rates(&js, req.period_s)
             .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
+        for (k, j) in js.iter().enumerate() {
+            robot.check_joints(j).map_err(|e| {
+                CompileError::Timing(format!(
+                    "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
+                     range ({e})"
+                ))
+            })?;
+        }
+        for sl in slows {
+            let run = &runs[sl.run];
+            let k = &run.knots[sl.knot.min(run.knots.len() - 1)];
+            let info = &strokes[run.stroke];
+            warnings.push(Warning {
+                kind: "slowed".into(),
+                stroke: run.stroke as i64,
+                t_s: Some(t0 + sl.t_s),
+                factor: Some(sl.factor),
+                message: format!(
+                    "stroke {} (letter {} of line {}): {} slows the nozzle below the painting \
+                     speed near ({:.3}, {:.3}) m at t = {:.2} s; the film there is up to {:.2}× \
+                     the target",
+                    run.stroke,
+                    info.ch,
+                    info.line + 1,
+                    sl.binding,
+                    k.tip.x,
+                    k.tip.y,
+                    t0 + sl.t_s,
+                    sl.factor
+                ),
+            });
+        }
         append_samples(
             &mut samples,
             &robot,
@@ -390,32 +432,8 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             si as u32,
             &runs,
             &timed,
-            req,
-            &mut slow,
+            req.period_s,
         );
-    }
-
-    for (sid, s) in slow.iter().enumerate() {
-        if let Some((factor, t, p)) = s {
-            let info = &strokes[sid];
-            warnings.push(Warning {
-                kind: "slowed".into(),
-                stroke: sid as i64,
-                t_s: Some(*t),
-                factor: Some(*factor),
-                message: format!(
-                    "stroke {sid} (letter {} of line {}): a joint limit slows the nozzle below \
-                     the painting speed near ({:.3}, {:.3}) m at t = {:.2} s; the film there is \
-                     up to {:.2}× the target",
-                    info.ch,
-                    info.line + 1,
-                    p[0],
-                    p[1],
-                    t,
-                    factor
-                ),
-            });
-        }
     }
 
     let n = samples.len();
@@ -750,16 +768,68 @@ fn with_leads(ks: &[Knot], lead: f64) -> (Vec<Knot>, usize, usize) {
     (out, LEAD_KNOTS, LEAD_KNOTS + n - 1)
 }
 
-/// One station's timed samples: joints, and for painting runs the run index
-/// and path parameter.
+/// One station's timed samples: joints, the painting run (if any) whose
+/// motion the sample belongs to, its path parameter, and the run whose gun
+/// is commanded on.
 struct Timed {
     q: Q,
     run: Option<usize>,
     s: f64,
+    gun: Option<usize>,
+}
+
+/// Joint vector in `Limits::NAMES` order.
+type Q = [f64; 5];
+
+/// Jerk limit of every joint, as a multiple of its acceleration limit.
+/// assumed: no source gives jerk limits; each joint reaches its
+/// acceleration limit in 0.1 s (as the yaw servo reaches 30°/s in 0.1 s,
+/// SPEC §4).
+const JERK_PER_ACC: f64 = 10.0;
+
+/// The robot's joint limits for the time law. The tilt's ball nut has its
+/// own speed limit (SPEC §4: 0.11 m/s), applied as a tilt-rate limit at the
+/// steepest nut travel per radian of the tilt range.
+fn timing_limits(robot: &Robot) -> timing::JointLimits<5> {
+    let mut vel = [0.0; 5];
+    let mut acc = [0.0; 5];
+    for (j, (_, l)) in robot.limits.iter().enumerate() {
+        vel[j] = l.max_vel;
+        acc[j] = l.max_acc;
+    }
+    let t = &robot.limits.tilt_rad;
+    let fb = &robot.end_effector.fourbar;
+    let steepest = (0..=60)
+        .filter_map(|k| fb.nut_rate_m_per_rad(t.min + (t.max - t.min) * k as f64 / 60.0))
+        .map(f64::abs)
+        .fold(0.0, f64::max);
+    if steepest > 0.0 {
+        // 1 % below, for the nut rate between the sampled tilts.
+        vel[4] = vel[4].min(robot.end_effector.tilt_nut_max_speed_mps / (steepest * 1.01));
+    }
+    timing::JointLimits {
+        vel,
+        acc,
+        jerk: std::array::from_fn(|j| acc[j] * JERK_PER_ACC),
+    }
+}
+
+fn q_of(j: &Joints) -> Q {
+    j.values()
+}
+
+fn joints_of(q: &Q) -> Joints {
+    Joints {
+        base_rot_rad: q[0],
+        extension_m: q[1],
+        vertical_m: q[2],
+        ee_yaw_rad: q[3],
+        tilt_rad: q[4],
+    }
 }
 
 /// Nozzle arc length at each knot (road frame, m), strictly increasing:
-/// knots closer than 0.1 mm are nudged apart so the spline stays defined.
+/// knots closer than 0.1 mm are nudged apart so the path stays defined.
 fn arc_lengths(ks: &[Knot]) -> Vec<f64> {
     let mut s = Vec::with_capacity(ks.len());
     let mut acc = 0.0;
@@ -773,58 +843,158 @@ fn arc_lengths(ks: &[Knot]) -> Vec<f64> {
     s
 }
 
-/// Time a station: stow → (air → run)* → air → stow, at `period`.
+/// A slowdown of one painting run, for the job's warnings.
+struct Slow {
+    run: usize,
+    factor: f64,
+    knot: usize,
+    t_s: f64,
+    binding: String,
+}
+
+/// Time a station: stow → (air → run)* → air → stow, sampled at `period`
+/// from t = 0 (`plan::timing`). Gun windows from the runs' first and last
+/// painting knots, shifted by the lead and lag.
 fn time_station(
     robot: &Robot,
     stow: &Joints,
     runs: &[Run],
-    period: f64,
-) -> Result<Vec<Timed>, CompileError> {
-    let limits = JointLimits::of(robot);
-    let mut out = vec![Timed {
-        q: q_of(stow),
-        run: None,
-        s: 0.0,
-    }];
+    req: &CompileRequest,
+) -> Result<(Vec<Timed>, Vec<Slow>), CompileError> {
+    let limits = timing_limits(robot);
+    let options = timing::PathOptions::default();
+    let err = |what: String| CompileError::Timing(what);
+    let mut pieces = vec![];
+    // Piece index of each run, and each run's arc lengths.
+    let mut run_piece = vec![];
+    let mut arcs = vec![];
     let mut at = q_of(stow);
-    for (ri, run) in runs.iter().enumerate() {
-        let path = RunPath {
-            q: run.joints.iter().map(q_of).collect(),
-            s: arc_lengths(&run.knots),
-            v_max: run.knots.iter().map(|k| k.speed_mps).collect(),
-        };
-        let first = path.q[0];
-        for a in sampling::air_move(&at, &first, &limits, period) {
-            out.push(Timed {
-                q: a.q,
-                run: None,
-                s: 0.0,
-            });
-        }
-        let timed = sampling::time_run(&path, &limits, period)
-            .map_err(|e| CompileError::Timing(format!("stroke {}: {e}", run.stroke)))?;
-        // The run's first sample is its start, where the air move ended.
-        for p in timed.into_iter().skip(1) {
-            out.push(Timed {
-                q: p.q,
-                run: Some(ri),
-                s: p.s,
-            });
-        }
-        at = *path.q.last().unwrap_or(&first);
+    for run in runs {
+        let s = arc_lengths(&run.knots);
+        let points: Vec<timing::PathPoint<5>> = run
+            .knots
+            .iter()
+            .zip(&run.joints)
+            .enumerate()
+            .map(|(i, (k, j))| timing::PathPoint {
+                s_m: s[i],
+                q: q_of(j),
+                // Leads are gun-off run-ups: as fast as the joints allow.
+                max_speed_mps: (run.paint_first..=run.paint_last)
+                    .contains(&i)
+                    .then_some(k.speed_mps),
+            })
+            .collect();
+        let first = points[0].q;
+        pieces.push(
+            timing::air_move(at, first, &limits, options.margin)
+                .map_err(|e| err(format!("air move to stroke {}: {e}", run.stroke)))?,
+        );
+        run_piece.push(pieces.len());
+        pieces.push(
+            timing::time_path(&points, &limits, &options)
+                .map_err(|e| err(format!("stroke {}: {e}", run.stroke)))?,
+        );
+        at = points[points.len() - 1].q;
+        arcs.push(s);
     }
-    for a in sampling::air_move(&at, &q_of(stow), &limits, period) {
+    pieces.push(
+        timing::air_move(at, q_of(stow), &limits, options.margin)
+            .map_err(|e| err(format!("air move to the stow pose: {e}")))?,
+    );
+    let sampled = timing::resample(&pieces, req.period_s).map_err(|e| err(e.to_string()))?;
+    let starts: Vec<f64> = pieces
+        .iter()
+        .scan(0.0, |acc, p| {
+            let s0 = *acc;
+            *acc += p.duration_s();
+            Some(s0)
+        })
+        .collect();
+    // Gun command windows (station time).
+    let windows: Vec<(f64, f64)> = runs
+        .iter()
+        .enumerate()
+        .map(|(ri, run)| {
+            let p = &pieces[run_piece[ri]];
+            let (on, off) = p.gun_times(
+                arcs[ri][run.paint_first],
+                arcs[ri][run.paint_last],
+                req.gun_lead_s,
+                req.gun_lag_s,
+            );
+            let t0 = starts[run_piece[ri]];
+            (t0 + on, t0 + off)
+        })
+        .collect();
+    let mut out = Vec::with_capacity(sampled.len());
+    let mut w = 0usize;
+    for k in 0..sampled.len() {
+        let t = sampled.t_s[k];
+        let piece = sampled.piece[k];
+        let run = run_piece.iter().position(|&p| p == piece);
+        while w + 1 < windows.len() && t >= windows[w].1 {
+            w += 1;
+        }
+        let gun = windows
+            .get(w)
+            .filter(|(on, off)| t >= *on && t < *off)
+            .map(|_| w);
         out.push(Timed {
-            q: a.q,
-            run: None,
-            s: 0.0,
+            q: sampled.q[k],
+            run,
+            s: sampled.s[k],
+            gun,
         });
     }
-    Ok(out)
+    let mut slows = vec![];
+    for (ri, &pi) in run_piece.iter().enumerate() {
+        for sd in &pieces[pi].slowdowns {
+            let binding = match sd.binding {
+                timing::Binding::Velocity { joint } => {
+                    format!("the {} speed limit", crate::robot::Limits::NAMES[joint])
+                }
+                timing::Binding::Acceleration { joint } => {
+                    format!(
+                        "the {} acceleration limit",
+                        crate::robot::Limits::NAMES[joint]
+                    )
+                }
+                timing::Binding::Rest => "the run-up from rest".into(),
+            };
+            slows.push(Slow {
+                run: ri,
+                factor: 1.0 / sd.factor.max(1e-9),
+                knot: sd.worst_waypoint,
+                t_s: starts[pi] + pieces[pi].time_at(arcs[ri][sd.worst_waypoint]),
+                binding,
+            });
+        }
+    }
+    Ok((out, slows))
+}
+
+/// Clamp setpoints that the smooth joint curves carry a hair past a joint's
+/// range (a knot held at the bottom of the vertical stroke); the rate
+/// checks that follow still see every clamped sample.
+fn clamp_to_range(robot: &Robot, timed: &mut [Timed]) -> Result<(), CompileError> {
+    for (k, p) in timed.iter_mut().enumerate() {
+        for (j, (name, l)) in robot.limits.iter().enumerate() {
+            let v = p.q[j];
+            let c = v.clamp(l.min, l.max);
+            if (c - v).abs() > CLAMP_MAX {
+                return Err(CompileError::Timing(format!(
+                    "setpoint {k}: {name} = {v} leaves its range [{}, {}] between knots",
+                    l.min, l.max
+                )));
+            }
+            p.q[j] = c;
+        }
+    }
+    Ok(())
 }
 
 /// Append a station's samples to the job's columns.
-#[allow(clippy::too_many_arguments)]
 fn append_samples(
     samples: &mut Samples,
     robot: &Robot,
@@ -832,10 +1002,8 @@ fn append_samples(
     station_index: u32,
     runs: &[Run],
     timed: &[Timed],
-    req: &CompileRequest,
-    slow: &mut [Option<(f64, f64, [f64; 2])>],
+    period: f64,
 ) {
-    let period = req.period_s;
     let t0 = samples.len();
     let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
     // Nozzle in the road frame at every sample.
@@ -848,27 +1016,6 @@ fn append_samples(
             (pose, r, yaw)
         })
         .collect();
-    // Gun windows: sample times of reaching each run's first and last
-    // painting knot, shifted by the lead and lag.
-    let lead_n = (req.gun_lead_s / period).round() as isize;
-    let lag_n = (req.gun_lag_s / period).round() as isize;
-    let mut gun = vec![None::<usize>; timed.len()];
-    for (ri, run) in runs.iter().enumerate() {
-        let (s_on, s_off) = (arcs[ri][run.paint_first], arcs[ri][run.paint_last]);
-        let inside: Vec<usize> = (0..timed.len())
-            .filter(|&i| {
-                timed[i].run == Some(ri) && timed[i].s >= s_on - 1e-12 && timed[i].s < s_off
-            })
-            .collect();
-        let (Some(&a), Some(&b)) = (inside.first(), inside.last()) else {
-            continue;
-        };
-        let on = (a as isize - lead_n).max(0) as usize;
-        let off = (b as isize - lag_n).max(on as isize - 1);
-        for g in gun.iter_mut().take((off + 1).max(0) as usize).skip(on) {
-            *g = Some(ri);
-        }
-    }
     for (i, p) in timed.iter().enumerate() {
         let (pose, r, yaw) = &poses[i];
         let j = joints_of(&p.q);
@@ -882,22 +1029,16 @@ fn append_samples(
         };
         let act = robot.actuators(&j);
         let enc = robot.encoders(&j);
-        let (stroke, paint, width) = match gun[i] {
+        let (stroke, paint, width) = match p.gun {
             Some(ri) => {
                 let run = &runs[ri];
+                // Before the run's motion (a gun lead) the width is the first rung's.
                 let s = if p.run == Some(ri) {
                     p.s
                 } else {
                     arcs[ri][run.paint_first]
                 };
-                let (w, v) = interp_knot(&run.knots, &arcs[ri], s);
-                if speed > 0.0 && v / speed > SLOW_REPORT_FACTOR && p.run == Some(ri) {
-                    let f = v / speed;
-                    let slot = &mut slow[run.stroke];
-                    if slot.is_none_or(|(g, _, _)| f > g) {
-                        *slot = Some((f, (t0 + i) as f64 * period, *r));
-                    }
-                }
+                let (w, _) = interp_knot(&run.knots, &arcs[ri], s);
                 (run.stroke as i64, 1u8, w)
             }
             None => (-1, 0u8, 0.0),

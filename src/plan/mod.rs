@@ -4,7 +4,6 @@
 pub mod compile;
 pub mod knots;
 pub mod order;
-pub mod sampling;
 pub mod stations;
 pub mod tilt;
 pub mod timing;
