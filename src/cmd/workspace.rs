@@ -157,6 +157,21 @@ fn draw(region: &Region, boundary: &[[f64; 2]]) -> Document {
     .set("y", 20)
     .set("font-family", "sans-serif")
     .set("font-size", 14);
+    let text = |x: f64, y: f64, t: &str| {
+        Text::new(t.to_string())
+            .set("x", x)
+            .set("y", y)
+            .set("font-family", "sans-serif")
+            .set("font-size", 12)
+    };
+    // A 1 m scale bar in the lower left corner.
+    let bar = Line::new()
+        .set("x1", 10)
+        .set("y1", h - 15.0)
+        .set("x2", 10.0 + scale)
+        .set("y2", h - 15.0)
+        .set("stroke", "#333")
+        .set("stroke-width", 3);
     Document::new()
         .set("viewBox", (0, 0, w.ceil(), h.ceil()))
         .set("width", w.ceil())
@@ -166,4 +181,9 @@ fn draw(region: &Region, boundary: &[[f64; 2]]) -> Document {
         .add(axis_y)
         .add(base)
         .add(label)
+        .add(bar)
+        .add(text(10.0, h - 22.0, "1 m"))
+        .add(text(px(x1 + pad) - 30.0, py(0.0) - 6.0, "x_B"))
+        .add(text(px(0.0) + 6.0, 34.0, "y_B"))
+        .add(text(px(0.0) + 8.0, py(0.0) - 8.0, "base axis"))
 }
