@@ -56,6 +56,7 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
         // A robot file with a TOML syntax error: report where, not "unknown".
         None if basr::robot::looks_like_robot(text) => basr::robot::check_source(text, origin),
         Some(Kind::Font) => basr::font::check_source(text, origin),
+        None if basr::font::looks_like_font(text) => basr::font::check_source(text, origin),
         None => vec![format!(
             "{origin}: not a basr file: expected a job (JSON) or a font, robot or marking \
              description (TOML with a [glyphs], [arm] or [marking] table)"

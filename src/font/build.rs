@@ -31,6 +31,24 @@ impl Locator<'_> {
         let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
         format!("{}:{line}:{col}", self.origin)
     }
+
+    /// A context string `origin:line:col: what` without its location, so a
+    /// more precise location can be put in front.
+    pub fn what<'c>(&self, ctx: &'c str) -> &'c str {
+        let Some(rest) = ctx.strip_prefix(self.origin) else {
+            return ctx;
+        };
+        let mut parts = rest.splitn(4, ':');
+        match (parts.next(), parts.next(), parts.next(), parts.next()) {
+            (Some(""), Some(l), Some(c), Some(tail))
+                if l.chars().all(|d| d.is_ascii_digit())
+                    && c.chars().all(|d| d.is_ascii_digit()) =>
+            {
+                tail.trim_start()
+            }
+            _ => ctx,
+        }
+    }
 }
 
 pub fn build(text: &str, origin: &str) -> Built {
@@ -199,8 +217,9 @@ fn stroke(
                     format!("is unknown; the font defines: {}", known.join(", "))
                 };
                 problems.push(format!(
-                    "{}: {ctx}: primitive `{}` {why}",
+                    "{}: {}: primitive `{}` {why}",
                     loc.at(name.span().start),
+                    loc.what(ctx),
                     name.get_ref()
                 ));
                 return None;
@@ -237,7 +256,12 @@ fn edge(
     let mut starts: Vec<usize> = Vec::new(); // source offset of each built segment
     let mut ok = true;
     for (i, s) in segs.iter().enumerate() {
-        let sctx = format!("{} segment {}", ctx, i + 1);
+        let sctx = format!(
+            "{}: {} segment {}",
+            loc.at(s.span().start),
+            loc.what(ctx),
+            i + 1
+        );
         match segment(s.get_ref(), loc, &sctx, problems) {
             Some(v) => {
                 for seg in v {
@@ -270,7 +294,7 @@ fn edge(
                 _ => "",
             };
             match at {
-                Some(at) => problems.push(format!("{at}: {ctx}: {e}{fix}")),
+                Some(at) => problems.push(format!("{at}: {}: {e}{fix}", loc.what(ctx))),
                 None => problems.push(format!("{ctx}: {e}")),
             }
             None
@@ -391,17 +415,19 @@ fn transform(
         let given: Vec<Affine> = options.into_iter().flatten().collect();
         if given.len() != 1 {
             problems.push(format!(
-                "{}: {ctx}: each transform step needs exactly one of translate, scale, \
+                "{}: {}: each transform step needs exactly one of translate, scale, \
                  rotate_deg, mirror_x, mirror_y, rotate180, shear_x",
-                loc.at(step.span().start)
+                loc.at(step.span().start),
+                loc.what(ctx)
             ));
             return None;
         }
         let step_m = given[0];
         if !step_m.is_finite() || step_m.determinant().abs() < 1e-12 {
             problems.push(format!(
-                "{}: {ctx}: this transform step collapses the plane (zero scale?)",
-                loc.at(step.span().start)
+                "{}: {}: this transform step collapses the plane (zero scale?)",
+                loc.at(step.span().start),
+                loc.what(ctx)
             ));
             return None;
         }

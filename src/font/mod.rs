@@ -14,6 +14,7 @@
 //! edge), so no area is painted twice.
 
 mod build;
+mod sheet;
 mod spec;
 mod validate;
 
@@ -25,6 +26,7 @@ use kurbo::{Affine, Point};
 
 use crate::geom::Edge;
 
+pub use sheet::alphabet_sheet;
 pub use validate::{overlap_area, validate_stroke, Limits, DEFAULT_LIMITS};
 
 /// Width of the letter grid in font units (001 §2.3: 25 × 4 grid).
@@ -194,6 +196,15 @@ impl Font {
     pub fn chars(&self) -> String {
         self.glyphs.keys().collect()
     }
+}
+
+/// Whether a text that does not parse as TOML was meant to be a font (so
+/// `basr check` reports its syntax error rather than "unknown file").
+pub fn looks_like_font(text: &str) -> bool {
+    text.lines().any(|l| {
+        let l = l.trim_start();
+        l.starts_with("[[glyphs.") || l.starts_with("[glyphs.") || l.starts_with("[primitives.")
+    })
 }
 
 /// Every problem in a font source (empty when valid), for `basr check`.

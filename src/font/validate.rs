@@ -52,6 +52,12 @@ fn signed_area(poly: &[Point]) -> f64 {
         .sum::<f64>()
 }
 
+fn outline_of(l: &[Point], r: &[Point]) -> Vec<Point> {
+    let mut pts = r.to_vec();
+    pts.extend(l.iter().rev());
+    pts
+}
+
 /// Problems of one stroke alone.
 pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
     let mut out = vec![];
@@ -108,7 +114,7 @@ pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
         ));
     }
     // Left on the left: the outline (right forward, left back) turns CCW.
-    if out.is_empty() && signed_area(&s.outline(lim.samples)) <= 0.0 {
+    if out.is_empty() && signed_area(&outline_of(&l, &r)) <= 0.0 {
         out.push(format!(
             "{ctx}: its `left` edge lies on the right of the direction of travel; \
              swap `left` and `right` (or reverse both edges)"

@@ -2,7 +2,68 @@
 
 use kurbo::{Affine, Point, Vec2};
 
-use super::{Curve, GeomError, Segment, DEFAULT_ACCURACY, JOIN_TOLERANCE};
+use super::{integrate, Curve, GeomError, Segment, DEFAULT_ACCURACY, JOIN_TOLERANCE};
+
+/// Parameters at increasing arc lengths `targets` along one segment, each
+/// within `accuracy` of its target: safeguarded Newton steps on
+/// s(t) = ∫|P'|, integrating only the short stretch from the previous
+/// solution, so a run of targets costs little more than one arc length.
+pub(crate) fn params_at_lengths(seg: &Segment, targets: &[f64], accuracy: f64) -> Vec<f64> {
+    if let Segment::Line(_) = seg {
+        return targets
+            .iter()
+            .map(|&s| seg.inv_arclen(s, accuracy))
+            .collect();
+    }
+    let speed = |t: f64| seg.deriv(t).hypot();
+    let tol = 0.1 * accuracy;
+    let total = integrate(speed, 0.0, 1.0, tol);
+    // (t, s(t)) of the last solution: integrals start from here.
+    let (mut t0, mut s0) = (0.0, 0.0);
+    let mut out = Vec::with_capacity(targets.len());
+    for &target in targets {
+        if target <= 0.0 {
+            out.push(0.0);
+            continue;
+        }
+        if target >= total {
+            out.push(1.0);
+            continue;
+        }
+        let (mut lo, mut hi) = (t0, 1.0);
+        let mut t = (t0 + (target - s0) / speed(t0).max(1e-12)).clamp(lo, hi);
+        let mut found = t;
+        for _ in 0..60 {
+            let s = if t >= t0 {
+                s0 + integrate(speed, t0, t, tol)
+            } else {
+                s0 - integrate(speed, t, t0, tol)
+            };
+            let err = s - target;
+            found = t;
+            if err.abs() <= accuracy {
+                break;
+            }
+            if err > 0.0 {
+                hi = t;
+            } else {
+                lo = t;
+            }
+            let v = speed(t);
+            let newton = t - err / v.max(1e-12);
+            t = if v > 1e-12 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+        }
+        // Move the integration anchor forward to the solution.
+        s0 += integrate(speed, t0, found, tol);
+        t0 = found;
+        out.push(found);
+    }
+    out
+}
 
 /// A continuous chain of segments, each starting where the previous ends
 /// (within [`JOIN_TOLERANCE`]). Lengths are measured once, at
@@ -124,8 +185,24 @@ impl Edge {
         let total = self.length();
         let mut out = Vec::with_capacity(n + 1);
         out.push(self.start());
-        for k in 1..n {
-            out.push(self.point_at_length(total * k as f64 / n as f64));
+        // Targets are increasing: hand each segment the ones that fall in it
+        // and let it walk forward (much cheaper than n independent searches).
+        let mut k = 1;
+        for (i, seg) in self.segments.iter().enumerate() {
+            let mut local = Vec::new();
+            while k < n {
+                let s = total * k as f64 / n as f64;
+                if s > self.cum[i + 1] && i + 1 < self.segments.len() {
+                    break;
+                }
+                local.push(s - self.cum[i]);
+                k += 1;
+            }
+            if local.is_empty() {
+                continue;
+            }
+            let ts = params_at_lengths(seg, &local, DEFAULT_ACCURACY);
+            out.extend(ts.into_iter().map(|t| seg.eval(t)));
         }
         out.push(self.end());
         out

@@ -49,23 +49,24 @@ pub trait Curve {
     }
 }
 
-/// What can be wrong when building an edge.
+/// What can be wrong when building an edge. `index` counts segments from 0;
+/// the messages count from 1.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum GeomError {
     /// An edge needs at least one segment.
     #[error("an edge needs at least one segment")]
     Empty,
     /// A coordinate or parameter is NaN or infinite.
-    #[error("segment {index} has a non-finite coordinate or parameter")]
+    #[error("segment {} has a non-finite coordinate or parameter", index + 1)]
     NotFinite { index: usize },
     /// A segment has (nearly) zero length.
-    #[error("segment {index} has zero length (its points coincide)")]
+    #[error("segment {} has zero length (its points coincide)", index + 1)]
     Degenerate { index: usize },
     /// Two consecutive segments do not meet.
     #[error(
-        "segment {index} starts at ({:.6}, {:.6}) but the previous one ends at ({:.6}, {:.6}) \
+        "segment {} starts at ({:.6}, {:.6}) but the previous one ends at ({:.6}, {:.6}) \
          ({gap:.3e} apart); an edge must be continuous",
-        start.x, start.y, prev_end.x, prev_end.y
+        index + 1, start.x, start.y, prev_end.x, prev_end.y
     )]
     Gap {
         index: usize,

@@ -1,0 +1,264 @@
+//! End-to-end: `basr glyphs` and `basr check` on the embedded font and on
+//! malformed font files.
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use std::path::PathBuf;
+
+const HEAD: &str = r#"name = "test"
+grid = { width = 4, height = 25 }
+
+[primitives.bar]
+left = [{ line = [[0, 0], [0, 1]] }]
+right = [{ line = [[1, 0], [1, 1]] }]
+"#;
+
+fn basr() -> Command {
+    Command::cargo_bin("basr").expect("binary built")
+}
+
+fn font_file(dir: &tempfile::TempDir, body: &str) -> PathBuf {
+    let path = dir.path().join("font.toml");
+    std::fs::write(&path, format!("{HEAD}{body}")).expect("write font");
+    path
+}
+
+/// The line (1-based) of the first occurrence of `needle` in the file.
+fn line_of(path: &PathBuf, needle: &str) -> usize {
+    let text = std::fs::read_to_string(path).expect("read");
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("needle in file")
+        + 1
+}
+
+/// `glyphs --font FILE` refuses it with exit 2 and `check FILE` with exit 1,
+/// both naming file:line and the words given.
+fn refused(body: &str, place: &str, words: &[&str]) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = font_file(&dir, body);
+    let line = line_of(&path, place);
+    let at = format!("{}:{line}:", path.display());
+    let out = basr()
+        .args(["glyphs", "--font"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(err.contains(&at), "expected {at} in:\n{err}");
+    for w in words {
+        assert!(err.contains(w), "expected {w:?} in:\n{err}");
+    }
+    assert!(!err.contains("panicked"), "{err}");
+    basr()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains(at));
+}
+
+#[test]
+fn valid_small_font_lists_its_glyph() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = font_file(
+        &dir,
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\ntransform = [{ scale = [1, 25] }, { translate = [1.5, 0] }]\n",
+    );
+    basr()
+        .args(["glyphs", "--font"])
+        .arg(&path)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("I  1 strokes"));
+    basr().arg("check").arg(&path).assert().success();
+}
+
+#[test]
+fn bad_syntax() {
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\ntransform = []\n",
+        "primitive = \"bar",
+        &[],
+    );
+}
+
+#[test]
+fn unknown_primitive() {
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"stem\"\n",
+        "primitive = \"stem\"",
+        &["glyph 'I' stroke 1", "`stem` is unknown", "bar"],
+    );
+}
+
+#[test]
+fn crossing_edges() {
+    refused(
+        "[[glyphs.X.strokes]]\nleft = [{ line = [[0, 0], [3, 25]] }]\nright = [{ line = [[3, 0], [0, 25]] }]\n",
+        "[[glyphs.X.strokes]]",
+        &["glyph 'X' stroke 1", "cross"],
+    );
+}
+
+#[test]
+fn degenerate_stroke() {
+    // Edges 0.1 apart: every rung is below the minimum.
+    refused(
+        "[[glyphs.I.strokes]]\nleft = [{ line = [[2, 0], [2, 25]] }]\nright = [{ line = [[2.1, 0], [2.1, 25]] }]\n",
+        "[[glyphs.I.strokes]]",
+        &["glyph 'I' stroke 1", "start cap", "degenerate"],
+    );
+    // A segment of zero length.
+    refused(
+        "[[glyphs.I.strokes]]\nleft = [{ line = [[1, 0], [1, 25]] }]\nright = [\n  { line = [[2, 0], [2, 25]] },\n  { line = [[2, 25], [2, 25]] },\n]\n",
+        "[[2, 25], [2, 25]]",
+        &["glyph 'I' stroke 1 right edge: segment 2 has zero length"],
+    );
+}
+
+#[test]
+fn gap_in_an_edge() {
+    refused(
+        "[[glyphs.L.strokes]]\nleft = [{ line = [[0, 0], [0, 10]] }, { line = [[0, 11], [0, 25]] }]\nright = [{ line = [[1, 0], [1, 25]] }]\n",
+        "[[0, 11], [0, 25]]",
+        &["glyph 'L' stroke 1 left edge", "continuous"],
+    );
+}
+
+#[test]
+fn overlapping_strokes() {
+    refused(
+        "[[glyphs.H.strokes]]\nprimitive = \"bar\"\ntransform = [{ scale = [1, 25] }]\n\n\
+         [[glyphs.H.strokes]] # second\nprimitive = \"bar\"\ntransform = [{ scale = [2, 25] }, { translate = [0.5, 0] }]\n",
+        "# second",
+        &["glyph 'H' stroke 2", "overlaps stroke 1"],
+    );
+}
+
+#[test]
+fn swapped_edges_and_off_grid() {
+    refused(
+        "[[glyphs.I.strokes]]\nleft = [{ line = [[2, 0], [2, 25]] }]\nright = [{ line = [[1, 0], [1, 25]] }]\n",
+        "[[glyphs.I.strokes]]",
+        &["swap `left` and `right`"],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\ntransform = [{ scale = [1, 25] }, { translate = [3.5, 0] }]\n",
+        "[[glyphs.I.strokes]]",
+        &["off the 4 × 25 grid"],
+    );
+}
+
+#[test]
+fn missing_file_is_exit_2() {
+    basr()
+        .args(["glyphs", "--font", "/nonexistent/font.toml"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("/nonexistent/font.toml"));
+}
+
+#[test]
+fn embedded_font_has_the_whole_alphabet() {
+    let out = basr()
+        .args(["glyphs", "--json"])
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    assert!(out.stderr.is_empty(), "--json keeps stderr quiet");
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(v["font"]["name"], "basr");
+    let glyphs = v["glyphs"].as_array().expect("glyphs");
+    let chars: String = glyphs
+        .iter()
+        .map(|g| g["char"].as_str().unwrap_or("?"))
+        .collect();
+    assert_eq!(chars, "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ");
+    let font = basr::font::Font::embedded();
+    for g in glyphs {
+        let ch = g["char"]
+            .as_str()
+            .and_then(|c| c.chars().next())
+            .expect("char");
+        let glyph = font.glyph(ch).expect("glyph in font");
+        let strokes = g["strokes"].as_array().expect("strokes");
+        assert_eq!(strokes.len(), glyph.strokes.len());
+        for (s, fs) in strokes.iter().zip(&glyph.strokes) {
+            for (side, edge) in [("left", &fs.left), ("right", &fs.right)] {
+                let pts: Vec<(f64, f64)> = s[side]
+                    .as_array()
+                    .expect("edge")
+                    .iter()
+                    .map(|p| {
+                        (
+                            p[0].as_f64().unwrap_or(f64::NAN),
+                            p[1].as_f64().unwrap_or(f64::NAN),
+                        )
+                    })
+                    .collect();
+                assert!(pts.len() >= 50);
+                for (x, y) in &pts {
+                    assert!(
+                        (-0.3..=4.3).contains(x) && (-0.3..=25.3).contains(y),
+                        "{x} {y}"
+                    );
+                }
+                // The font's equal-arc-length samples, end to end.
+                let want = edge.sample(pts.len());
+                for ((x, y), w) in pts.iter().zip(&want) {
+                    assert!((x - w.x).abs() < 1e-12 && (y - w.y).abs() < 1e-12);
+                }
+                assert!((pts[0].0 - edge.start().x).abs() < 1e-12);
+                let last = pts[pts.len() - 1];
+                assert!((last.1 - edge.end().y).abs() < 1e-12);
+            }
+        }
+    }
+}
+
+#[test]
+fn svg_sheet_is_written_and_parses() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("alphabet.svg");
+    basr()
+        .args(["glyphs", "--svg"])
+        .arg(&path)
+        .assert()
+        .success();
+    let data = std::fs::read(&path).expect("svg written");
+    let tree =
+        resvg::usvg::Tree::from_data(&data, &resvg::usvg::Options::default()).expect("valid SVG");
+    assert!(tree.size().width() > 100.0);
+    let text = String::from_utf8_lossy(&data);
+    // One outline path per stroke of the font.
+    let strokes: usize = basr::font::Font::embedded()
+        .glyphs()
+        .map(|g| g.strokes.len())
+        .sum();
+    assert_eq!(text.matches("<path").count(), strokes);
+}
+
+#[test]
+fn no_sheet_left_behind_on_a_bad_font() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let font = font_file(&dir, "[[glyphs.I.strokes]]\nprimitive = \"nope\"\n");
+    let svg = dir.path().join("sheet.svg");
+    basr()
+        .args(["glyphs", "--font"])
+        .arg(&font)
+        .arg("--svg")
+        .arg(&svg)
+        .assert()
+        .code(2);
+    assert!(!svg.exists());
+}
+
+#[test]
+fn check_accepts_the_shipped_font_file() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fonts/basr.toml");
+    basr().arg("check").arg(&path).assert().success();
+}
