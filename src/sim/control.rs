@@ -122,8 +122,10 @@ pub mod gains {
     /// the oil column is almost undamped (valve without leakage, 000 eq.
     /// 15–16), so position feedback alone cannot be stiff; feeding back the
     /// *change* of the measured force adds the damping an underlapped valve
-    /// would. The high-pass leaves the static holding force alone.
-    pub const EXT_KPF: f64 = 4.0e-6;
+    /// would. The high-pass leaves the static holding force alone. Raised
+    /// from 4e-6 to 1e-5 on the compiled "SO" job, where the cylinder's
+    /// 10 Hz resonance rang the 9 Hz end-effector linkage up to 8.7 mm.
+    pub const EXT_KPF: f64 = 1.0e-5;
     /// Time constant of that high-pass (s).
     pub const PF_TAU: f64 = 0.1;
     /// θ1 PID (valve command per rad), the `/pid` controller, with the flow

@@ -126,6 +126,48 @@ fn catmull_rom(v: &[f64], dt: f64, t: f64) -> [f64; 3] {
     ]
 }
 
+/// Tilt from ball-nut travel by a table of the four-bar's exact nut(β):
+/// the robot's own inverse is a root search, too slow for every 5 ms tick.
+struct NutTable {
+    nut: Vec<f64>,
+    beta: Vec<f64>,
+}
+
+impl NutTable {
+    fn new(robot: &crate::robot::Robot) -> NutTable {
+        let l = &robot.limits.tilt_rad;
+        let span = l.min.abs().max(l.max.abs()) * 1.2;
+        let n = 2000;
+        let mut pts: Vec<(f64, f64)> = (0..=n)
+            .filter_map(|i| {
+                let b = -span + 2.0 * span * i as f64 / n as f64;
+                robot.end_effector.fourbar.nut_m(b).map(|x| (x, b))
+            })
+            .collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        NutTable {
+            nut: pts.iter().map(|p| p.0).collect(),
+            beta: pts.iter().map(|p| p.1).collect(),
+        }
+    }
+
+    /// β for nut travel `x` (clamped to the table; 0 without a table).
+    fn tilt(&self, x: f64) -> f64 {
+        let n = self.nut.len();
+        if n < 2 {
+            return 0.0;
+        }
+        let i = self.nut.partition_point(|&v| v < x).clamp(1, n - 1);
+        let (x0, x1) = (self.nut[i - 1], self.nut[i]);
+        let t = if x1 > x0 {
+            ((x - x0) / (x1 - x0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        self.beta[i - 1] + t * (self.beta[i] - self.beta[i - 1])
+    }
+}
+
 /// Check the job's numbers before running (bad input → exit 2).
 fn validate_job(job: &Job) -> Result<(), SimError> {
     let s = &job.samples;
@@ -334,6 +376,7 @@ pub fn simulate(
         }
     };
 
+    let nut_to_tilt = NutTable::new(&job.robot);
     let m0 = measure(&state, 0.0, reference_at(0.0));
     let mut ctrl = opts.controller.build(model, &m0);
 
@@ -394,13 +437,13 @@ pub fn simulate(
         // the nozzle now: the robot's FK of the actual joints plus the
         // linkage's deflection
         let r_act = model.arm.r_of_x(state[plant::X]);
-        let tilt = job.robot.tilt_from_nut(nut.pos).unwrap_or(f64::NAN);
+        let tilt = nut_to_tilt.tilt(nut.pos);
         let pose = job.robot.fk(&Joints {
             base_rot_rad: state[plant::TH],
             extension_m: r_act,
             vertical_m: vert.pos,
             ee_yaw_rad: yaw.pos,
-            tilt_rad: if tilt.is_finite() { tilt } else { 0.0 },
+            tilt_rad: tilt,
         });
         let act = [pose.x_m + state[plant::DX], pose.y_m + state[plant::DY]];
         let des = reference.nozzle[0];
@@ -489,18 +532,22 @@ pub fn simulate(
         let yaw_ref = catmull_rom(&s.ee_yaw_rad, dt_job, t);
         let nut_ref = catmull_rom(&s.tilt_nut_m, dt_job, t);
         let vert_ref = catmull_rom(&s.vertical_m, dt_job, t);
+        // travel is judged on the job's own rows (the interpolation may
+        // overshoot a setpoint that sits exactly on a limit), within 1 µm
         let ax = &model.tilt_nut;
+        let nut_row = s.tilt_nut_m[row];
         lim_tilt.hit(
-            (ax.min - nut_ref[0]).max(nut_ref[0] - ax.max),
-            nut_ref[0],
-            if nut_ref[0] < ax.min { ax.min } else { ax.max },
+            (ax.min - nut_row).max(nut_row - ax.max) - 1e-6,
+            nut_row,
+            if nut_row < ax.min { ax.min } else { ax.max },
             &place,
         );
         let av = &model.vertical;
+        let vert_row = s.vertical_m[row];
         lim_vert.hit(
-            (av.min - vert_ref[0]).max(vert_ref[0] - av.max),
-            vert_ref[0],
-            if vert_ref[0] < av.min { av.min } else { av.max },
+            (av.min - vert_row).max(vert_row - av.max) - 1e-6,
+            vert_row,
+            if vert_row < av.min { av.min } else { av.max },
             &place,
         );
         axis.yaw_rad = axis.yaw_rad.max((yaw.pos - yaw_ref[0]).abs());
@@ -703,6 +750,16 @@ mod tests {
         }
         let r = catmull_rom(&v, 0.032, 0.1);
         assert!((r[1] - 2.0).abs() < 1e-9 && r[2].abs() < 1e-6);
+    }
+
+    #[test]
+    fn nut_table_inverts_the_four_bar() {
+        let r = crate::robot::Robot::basr();
+        let t = NutTable::new(&r);
+        for b in [-0.25, -0.1, 0.0, 0.07, 0.26] {
+            let x = r.end_effector.fourbar.nut_m(b).unwrap();
+            assert!((t.tilt(x) - b).abs() < 1e-6, "{b}");
+        }
     }
 
     #[test]
