@@ -1,7 +1,6 @@
 //! End-to-end tests of `basr compile` through the binary: files written,
 //! CSV columns, time base, painting speed, joint limits, forward kinematics,
-//! determinism, multi-line layout and bad input. (BOSE: the letters the
-//! embedded font has so far; STOP once it has T and P.)
+//! determinism, multi-line layout and bad input.
 
 use std::path::Path;
 
@@ -42,36 +41,18 @@ fn files(dir: &Path) -> Vec<String> {
 
 #[test]
 fn stop_writes_job_and_csv_with_spec_columns() {
-    let dir = compile_in(&["BOSE", "--csv", "stop.csv"]);
-    assert_eq!(files(dir.path()), vec!["BOSE.job.json", "stop.csv"]);
-    let job = read_job(&dir.path().join("BOSE.job.json"));
-    assert_eq!(job.message, "BOSE");
+    let dir = compile_in(&["STOP", "--csv", "stop.csv"]);
+    assert_eq!(files(dir.path()), vec!["STOP.job.json", "stop.csv"]);
+    let job = read_job(&dir.path().join("STOP.job.json"));
+    assert_eq!(job.message, "STOP");
     assert_eq!(job.stations.len(), 1);
     // CSV: header = SPEC §3 columns in order, one row per sample.
     let mut rdr = csv::Reader::from_path(dir.path().join("stop.csv")).unwrap();
     let header: Vec<String> = rdr.headers().unwrap().iter().map(String::from).collect();
     let spec = [
-        "t_s",
-        "station",
-        "stroke",
-        "paint",
-        "x_m",
-        "y_m",
-        "z_m",
-        "yaw_rad",
-        "tilt_rad",
-        "speed_mps",
-        "width_m",
-        "base_rot_rad",
-        "extension_m",
-        "cylinder_m",
-        "vertical_m",
-        "ee_yaw_rad",
-        "tilt_nut_m",
-        "enc_base",
-        "enc_extension",
-        "enc_yaw",
-        "enc_tilt",
+        "t_s", "station", "stroke", "paint", "x_m", "y_m", "z_m", "yaw_rad", "tilt_rad",
+        "speed_mps", "width_m", "base_rot_rad", "extension_m", "cylinder_m", "vertical_m",
+        "ee_yaw_rad", "tilt_nut_m", "enc_base", "enc_extension", "enc_yaw", "enc_tilt",
         "enc_vertical",
     ];
     assert_eq!(&header[..spec.len()], &spec[..]);
@@ -86,8 +67,7 @@ fn stop_writes_job_and_csv_with_spec_columns() {
         assert_eq!(t, i as f64 * p, "row {i}");
         // Encoder columns are integers.
         for c in 17..22 {
-            r[c].parse::<i64>()
-                .unwrap_or_else(|_| panic!("row {i} col {c}: {}", &r[c]));
+            r[c].parse::<i64>().unwrap_or_else(|_| panic!("row {i} col {c}: {}", &r[c]));
         }
     }
     // Painting and air both happen, and the summary adds up.
@@ -100,9 +80,25 @@ fn stop_writes_job_and_csv_with_spec_columns() {
 }
 
 #[test]
+fn painting_speed_times_width_is_k() {
+    let dir = compile_in(&["STOP"]);
+    let job = read_job(&dir.path().join("STOP.job.json"));
+    let s = &job.samples;
+    let k = job.paint.k_m2ps;
+    let painting: Vec<usize> = (0..s.len()).filter(|&i| s.paint[i] == 1).collect();
+    assert!(painting.len() > 100);
+    let good = painting
+        .iter()
+        .filter(|&&i| (s.speed_mps[i] * s.width_m[i] / k - 1.0).abs() <= 0.03)
+        .count();
+    let share = good as f64 / painting.len() as f64;
+    assert!(share >= 0.90, "only {:.1} % of painting samples within 3 % of k", share * 100.0);
+}
+
+#[test]
 fn no_sample_breaks_a_joint_limit() {
-    let dir = compile_in(&["BOSE"]);
-    let job = read_job(&dir.path().join("BOSE.job.json"));
+    let dir = compile_in(&["STOP"]);
+    let job = read_job(&dir.path().join("STOP.job.json"));
     let s = &job.samples;
     let p = job.control_period_s;
     let cols: [(&str, &Vec<f64>); 5] = [
@@ -115,30 +111,21 @@ fn no_sample_breaks_a_joint_limit() {
     for (name, col) in cols {
         let l = job.robot.limits.get(name).unwrap();
         for (i, &v) in col.iter().enumerate() {
-            assert!(
-                v >= l.min - 1e-9 && v <= l.max + 1e-9,
-                "{name} row {i}: {v}"
-            );
+            assert!(v >= l.min - 1e-9 && v <= l.max + 1e-9, "{name} row {i}: {v}");
         }
         for i in 1..col.len() {
             let v = (col[i] - col[i - 1]) / p;
-            assert!(
-                v.abs() <= l.max_vel * (1.0 + 1e-9),
-                "{name} row {i}: vel {v}"
-            );
+            assert!(v.abs() <= l.max_vel * (1.0 + 1e-9), "{name} row {i}: vel {v}");
         }
         for i in 1..col.len() - 1 {
             let a = (col[i + 1] - 2.0 * col[i] + col[i - 1]) / (p * p);
-            assert!(
-                a.abs() <= l.max_acc * (1.0 + 1e-9),
-                "{name} row {i}: acc {a}"
-            );
+            assert!(a.abs() <= l.max_acc * (1.0 + 1e-9), "{name} row {i}: acc {a}");
         }
     }
     // The same through `basr check`.
     basr()
         .current_dir(dir.path())
-        .args(["check", "BOSE.job.json"])
+        .args(["check", "STOP.job.json"])
         .assert()
         .success();
 }
@@ -149,8 +136,8 @@ fn no_sample_breaks_a_joint_limit() {
 /// nozzle upright the tip is on the yaw axis at height top − vertical.
 #[test]
 fn independent_fk_reproduces_the_nozzle_columns() {
-    let dir = compile_in(&["BOSE", "--tilt", "none", "--csv", "s.csv"]);
-    let job = read_job(&dir.path().join("BOSE.job.json"));
+    let dir = compile_in(&["STOP", "--tilt", "none", "--csv", "s.csv"]);
+    let job = read_job(&dir.path().join("STOP.job.json"));
     let a2 = job.robot.arm.a2_m;
     let top = job.robot.end_effector.tip_height_top_m;
     let mut rdr = csv::Reader::from_path(dir.path().join("s.csv")).unwrap();
@@ -168,20 +155,11 @@ fn independent_fk_reproduces_the_nozzle_columns() {
         let rot = st.heading_rad - std::f64::consts::FRAC_PI_2;
         let x = st.x_m + w[0] * rot.cos() - w[1] * rot.sin();
         let y = st.y_m + w[0] * rot.sin() + w[1] * rot.cos();
-        assert!(
-            (x - f(4)).abs() < 1e-9 && (y - f(5)).abs() < 1e-9,
-            "xy {x} {y} vs {} {}",
-            f(4),
-            f(5)
-        );
+        assert!((x - f(4)).abs() < 1e-9 && (y - f(5)).abs() < 1e-9, "xy {x} {y} vs {} {}", f(4), f(5));
         assert!((top - vert - f(6)).abs() < 1e-9);
         let psi = th + yaw + rot;
         let d = (psi - f(7)).rem_euclid(std::f64::consts::TAU);
-        assert!(
-            d < 1e-9 || (std::f64::consts::TAU - d) < 1e-9,
-            "yaw {psi} vs {}",
-            f(7)
-        );
+        assert!(d < 1e-9 || (std::f64::consts::TAU - d) < 1e-9, "yaw {psi} vs {}", f(7));
         n += 1;
     }
     assert!(n > 100);
@@ -189,9 +167,9 @@ fn independent_fk_reproduces_the_nozzle_columns() {
 
 #[test]
 fn two_compiles_give_identical_bytes() {
-    let a = compile_in(&["BOSE", "--csv", "s.csv", "--adept", "s.v2"]);
-    let b = compile_in(&["BOSE", "--csv", "s.csv", "--adept", "s.v2"]);
-    for f in ["BOSE.job.json", "s.csv", "s.v2"] {
+    let a = compile_in(&["STOP", "--csv", "s.csv", "--adept", "s.v2"]);
+    let b = compile_in(&["STOP", "--csv", "s.csv", "--adept", "s.v2"]);
+    for f in ["STOP.job.json", "s.csv", "s.v2"] {
         let x = std::fs::read(a.path().join(f)).unwrap();
         let y = std::fs::read(b.path().join(f)).unwrap();
         assert!(x == y, "{f} differs between two compiles");
@@ -203,18 +181,15 @@ fn two_compiles_give_identical_bytes() {
 
 #[test]
 fn stop_ahead_stacks_two_lines_with_the_gap_and_two_stations() {
-    let dir = compile_in(&["BOSE OBES"]);
-    let job = read_job(&dir.path().join("BOSE_OBES.job.json"));
-    assert_eq!(job.message, "BOSE\nOBES");
+    let dir = compile_in(&["STOP AHEAD"]);
+    let job = read_job(&dir.path().join("STOP_AHEAD.job.json"));
+    assert_eq!(job.message, "STOP\nAHEAD");
     let g = &job.layout.glyphs;
     let line = |l: usize| -> String {
-        g.iter()
-            .filter(|x| x.line == l)
-            .map(|x| x.char.as_str())
-            .collect()
+        g.iter().filter(|x| x.line == l).map(|x| x.char.as_str()).collect()
     };
-    assert_eq!(line(0), "BOSE");
-    assert_eq!(line(1), "OBES");
+    assert_eq!(line(0), "STOP");
+    assert_eq!(line(1), "AHEAD");
     let ys = |l: usize| {
         g.iter()
             .filter(move |x| x.line == l)
@@ -224,13 +199,9 @@ fn stop_ahead_stacks_two_lines_with_the_gap_and_two_stations() {
     };
     let top0 = ys(0).fold(f64::NEG_INFINITY, f64::max);
     let bottom1 = ys(1).fold(f64::INFINITY, f64::min);
-    assert!(
-        bottom1 - top0 >= 4.0 * 2.44 - 1e-6,
-        "clear gap {}",
-        bottom1 - top0
-    );
+    assert!(bottom1 - top0 >= 4.0 * 2.44 - 1e-6, "clear gap {}", bottom1 - top0);
     assert!(job.stations.len() >= 2);
-    // BOSE, nearest the driver, is painted first.
+    // STOP, nearest the driver, is painted first.
     assert_eq!(job.samples.station[0], 0);
     assert!(job.stations[0].y_m < job.stations[1].y_m);
 }
@@ -238,10 +209,11 @@ fn stop_ahead_stacks_two_lines_with_the_gap_and_two_stations() {
 #[test]
 fn marking_file_and_short_period() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("m.toml"), "[marking]\nlines = [\"BOSE\"]\n").unwrap();
+    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/stop.toml");
     basr()
         .current_dir(dir.path())
-        .args(["compile", "--marking", "m.toml"])
+        .args(["compile", "--marking"])
+        .arg(&marking)
         .args(["--period-s", "0.005", "-o", "fine.json", "--json"])
         .assert()
         .success()
@@ -271,27 +243,21 @@ fn refused(args: &[&str], says: &str) {
 
 #[test]
 fn bad_input_exits_2_and_leaves_nothing() {
-    refused(&["BO*E"], "unsupported character '*' at position 3");
+    refused(&["ST*P"], "unsupported character '*' at position 3");
     refused(&["   "], "empty");
-    refused(&["BOSEBOSEBOSEBOSEBOSE"], "lane is 3.660 m");
-    refused(
-        &["BOSE", "--letter-height", "7", "--lane-width", "20"],
-        "cannot be reached",
-    );
-    refused(&["BOSE OBES", "--line-gap", "2"], "at least");
+    refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.660 m");
+    refused(&["STOP", "--letter-height", "7", "--lane-width", "20"], "cannot be reached");
+    refused(&["STOP AHEAD", "--line-gap", "2"], "at least");
     let dir = tempfile::tempdir().unwrap();
     let m = dir.path().join("m.toml");
-    std::fs::write(&m, "[marking]\nlines = [\"BOSE\"]\ncolour = \"white\"\n").unwrap();
-    refused(
-        &["--marking", m.to_str().unwrap()],
-        "line 3, column 1: unknown field `colour`",
-    );
+    std::fs::write(&m, "[marking]\nlines = [\"STOP\"]\ncolour = \"white\"\n").unwrap();
+    refused(&["--marking", m.to_str().unwrap()], "line 3, column 1: unknown field `colour`");
 }
 
 #[test]
 fn check_reports_a_sample_over_a_limit() {
-    let dir = compile_in(&["BOSE"]);
-    let mut job = read_job(&dir.path().join("BOSE.job.json"));
+    let dir = compile_in(&["STOP"]);
+    let mut job = read_job(&dir.path().join("STOP.job.json"));
     let i = job.samples.len() / 2;
     job.samples.extension_m[i] += 0.2; // a jump no arm makes in 32 ms
     job.seal();
