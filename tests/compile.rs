@@ -50,9 +50,27 @@ fn stop_writes_job_and_csv_with_spec_columns() {
     let mut rdr = csv::Reader::from_path(dir.path().join("stop.csv")).unwrap();
     let header: Vec<String> = rdr.headers().unwrap().iter().map(String::from).collect();
     let spec = [
-        "t_s", "station", "stroke", "paint", "x_m", "y_m", "z_m", "yaw_rad", "tilt_rad",
-        "speed_mps", "width_m", "base_rot_rad", "extension_m", "cylinder_m", "vertical_m",
-        "ee_yaw_rad", "tilt_nut_m", "enc_base", "enc_extension", "enc_yaw", "enc_tilt",
+        "t_s",
+        "station",
+        "stroke",
+        "paint",
+        "x_m",
+        "y_m",
+        "z_m",
+        "yaw_rad",
+        "tilt_rad",
+        "speed_mps",
+        "width_m",
+        "base_rot_rad",
+        "extension_m",
+        "cylinder_m",
+        "vertical_m",
+        "ee_yaw_rad",
+        "tilt_nut_m",
+        "enc_base",
+        "enc_extension",
+        "enc_yaw",
+        "enc_tilt",
         "enc_vertical",
     ];
     assert_eq!(&header[..spec.len()], &spec[..]);
@@ -67,7 +85,8 @@ fn stop_writes_job_and_csv_with_spec_columns() {
         assert_eq!(t, i as f64 * p, "row {i}");
         // Encoder columns are integers.
         for c in 17..22 {
-            r[c].parse::<i64>().unwrap_or_else(|_| panic!("row {i} col {c}: {}", &r[c]));
+            r[c].parse::<i64>()
+                .unwrap_or_else(|_| panic!("row {i} col {c}: {}", &r[c]));
         }
     }
     // Painting and air both happen, and the summary adds up.
@@ -92,7 +111,11 @@ fn painting_speed_times_width_is_k() {
         .filter(|&&i| (s.speed_mps[i] * s.width_m[i] / k - 1.0).abs() <= 0.03)
         .count();
     let share = good as f64 / painting.len() as f64;
-    assert!(share >= 0.90, "only {:.1} % of painting samples within 3 % of k", share * 100.0);
+    assert!(
+        share >= 0.90,
+        "only {:.1} % of painting samples within 3 % of k",
+        share * 100.0
+    );
 }
 
 #[test]
@@ -111,15 +134,24 @@ fn no_sample_breaks_a_joint_limit() {
     for (name, col) in cols {
         let l = job.robot.limits.get(name).unwrap();
         for (i, &v) in col.iter().enumerate() {
-            assert!(v >= l.min - 1e-9 && v <= l.max + 1e-9, "{name} row {i}: {v}");
+            assert!(
+                v >= l.min - 1e-9 && v <= l.max + 1e-9,
+                "{name} row {i}: {v}"
+            );
         }
         for i in 1..col.len() {
             let v = (col[i] - col[i - 1]) / p;
-            assert!(v.abs() <= l.max_vel * (1.0 + 1e-9), "{name} row {i}: vel {v}");
+            assert!(
+                v.abs() <= l.max_vel * (1.0 + 1e-9),
+                "{name} row {i}: vel {v}"
+            );
         }
         for i in 1..col.len() - 1 {
             let a = (col[i + 1] - 2.0 * col[i] + col[i - 1]) / (p * p);
-            assert!(a.abs() <= l.max_acc * (1.0 + 1e-9), "{name} row {i}: acc {a}");
+            assert!(
+                a.abs() <= l.max_acc * (1.0 + 1e-9),
+                "{name} row {i}: acc {a}"
+            );
         }
     }
     // The same through `basr check`.
@@ -155,11 +187,20 @@ fn independent_fk_reproduces_the_nozzle_columns() {
         let rot = st.heading_rad - std::f64::consts::FRAC_PI_2;
         let x = st.x_m + w[0] * rot.cos() - w[1] * rot.sin();
         let y = st.y_m + w[0] * rot.sin() + w[1] * rot.cos();
-        assert!((x - f(4)).abs() < 1e-9 && (y - f(5)).abs() < 1e-9, "xy {x} {y} vs {} {}", f(4), f(5));
+        assert!(
+            (x - f(4)).abs() < 1e-9 && (y - f(5)).abs() < 1e-9,
+            "xy {x} {y} vs {} {}",
+            f(4),
+            f(5)
+        );
         assert!((top - vert - f(6)).abs() < 1e-9);
         let psi = th + yaw + rot;
         let d = (psi - f(7)).rem_euclid(std::f64::consts::TAU);
-        assert!(d < 1e-9 || (std::f64::consts::TAU - d) < 1e-9, "yaw {psi} vs {}", f(7));
+        assert!(
+            d < 1e-9 || (std::f64::consts::TAU - d) < 1e-9,
+            "yaw {psi} vs {}",
+            f(7)
+        );
         n += 1;
     }
     assert!(n > 100);
@@ -186,7 +227,10 @@ fn stop_ahead_stacks_two_lines_with_the_gap_and_two_stations() {
     assert_eq!(job.message, "STOP\nAHEAD");
     let g = &job.layout.glyphs;
     let line = |l: usize| -> String {
-        g.iter().filter(|x| x.line == l).map(|x| x.char.as_str()).collect()
+        g.iter()
+            .filter(|x| x.line == l)
+            .map(|x| x.char.as_str())
+            .collect()
     };
     assert_eq!(line(0), "STOP");
     assert_eq!(line(1), "AHEAD");
@@ -199,7 +243,11 @@ fn stop_ahead_stacks_two_lines_with_the_gap_and_two_stations() {
     };
     let top0 = ys(0).fold(f64::NEG_INFINITY, f64::max);
     let bottom1 = ys(1).fold(f64::INFINITY, f64::min);
-    assert!(bottom1 - top0 >= 4.0 * 2.44 - 1e-6, "clear gap {}", bottom1 - top0);
+    assert!(
+        bottom1 - top0 >= 4.0 * 2.44 - 1e-6,
+        "clear gap {}",
+        bottom1 - top0
+    );
     assert!(job.stations.len() >= 2);
     // STOP, nearest the driver, is painted first.
     assert_eq!(job.samples.station[0], 0);
@@ -246,12 +294,18 @@ fn bad_input_exits_2_and_leaves_nothing() {
     refused(&["ST*P"], "unsupported character '*' at position 3");
     refused(&["   "], "empty");
     refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.660 m");
-    refused(&["STOP", "--letter-height", "7", "--lane-width", "20"], "cannot be reached");
+    refused(
+        &["STOP", "--letter-height", "7", "--lane-width", "20"],
+        "cannot be reached",
+    );
     refused(&["STOP AHEAD", "--line-gap", "2"], "at least");
     let dir = tempfile::tempdir().unwrap();
     let m = dir.path().join("m.toml");
     std::fs::write(&m, "[marking]\nlines = [\"STOP\"]\ncolour = \"white\"\n").unwrap();
-    refused(&["--marking", m.to_str().unwrap()], "line 3, column 1: unknown field `colour`");
+    refused(
+        &["--marking", m.to_str().unwrap()],
+        "line 3, column 1: unknown field `colour`",
+    );
 }
 
 #[test]
