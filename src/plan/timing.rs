@@ -7,8 +7,9 @@
 //! length in the road plane (m, strictly increasing; the caller computes
 //! it from the knots' tip positions), so the limit `max_speed_mps` is the
 //! painting speed v = k / w of 001 eq. 2.6 as a bound on ds/dt. Between
-//! waypoints the joints follow a C¹ cubic Hermite curve in s (tangents by
-//! the three-point rule; local, so no ringing far from a kink).
+//! waypoints the joints follow a C¹ shape-preserving cubic in s (PCHIP,
+//! Fritsch & Carlson 1980): no overshoot between waypoints, so a joint held
+//! at its position limit over a stretch (a tilt clamped at ±15°) stays there.
 //!
 //! The speed profile is found as TOPP-RA does (Pham & Pham 2018): with
 //! x = ṡ² and u = s̈ on a grid in s, the joint constraints
@@ -63,6 +64,10 @@ pub const DEFAULT_MAX_STEP_M: f64 = 0.01;
 
 /// Painting speeds count as met within this fraction.
 const SLOW_TOLERANCE: f64 = 1e-3;
+
+/// Share of the next point's largest ṡ² that each step must still reach
+/// where it can (assumed: ½; see the backward pass in `time_path`).
+const FLOOR_SHARE: f64 = 0.5;
 
 /// Speeds are capped here (m/s of s) where no joint moves along the path.
 const SPEED_CAP: f64 = 1e3;
@@ -186,7 +191,7 @@ pub struct State<const N: usize> {
     pub sd: f64,
 }
 
-/// Cubic Hermite interpolation of the waypoints in s.
+/// Shape-preserving cubic Hermite interpolation (PCHIP) of the waypoints in s.
 #[derive(Clone, Debug)]
 struct Spline<const N: usize> {
     s: Vec<f64>,
@@ -195,6 +200,8 @@ struct Spline<const N: usize> {
 }
 
 impl<const N: usize> Spline<N> {
+    // Index loops read like the formulas (per joint j, per waypoint k).
+    #[allow(clippy::needless_range_loop)]
     fn new(points: &[PathPoint<N>]) -> Self {
         let n = points.len();
         let s: Vec<f64> = points.iter().map(|p| p.s_m).collect();
@@ -203,20 +210,40 @@ impl<const N: usize> Spline<N> {
             let h = s[k + 1] - s[k];
             std::array::from_fn(|j| (q[k + 1][j] - q[k][j]) / h)
         };
-        let m = (0..n)
-            .map(|k| {
-                if k == 0 {
-                    slope(0)
-                } else if k == n - 1 {
-                    slope(n - 2)
+        let mut m = vec![[0.0; N]; n];
+        for j in 0..N {
+            let d = |k: usize| slope(k)[j];
+            let h = |k: usize| s[k + 1] - s[k];
+            if n == 2 {
+                m[0][j] = d(0);
+                m[1][j] = d(0);
+                continue;
+            }
+            for k in 1..n - 1 {
+                let (d0, d1) = (d(k - 1), d(k));
+                // Fritsch–Carlson: flat at a local extremum, else a weighted
+                // harmonic mean of the neighbouring chords.
+                m[k][j] = if d0 * d1 > 0.0 {
+                    let (w1, w2) = (2.0 * h(k) + h(k - 1), h(k) + 2.0 * h(k - 1));
+                    (w1 + w2) / (w1 / d0 + w2 / d1)
                 } else {
-                    // Three-point rule: exact for quadratics on uneven spacing.
-                    let (h0, h1) = (s[k] - s[k - 1], s[k + 1] - s[k]);
-                    let (d0, d1) = (slope(k - 1), slope(k));
-                    std::array::from_fn(|j| (h1 * d0[j] + h0 * d1[j]) / (h0 + h1))
+                    0.0
+                };
+            }
+            // Ends: the one-sided three-point slope, kept shape-preserving.
+            let end = |h0: f64, h1: f64, d0: f64, d1: f64| {
+                let v = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1);
+                if v * d0 <= 0.0 {
+                    0.0
+                } else if d0 * d1 <= 0.0 && v.abs() > 3.0 * d0.abs() {
+                    3.0 * d0
+                } else {
+                    v
                 }
-            })
-            .collect();
+            };
+            m[0][j] = end(h(0), h(1), d(0), d(1));
+            m[n - 1][j] = end(h(n - 2), h(n - 3), d(n - 2), d(n - 3));
+        }
         Spline { s, q, m }
     }
 
@@ -720,29 +747,52 @@ pub fn time_path<const N: usize>(
         })
         .collect();
 
-    // Backward pass: the largest x at each point from which rest at the end stays reachable.
+    // Backward pass: the largest x at each point from which rest at the end
+    // stays reachable. Each step must also arrive with at least FLOOR_SHARE
+    // of the next point's largest x where that is possible: without it the
+    // greedy forward pass can ride the edge of the set, where the only
+    // admissible move is a full stop, and then stall on the final step
+    // (rest to rest takes forever at constant s̈).
     let mut x_max = vec![0.0; n];
+    let mut floor = vec![0.0; n];
     let mut cons: Vec<Con> = Vec::with_capacity(8 * N + 2);
-    for i in (0..n - 1).rev() {
+    let step = |i: usize, x_next_max: f64, x_next_min: f64, cons: &mut Vec<Con>| {
         let (s0, s1) = (grid[i].s, grid[i + 1].s);
         let delta = s1 - s0;
         cons.clear();
-        step_constraints(&spline, grid[i].seg, s0, s1, &acc, &mut cons);
-        cons.push((2.0 * delta, 1.0, x_max[i + 1]));
-        cons.push((-2.0 * delta, -1.0, 0.0));
-        x_max[i] = max_x(&cons, x_vel[i]);
+        step_constraints(&spline, grid[i].seg, s0, s1, &acc, cons);
+        cons.push((2.0 * delta, 1.0, x_next_max));
+        cons.push((-2.0 * delta, -1.0, -x_next_min));
+        delta
+    };
+    let feasible = |cons: &[Con], x: f64| {
+        let (lo, hi) = u_range(cons, x);
+        lo <= hi + 1e-9 * (1.0 + hi.abs().min(lo.abs()))
+    };
+    for i in (0..n - 1).rev() {
+        let want = FLOOR_SHARE * x_max[i + 1];
+        step(i, x_max[i + 1], want, &mut cons);
+        let x = max_x(&cons, x_vel[i]);
+        if want > 0.0 && feasible(&cons, x) {
+            floor[i + 1] = want;
+            x_max[i] = x;
+        } else {
+            step(i, x_max[i + 1], 0.0, &mut cons);
+            x_max[i] = max_x(&cons, x_vel[i]);
+        }
     }
 
     // Forward pass: greatest admissible acceleration at every step.
     let mut x = 0.0_f64;
     let mut t = 0.0_f64;
+    // (ṡ, s̈, t) per grid point, written into the grid after the pass.
+    let mut timed = vec![(0.0, 0.0, 0.0); n];
     for i in 0..n - 1 {
-        let (s0, s1) = (grid[i].s, grid[i + 1].s);
-        let delta = s1 - s0;
-        cons.clear();
-        step_constraints(&spline, grid[i].seg, s0, s1, &acc, &mut cons);
-        cons.push((2.0 * delta, 1.0, x_max[i + 1]));
-        cons.push((-2.0 * delta, -1.0, 0.0));
+        let mut delta = step(i, x_max[i + 1], floor[i + 1], &mut cons);
+        if !feasible(&cons, x) {
+            // From rest the floor may be out of reach in one step.
+            delta = step(i, x_max[i + 1], 0.0, &mut cons);
+        }
         let (lo, hi) = u_range(&cons, x);
         // hi ≥ lo by construction of x_max; rounding can flip them by ~1 ulp.
         let u = if hi.is_finite() {
@@ -752,7 +802,7 @@ pub fn time_path<const N: usize>(
         };
         let x_next = (x + 2.0 * delta * u).clamp(0.0, x_max[i + 1]);
         let (sd0, sd1) = (x.sqrt(), x_next.sqrt());
-        if sd0 + sd1 <= 0.0 {
+        if sd0 + sd1 <= 1e-12 {
             let k = grid[i].seg;
             return Err(TimingError::Stalled {
                 index: k,
@@ -760,15 +810,17 @@ pub fn time_path<const N: usize>(
             });
         }
         let dt = 2.0 * delta / (sd0 + sd1);
-        grid[i].sd = sd0;
         // The step's exact constant acceleration joining the two speeds.
-        grid[i].sdd = (x_next - x) / (2.0 * delta);
-        grid[i].t = t;
+        timed[i] = (sd0, (x_next - x) / (2.0 * delta), t);
         t += dt;
         x = x_next;
     }
-    grid[n - 1].sd = x.sqrt();
-    grid[n - 1].t = t;
+    timed[n - 1] = (x.sqrt(), 0.0, t);
+    for (g, (sd, sdd, tg)) in grid.iter_mut().zip(timed) {
+        g.sd = sd;
+        g.sdd = sdd;
+        g.t = tg;
+    }
 
     let slowdowns = find_slowdowns(points, &spline, &grid, &waypoint_grid, &vel, &acc);
     Ok(Trajectory {
@@ -1149,6 +1201,27 @@ mod tests {
     }
 
     #[test]
+    fn a_joint_held_at_its_bound_never_overshoots() {
+        // Joint 2 climbs to 0.26 and is held there (a tilt clamped at its limit), then comes back.
+        let pts: Vec<PathPoint<3>> = (0..40)
+            .map(|k| {
+                let s = 0.02 * k as f64;
+                let held = (0.05 * k as f64).min(0.26).min(0.05 * (39 - k) as f64);
+                PathPoint {
+                    s_m: s,
+                    q: [s, 0.0, held],
+                    max_speed_mps: Some(0.1),
+                }
+            })
+            .collect();
+        let tr = time_path(&pts, &limits3(), &PathOptions::default()).unwrap();
+        let samples = resample(std::slice::from_ref(&tr), 0.005).unwrap();
+        for q in &samples.q {
+            assert!(q[2] <= 0.26 + 1e-12 && q[2] >= -1e-12, "{q:?}");
+        }
+    }
+
+    #[test]
     fn painting_from_rest_is_reported() {
         let pts = straight_path(20, Some(0.15));
         let tr = time_path(&pts, &limits3(), &PathOptions::default()).unwrap();
@@ -1322,6 +1395,8 @@ mod tests {
             };
             let period = if fine { 0.005 } else { 0.032 };
             let tr = time_path(&pts, &lim, &PathOptions::default()).unwrap();
+            // No stalls: these paths are at most 3 m long at ≥ 0.02 m/s.
+            prop_assert!(tr.duration_s() < 1000.0, "duration {}", tr.duration_s());
             let s = resample(std::slice::from_ref(&tr), period).unwrap();
             check_limits(&s, &lim, period).map_err(TestCaseError::fail)?;
             prop_assert_eq!(s.q[s.len() - 1], pts[pts.len() - 1].q);
