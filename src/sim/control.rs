@@ -139,15 +139,18 @@ pub mod gains {
     pub const ROT_PID_KI: f64 = 0.02;
     pub const ROT_PID_KD: f64 = 0.0;
     /// Acceleration law of SJCT and dynamic inversion:
-    /// θ̈_cmd = θ̈_d + KV·ė + KP·e + KI·∫e, a 2 Hz critically damped loop.
-    pub const ACC_KP: f64 = 160.0;
-    pub const ACC_KV: f64 = 25.0;
+    /// θ̈_cmd = θ̈_d + KV·ė + KP·e + KI·∫e, a 2.5 Hz critically damped loop
+    /// (raised from 2 Hz on STOP: 6.52 → 6.41 mm).
+    pub const ACC_KP: f64 = 250.0;
+    pub const ACC_KV: f64 = 32.0;
     pub const ACC_KI: f64 = 100.0;
     /// SJCT inertia estimate Ā = m·R (seed `A1 = m*q2_a`), kg·m. Stable
-    /// while 0 < Ā/A11 < 2 over the whole reach.
-    pub const SJCT_M: f64 = 150.0;
+    /// while 0 < Ā/A11 < 2 over the whole reach (1.5 retracted, 0.5 at full
+    /// reach). 150 left STOP at 6.41 mm; 250 gives 5.69 mm.
+    pub const SJCT_M: f64 = 250.0;
     /// Low-pass of the time-delay estimate (Hz): quantisation noise of the
-    /// encoder's second difference drops to ≈0.01 rad/s².
+    /// encoder's second difference drops to ≈0.01 rad/s² (20 Hz tripled
+    /// the STOP error).
     pub const TDE_LP_HZ: f64 = 10.0;
     /// Sohl–Bobrow force-error gain k_F (1/s).
     pub const KF: f64 = 60.0;
