@@ -280,59 +280,9 @@ fn write_job(s: &mut Scratch, name: &str, edit: impl FnOnce(&mut basr::job::Job)
     p
 }
 
+/// A small valid job: the simulator's synthetic letter, sealed, then `edit`ed.
 fn small_job(edit: impl FnOnce(&mut basr::job::Job)) -> basr::job::Job {
-    use basr::job::*;
-    let robot = basr::robot::Robot::basr();
-    let mut samples = Samples::default();
-    for i in 0..4 {
-        samples.push(&SampleRow {
-            t_s: i as f64 * 0.032,
-            station: 0,
-            stroke: -1,
-            ..Default::default()
-        });
-    }
-    let mut job = Job {
-        format: FORMAT.into(),
-        version: VERSION,
-        message: "I".into(),
-        font: FontRef {
-            name: "test".into(),
-            sha256: String::new(),
-        },
-        robot,
-        robot_sha256: String::new(),
-        paint: Paint {
-            fan_angle_rad: 63.5f64.to_radians(),
-            flow_m3ps: 0.4e-3 / 60.0,
-            transfer_efficiency: 0.9,
-            film_m: 3.8e-4,
-            k_m2ps: 0.4e-3 / 60.0 * 0.9 / 3.8e-4,
-        },
-        control_period_s: 0.032,
-        layout: Layout {
-            letter_height_m: 2.44,
-            lane_width_m: 3.66,
-            tilt_method: "quadrilateral".into(),
-            glyphs: vec![],
-        },
-        stations: vec![Station {
-            x_m: 0.0,
-            y_m: 4.0,
-            heading_rad: -std::f64::consts::FRAC_PI_2,
-        }],
-        samples,
-        summary: Summary {
-            duration_s: 0.096,
-            paint_time_s: 0.0,
-            air_time_s: 0.096,
-            strokes: 0,
-            paint_volume_m3: 0.0,
-            warnings: vec![],
-        },
-        sha256: String::new(),
-    };
-    job.seal();
+    let mut job = basr::sim::synthetic::letter_job();
     edit(&mut job);
     job
 }
@@ -345,8 +295,9 @@ fn read_back(p: &Path) -> String {
 fn hand_edited_job_fails_the_hash_everywhere() {
     let mut s = Scratch::new();
     let p = write_job(&mut s, "j.job.json", |_| {});
-    let edited = read_back(&p).replacen("\"message\": \"I\"", "\"message\": \"L\"", 1);
-    std::fs::write(&p, edited).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&read_back(&p)).unwrap();
+    v["message"] = serde_json::Value::String("EDITED".into());
+    std::fs::write(&p, serde_json::to_vec_pretty(&v).unwrap()).unwrap();
     s.refuses(
         &["preview", "j.job.json"],
         &["integrity", "compile it again"],
