@@ -63,6 +63,12 @@ pub struct Args {
     /// (none, trapezoid, quadrilateral) and draw them side by side.
     #[arg(long, value_name = "METHODS", value_delimiter = ',')]
     pub compare: Vec<String>,
+
+    /// Preview the film the arm would actually lay: run the job through the
+    /// closed-loop simulator (`basr simulate`, default sjct controller) and
+    /// deposit from the simulated nozzle instead of the setpoints.
+    #[arg(long, conflicts_with = "compare")]
+    pub from_sim: bool,
 }
 
 /// `STOP.job.json` → `STOP.svg` in the current folder.
@@ -134,7 +140,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let origin = args.job.display().to_string();
     let previews: Vec<Preview> = jobs
         .iter()
-        .map(|j| preview::preview_job(j, &opts).with_context(|| format!("{origin}: preview")))
+        .map(|j| {
+            if args.from_sim {
+                preview_simulated(j, &opts)
+            } else {
+                preview::preview_job(j, &opts).map_err(Into::into)
+            }
+            .with_context(|| format!("{origin}: preview"))
+        })
         .collect::<anyhow::Result<_>>()?;
     let panels: Vec<Panel> = jobs
         .iter()
@@ -190,6 +203,59 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         println!("{text}");
     }
     Ok(Outcome::Success)
+}
+
+/// The film from the simulated arm: each 5 ms trace tick gives the actual
+/// nozzle position on the road; height, fan direction and tilt are the
+/// planned ones corrected by the simulated joints' deviations.
+fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
+    use basr::sim;
+    let model = sim::SimModel::from_robot(&job.robot)
+        .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
+    let sim_opts = sim::Options {
+        controller: sim::ControllerKind::Sjct,
+        tolerance_m: job.robot.control.accuracy_m,
+        keep_trace: true,
+        substeps: None,
+    };
+    let outcome = sim::simulate(job, &model, &sim_opts, &mut |_, _| {})?;
+    let s = &job.samples;
+    let last = s.len().saturating_sub(1);
+    let tilt_of = |nut: f64| job.robot.tilt_from_nut(nut).ok();
+    let mut poses = Vec::with_capacity(outcome.trace.len());
+    let mut strokes = Vec::with_capacity(outcome.trace.len());
+    for r in &outcome.trace {
+        let i = ((r.t_s / job.control_period_s).floor().max(0.0) as usize).min(last);
+        let d = s
+            .row(i)
+            .ok_or_else(|| anyhow::anyhow!("the job has no setpoints"))?;
+        let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
+            (Some(a), Some(b)) => a - b,
+            _ => 0.0,
+        };
+        poses.push(basr::paint::spray::Pose {
+            t_s: r.t_s,
+            x_m: r.x_m,
+            y_m: r.y_m,
+            // Vertical joint is positive down (SPEC §3).
+            z_m: d.z_m - (r.vertical_m - r.vertical_desired_m),
+            yaw_rad: d.yaw_rad
+                + (r.ee_yaw_rad - r.ee_yaw_desired_rad)
+                + (r.base_rot_rad - r.base_rot_desired_rad),
+            tilt_rad: d.tilt_rad + tilt_error,
+            gun: r.paint == 1,
+        });
+        strokes.push(r.stroke);
+    }
+    let outlines: Vec<_> = job
+        .layout
+        .glyphs
+        .iter()
+        .map(basr::paint::metrics::GlyphOutline::from_placed)
+        .collect();
+    Ok(preview::preview_poses(
+        &poses, &strokes, &outlines, &job.paint, opts,
+    )?)
 }
 
 #[cfg(test)]
