@@ -41,7 +41,6 @@ fn u_span(m: &Value) -> f64 {
 }
 
 #[test]
-#[ignore = "compile O --tilt none currently fails (ee_yaw_rad leaves its range in the time law; compile issue)"]
 fn quadrilateral_tilt_narrows_u_on_the_letter_o() {
     let dir = tempfile::tempdir().unwrap();
     let none = preview(&compile(dir.path(), "O", "none", "none.json"), &[]);
