@@ -120,6 +120,20 @@ pub fn read_text(path: &Path) -> anyhow::Result<String> {
     })
 }
 
+/// 1-based (line, column) of byte offset `offset` in `text`, columns counted
+/// in characters; offsets past the end or inside a character never panic.
+/// Shared by every reader that turns a parser's byte span into `file:line:col`.
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -147,6 +161,16 @@ mod tests {
         let r = write_atomic_with(&p, |_| Err(std::io::Error::other("boom")));
         assert!(r.is_err());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn line_col_counts_lines_and_characters() {
+        let t = "ab\nçd\nx";
+        assert_eq!(line_col(t, 0), (1, 1));
+        assert_eq!(line_col(t, 3), (2, 1));
+        assert_eq!(line_col(t, 6), (2, 3));
+        assert_eq!(line_col(t, 4), (2, 1), "inside a character: no panic");
+        assert_eq!(line_col(t, 99), (3, 2));
     }
 
     #[test]

@@ -265,24 +265,11 @@ fn toml_message(text: &str, e: &toml::de::Error) -> String {
     let what = e.message().to_string();
     match e.span() {
         Some(span) => {
-            let (line, col) = line_col(text, span.start);
+            let (line, col) = crate::io::line_col(text, span.start);
             format!("line {line}, column {col}: {what}")
         }
         None => what,
     }
-}
-
-/// 1-based line and column of byte offset `at` in `text`.
-fn line_col(text: &str, at: usize) -> (usize, usize) {
-    let before = &text[..at.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before
-        .rsplit('\n')
-        .next()
-        .map(|l| l.chars().count())
-        .unwrap_or(0)
-        + 1;
-    (line, col)
 }
 
 /// Every problem of a marking file's text (empty when valid); for `basr check`.

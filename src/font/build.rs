@@ -25,10 +25,7 @@ pub struct Locator<'a> {
 
 impl Locator<'_> {
     pub fn at(&self, offset: usize) -> String {
-        let offset = offset.min(self.text.len());
-        let before = &self.text[..offset];
-        let line = before.matches('\n').count() + 1;
-        let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        let (line, col) = crate::io::line_col(self.text, offset);
         format!("{}:{line}:{col}", self.origin)
     }
 

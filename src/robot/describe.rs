@@ -15,18 +15,20 @@ pub enum RobotError {
     },
 }
 
-/// 1-based (line, column) of a byte offset.
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let offset = offset.min(text.len());
-    let before = text.get(..offset).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let col = before
-        .rsplit('\n')
-        .next()
-        .map(|l| l.chars().count())
-        .unwrap_or(0)
-        + 1;
-    (line, col)
+/// `origin:line:col` of a parser's error span, and the dotted name of the
+/// field on that line when there is one.
+fn span_location(
+    text: &str,
+    origin: &str,
+    span: Option<std::ops::Range<usize>>,
+) -> (String, Option<String>) {
+    match span {
+        Some(s) => {
+            let (l, c) = crate::io::line_col(text, s.start);
+            (format!("{origin}:{l}:{c}"), field_at_line(text, l))
+        }
+        None => (origin.to_string(), None),
+    }
 }
 
 /// Table name of a header line (`[a.b]` → `a.b`), if it is one.
@@ -143,18 +145,10 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
     let tree: toml::Table = match toml::from_str(text) {
         Ok(t) => t,
         Err(e) => {
-            let (loc, field) = match e.span() {
-                Some(s) => {
-                    let (l, c) = line_col(text, s.start);
-                    (
-                        format!("{origin}:{l}:{c}"),
-                        field_at_line(text, l)
-                            .map(|f| format!(" in field `{f}`"))
-                            .unwrap_or_default(),
-                    )
-                }
-                None => (origin.to_string(), String::new()),
-            };
+            let (loc, field) = span_location(text, origin, e.span());
+            let field = field
+                .map(|f| format!(" in field `{f}`"))
+                .unwrap_or_default();
             return Err(invalid(vec![format!(
                 "{loc}: TOML syntax error{field}: {}; fix the syntax (see https://toml.io)",
                 e.message().trim()
@@ -173,18 +167,8 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
     let robot: Robot = match toml::from_str(text) {
         Ok(r) => r,
         Err(e) => {
-            let (loc, field) = match e.span() {
-                Some(s) => {
-                    let (l, c) = line_col(text, s.start);
-                    (
-                        format!("{origin}:{l}:{c}"),
-                        field_at_line(text, l)
-                            .map(|f| format!("field `{f}`: "))
-                            .unwrap_or_default(),
-                    )
-                }
-                None => (origin.to_string(), String::new()),
-            };
+            let (loc, field) = span_location(text, origin, e.span());
+            let field = field.map(|f| format!("field `{f}`: ")).unwrap_or_default();
             return Err(invalid(vec![format!(
                 "{loc}: {field}{}; compare with `basr robot --toml`",
                 e.message().trim()
