@@ -55,6 +55,33 @@ pub fn write_atomic_with(
         path: path.to_path_buf(),
         source,
     };
+    // A device or a FIFO (`-o /dev/null`, `--csv /dev/stdout`, a named pipe)
+    // is written in place: renaming a temporary file over it would replace
+    // the device with a regular file, which for /dev/null breaks every
+    // program on the machine. Nothing partial can be left in such a target.
+    if let Ok(meta) = std::fs::metadata(path) {
+        if !meta.is_file() && !meta.is_dir() {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .map_err(err)?;
+            let mut w = std::io::BufWriter::new(file);
+            return fill(&mut w).and_then(|()| w.flush()).map_err(err);
+        }
+    }
+    // A symbolic link keeps pointing where it did: the new contents replace
+    // the file it names, not the link itself.
+    let resolved;
+    let path = match std::fs::symlink_metadata(path) {
+        Ok(m) if m.file_type().is_symlink() => match std::fs::canonicalize(path) {
+            Ok(p) => {
+                resolved = p;
+                resolved.as_path()
+            }
+            Err(_) => path,
+        },
+        _ => path,
+    };
     let mut builder = tempfile::Builder::new();
     builder.prefix(".basr-").suffix(".part");
     // tempfile creates 0600 files; an output file is an ordinary document
@@ -161,6 +188,44 @@ mod tests {
         let r = write_atomic_with(&p, |_| Err(std::io::Error::other("boom")));
         assert!(r.is_err());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_target_is_written_in_place_not_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&p).status();
+        if !made.map(|s| s.success()).unwrap_or(false) {
+            return; // no mkfifo on this system: nothing to check
+        }
+        let reader = {
+            let p = p.clone();
+            std::thread::spawn(move || std::fs::read(p).unwrap())
+        };
+        write_atomic(&p, b"through the pipe").unwrap();
+        // Checked before joining: had the FIFO been replaced, the reader
+        // would wait on it forever.
+        let kind = std::fs::symlink_metadata(&p).unwrap().file_type();
+        assert!(kind.is_fifo(), "the FIFO must survive the write");
+        assert_eq!(reader.join().unwrap(), b"through the pipe");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symlink_target_keeps_its_link() {
+        let dir = tempfile::tempdir().unwrap();
+        let real = dir.path().join("real.txt");
+        let link = dir.path().join("link.txt");
+        std::fs::write(&real, b"old").unwrap();
+        std::os::unix::fs::symlink(&real, &link).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
     }
 
     #[test]
