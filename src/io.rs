@@ -29,7 +29,9 @@ pub fn install_interrupt_cleanup() {
                 let _ = std::fs::remove_file(p);
             }
         }
-        eprintln!("interrupted: no output file was written");
+        // Not eprintln!: with stderr closed it would panic in the handler's
+        // thread and the process would carry on instead of exiting.
+        let _ = writeln!(std::io::stderr(), "interrupted: no output file was written");
         std::process::exit(130);
     });
 }
@@ -109,6 +111,19 @@ pub fn write_atomic_with(
         v.retain(|p| p != &tmp_path);
     }
     result.map_err(err)
+}
+
+/// Write machine output (`--json`, `robot --toml`, completions) to standard
+/// output. A reader that stops early (`basr glyphs --json | head`) closes the
+/// pipe; that is not an error: the rest of the output is dropped and the
+/// command ends with its own exit code. Other write errors (a full disk
+/// behind `> file`) are returned.
+pub fn print_stdout(text: &str) -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        r => r,
+    }
 }
 
 /// Lower-case hex SHA-256 of `bytes`.

@@ -1,7 +1,25 @@
 //! The `basr` command line: parse arguments, call the library, print results.
 //!
 //! Each subcommand lives in `src/cmd/<name>.rs` with its own `Args` and `run`.
-//! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage.
+//! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage,
+//! 130 interrupted (Ctrl-C).
+
+/// `eprintln!` for human text that never panics: `basr … 2>&1 | head` closes
+/// stderr as well, and a note nobody reads is no reason to stop (exit 101)
+/// in the middle of writing a job. Defined before `mod cmd` so every
+/// subcommand sees it.
+macro_rules! note {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
+/// `eprint!` of a ready-made text, under the same rule as `note!`.
+fn note_text(text: &str) {
+    use std::io::Write as _;
+    let _ = std::io::stderr().write_all(text.as_bytes());
+}
 
 mod cmd;
 
@@ -20,7 +38,8 @@ Examples:
   basr completions bash > basr.bash      # shell completions
 
 Exit codes: 0 success, 1 verdict negative (simulate over tolerance, check found
-problems), 2 bad input or usage.";
+problems), 2 bad input or usage, 130 interrupted (no output file is left).
+A reader that stops early (`basr glyphs --json | head`) is not an error.";
 
 /// Offline trajectory-planning compiler for the Big Articulated Stenciling Robot.
 ///
@@ -74,15 +93,20 @@ fn main() -> ExitCode {
         Command::Check(a) => cmd::check::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;
-            clap_complete::generate(shell, &mut Cli::command(), "basr", &mut std::io::stdout());
-            Ok(cmd::Outcome::Success)
+            // Generated into memory: clap_complete panics on a failed write,
+            // print_stdout treats a closed pipe as the reader being done.
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "basr", &mut script);
+            basr::io::print_stdout(&String::from_utf8_lossy(&script))
+                .map(|()| cmd::Outcome::Success)
+                .map_err(Into::into)
         }
     };
     match result {
         Ok(cmd::Outcome::Success) => ExitCode::SUCCESS,
         Ok(cmd::Outcome::Negative) => ExitCode::from(1),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            note!("error: {e:#}");
             ExitCode::from(2)
         }
     }

@@ -72,12 +72,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let found = problems(&text, &origin);
         if found.is_empty() {
             if !global.quiet {
-                eprintln!("{origin}: ok");
+                note!("{origin}: ok");
             }
         } else {
             bad += 1;
             for p in found {
-                eprintln!("{p}");
+                note!("{p}");
             }
         }
     }

@@ -173,7 +173,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "summary": s,
             "sha256": job.sha256,
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
     if !global.quiet {
         print_summary(&job, &out, &args);
@@ -183,7 +183,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
 
 fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
     let s = &job.summary;
-    eprintln!(
+    note!(
         "{}: {:?} in {} station(s), {} stroke(s), {} setpoints every {} s",
         out.display(),
         job.message.replace('\n', " / "),
@@ -192,7 +192,7 @@ fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
         job.samples.len(),
         job.control_period_s
     );
-    eprintln!(
+    note!(
         "  duration {:.1} s: paint {:.1} s, air {:.1} s; paint sprayed {:.2} L",
         s.duration_s,
         s.paint_time_s,
@@ -200,21 +200,22 @@ fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
         s.paint_volume_m3 * 1e3
     );
     for (i, st) in job.stations.iter().enumerate() {
-        eprintln!(
+        note!(
             "  station {i}: arm axis at x {:+.3} m, y {:.3} m",
-            st.x_m, st.y_m
+            st.x_m,
+            st.y_m
         );
     }
     if let Some(c) = &args.csv {
-        eprintln!("  setpoints: {}", c.display());
+        note!("  setpoints: {}", c.display());
     }
     if let Some(a) = &args.adept {
-        eprintln!("  Adept V+ program: {}", a.display());
+        note!("  Adept V+ program: {}", a.display());
     }
     if !s.warnings.is_empty() {
-        eprintln!("  {} warning(s):", s.warnings.len());
+        note!("  {} warning(s):", s.warnings.len());
         for w in &s.warnings {
-            eprintln!("  warning: {}", w.message);
+            note!("  warning: {}", w.message);
         }
     }
 }

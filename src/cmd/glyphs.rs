@@ -43,7 +43,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::write_atomic(path, doc.to_string().as_bytes())
             .with_context(|| format!("writing the alphabet sheet to {}", path.display()))?;
         if !global.quiet {
-            eprintln!("wrote {}", path.display());
+            note!("wrote {}", path.display());
         }
     }
     if args.json {
@@ -68,11 +68,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "grid": { "width": basr::font::GRID_WIDTH, "height": basr::font::GRID_HEIGHT },
             "glyphs": glyphs,
         });
-        println!("{}", serde_json::to_string(&doc)?);
+        basr::io::print_stdout(&(serde_json::to_string(&doc)? + "\n"))?;
     } else if !global.quiet {
-        eprintln!(
+        note!(
             "font {} ({}), sha256 {}",
-            font.name, font.origin, font.sha256
+            font.name,
+            font.origin,
+            font.sha256
         );
         for g in font.glyphs() {
             let min_rung = g
@@ -87,7 +89,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 .flat_map(|s| s.rungs(100))
                 .map(|(a, b)| (b - a).hypot())
                 .fold(0.0, f64::max);
-            eprintln!(
+            note!(
                 "{}  {} strokes  rungs {:.2}–{:.2} units",
                 g.ch,
                 g.strokes.len(),

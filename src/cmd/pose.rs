@@ -107,10 +107,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "solutions": all.len(),
             "reach_margin_m": margin,
         });
-        super::robot::stdout_text(&(serde_json::to_string_pretty(&out)? + "\n"))?;
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&out)? + "\n"))?;
     } else if !global.quiet {
         let deg = |r: f64| r.to_degrees();
-        eprintln!(
+        note!(
             "pose (base frame): x {:.4} m  y {:.4} m  height {:.4} m  yaw {:.2}°  tilt {:.2}°",
             pose.x_m,
             pose.y_m,
@@ -118,41 +118,41 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             deg(pose.yaw_rad),
             deg(pose.tilt_rad)
         );
-        eprintln!(
+        note!(
             "joints ({} solutions; nearest the rest position shown):",
             all.len()
         );
-        eprintln!(
+        note!(
             "  base_rot_rad  {:>12.6}  ({:.3}°)",
             j.base_rot_rad,
             deg(j.base_rot_rad)
         );
-        eprintln!("  extension_m   {:>12.6}", j.extension_m);
-        eprintln!("  vertical_m    {:>12.6}", j.vertical_m);
-        eprintln!(
+        note!("  extension_m   {:>12.6}", j.extension_m);
+        note!("  vertical_m    {:>12.6}", j.vertical_m);
+        note!(
             "  ee_yaw_rad    {:>12.6}  ({:.3}°)",
             j.ee_yaw_rad,
             deg(j.ee_yaw_rad)
         );
-        eprintln!(
+        note!(
             "  tilt_rad      {:>12.6}  ({:.3}°)",
             j.tilt_rad,
             deg(j.tilt_rad)
         );
-        eprintln!("actuators:");
-        eprintln!("  base_motor_rad {:>12.6}", a.base_motor_rad);
-        eprintln!("  cylinder_m     {:>12.6}", a.cylinder_m);
-        eprintln!("  vertical_m     {:>12.6}", a.vertical_m);
-        eprintln!("  yaw_motor_rad  {:>12.6}", a.yaw_motor_rad);
-        eprintln!("  tilt_nut_m     {:>12.6}", a.tilt_nut_m);
-        eprintln!("  tilt_motor_rad {:>12.6}", a.tilt_motor_rad);
-        eprintln!("encoders:");
-        eprintln!("  enc_base      {:>10}", e.base);
-        eprintln!("  enc_extension {:>10}", e.extension);
-        eprintln!("  enc_yaw       {:>10}", e.yaw);
-        eprintln!("  enc_tilt      {:>10}", e.tilt);
-        eprintln!("  enc_vertical  {:>10}", e.vertical);
-        eprintln!("reach margin: {margin:.3} m inside the workspace boundary");
+        note!("actuators:");
+        note!("  base_motor_rad {:>12.6}", a.base_motor_rad);
+        note!("  cylinder_m     {:>12.6}", a.cylinder_m);
+        note!("  vertical_m     {:>12.6}", a.vertical_m);
+        note!("  yaw_motor_rad  {:>12.6}", a.yaw_motor_rad);
+        note!("  tilt_nut_m     {:>12.6}", a.tilt_nut_m);
+        note!("  tilt_motor_rad {:>12.6}", a.tilt_motor_rad);
+        note!("encoders:");
+        note!("  enc_base      {:>10}", e.base);
+        note!("  enc_extension {:>10}", e.extension);
+        note!("  enc_yaw       {:>10}", e.yaw);
+        note!("  enc_tilt      {:>10}", e.tilt);
+        note!("  enc_vertical  {:>10}", e.vertical);
+        note!("reach margin: {margin:.3} m inside the workspace boundary");
     }
     Ok(Outcome::Success)
 }

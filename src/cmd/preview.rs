@@ -166,7 +166,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         for (j, p) in jobs.iter().zip(&previews) {
             let m = &p.metrics;
             let f = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{:.3}", v));
-            eprintln!(
+            note!(
                 "{} [tilt {}]: coverage {}, cv {}, overspray {}, mean film {} µm (target {:.0}), U {}–{}",
                 origin,
                 j.layout.tilt_method,
@@ -179,7 +179,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 f(m.u_max),
             );
         }
-        eprintln!("wrote {}", out.display());
+        note!("wrote {}", out.display());
     }
     if args.json {
         let svg_name = out.display().to_string();
@@ -200,7 +200,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         } else {
             serde_json::to_string_pretty(&reports)?
         };
-        println!("{text}");
+        basr::io::print_stdout(&(text + "\n"))?;
     }
     Ok(Outcome::Success)
 }

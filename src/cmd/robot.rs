@@ -24,17 +24,6 @@ pub struct Args {
     pub toml: bool,
 }
 
-/// Write machine output to stdout; a closed pipe (`| head`) ends quietly
-/// instead of panicking like `println!`.
-pub(crate) fn stdout_text(text: &str) -> anyhow::Result<()> {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.into()),
-        _ => Ok(()),
-    }
-}
-
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     if args.json {
@@ -42,16 +31,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if let Some(o) = v.as_object_mut() {
             o.insert("sha256".into(), robot.sha256().into());
         }
-        stdout_text(&(serde_json::to_string_pretty(&v)? + "\n"))?;
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     } else {
         // The embedded robot prints as shipped, with every value's source.
         if args.robot.is_none() {
-            stdout_text(basr::robot::BASR_TOML)?;
+            basr::io::print_stdout(basr::robot::BASR_TOML)?;
         } else {
-            stdout_text(&robot.to_toml_string())?;
+            basr::io::print_stdout(&robot.to_toml_string())?;
         }
         if !global.quiet {
-            eprintln!("robot {} sha256 {}", robot.name, robot.sha256());
+            note!("robot {} sha256 {}", robot.name, robot.sha256());
         }
     }
     Ok(Outcome::Success)

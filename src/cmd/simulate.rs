@@ -144,9 +144,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(report)?);
+        basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
     } else if !global.quiet {
-        eprint!("{}", report.human());
+        crate::note_text(&report.human());
     }
     Ok(if report.passed() {
         Outcome::Success

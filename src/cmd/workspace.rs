@@ -49,7 +49,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let doc = draw(&region, &boundary);
         basr::io::write_atomic(path, doc.to_string().as_bytes())?;
         if !global.quiet {
-            eprintln!("wrote {}", path.display());
+            note!("wrote {}", path.display());
         }
     }
     let inner = region.extension_m[0].hypot(region.a2_m);
@@ -68,32 +68,39 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "z_range_m": region.z_range_m,
             "boundary": boundary,
         });
-        super::robot::stdout_text(&(serde_json::to_string_pretty(&out)? + "\n"))?;
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&out)? + "\n"))?;
     } else if !global.quiet {
-        eprintln!(
+        note!(
             "{}: reachable tip region on the road (base frame), tilt {:.2}°, fan {:.2}°",
-            robot.name, args.tilt_deg, args.yaw_deg
+            robot.name,
+            args.tilt_deg,
+            args.yaw_deg
         );
-        eprintln!("  area          {:.3} m²", region.area_m2());
-        eprintln!(
+        note!("  area          {:.3} m²", region.area_m2());
+        note!(
             "  base window   {:.4} .. {:.4} rad ({:.2}° .. {:.2}°)",
             region.base_rot_rad[0],
             region.base_rot_rad[1],
             region.base_rot_rad[0].to_degrees(),
             region.base_rot_rad[1].to_degrees()
         );
-        eprintln!(
+        note!(
             "  extension     {:.4} .. {:.4} m (tip radius {:.4} .. {:.4} m)",
-            region.extension_m[0], region.extension_m[1], inner, outer
+            region.extension_m[0],
+            region.extension_m[1],
+            inner,
+            outer
         );
-        eprintln!(
+        note!(
             "  tip height    {:.4} .. {:.4} m",
-            region.z_range_m[0], region.z_range_m[1]
+            region.z_range_m[0],
+            region.z_range_m[1]
         );
         if region.shift_m != [0.0, 0.0] {
-            eprintln!(
+            note!(
                 "  tilt shifts the region by ({:.4}, {:.4}) m",
-                region.shift_m[0], region.shift_m[1]
+                region.shift_m[0],
+                region.shift_m[1]
             );
         }
     }
