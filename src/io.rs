@@ -6,8 +6,25 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// Temporary files in flight, removed by the SIGINT handler.
-static IN_FLIGHT: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// What an interrupt must remove: temporary files being written, and the
+/// outputs this run already finished (an interrupted run leaves no output
+/// file, not even the CSV written before its job). One lock for both: the
+/// handler holds it while it removes files and exits, and a writer holds it
+/// while it creates or renames, so no file slips between the two lists.
+struct Outputs {
+    in_flight: Vec<PathBuf>,
+    finished: Vec<PathBuf>,
+}
+
+static OUTPUTS: Mutex<Outputs> = Mutex::new(Outputs {
+    in_flight: Vec::new(),
+    finished: Vec::new(),
+});
+
+fn outputs() -> std::sync::MutexGuard<'static, Outputs> {
+    // A panic while the lock was held leaves the lists intact: keep going.
+    OUTPUTS.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// Errors from writing an output file.
 #[derive(Debug, thiserror::Error)]
@@ -20,14 +37,15 @@ pub enum WriteError {
     },
 }
 
-/// Install a Ctrl-C handler that deletes in-flight temporary files and exits
-/// with 130. Call once at start-up; later calls are ignored.
+/// Install a Ctrl-C handler that deletes the temporary files in flight and
+/// the outputs this run has finished, then exits with 130. Call once at
+/// start-up; later calls are ignored.
 pub fn install_interrupt_cleanup() {
     let _ = ctrlc::set_handler(|| {
-        if let Ok(paths) = IN_FLIGHT.lock() {
-            for p in paths.iter() {
-                let _ = std::fs::remove_file(p);
-            }
+        // Held until exit: no writer creates or renames a file after this.
+        let out = outputs();
+        for p in out.in_flight.iter().chain(&out.finished) {
+            let _ = std::fs::remove_file(p);
         }
         // Not eprintln!: with stderr closed it would panic in the handler's
         // thread and the process would carry on instead of exiting.
@@ -93,23 +111,25 @@ pub fn write_atomic_with(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o644));
     }
-    let tmp = builder.tempfile_in(folder_of(path)).map_err(err)?;
-    let tmp_path = tmp.path().to_path_buf();
-    if let Ok(mut v) = IN_FLIGHT.lock() {
-        v.push(tmp_path.clone());
-    }
+    let (tmp, tmp_path) = {
+        let mut out = outputs();
+        let tmp = builder.tempfile_in(folder_of(path)).map_err(err)?;
+        let tmp_path = tmp.path().to_path_buf();
+        out.in_flight.push(tmp_path.clone());
+        (tmp, tmp_path)
+    };
     let result = (|| {
         let mut w = std::io::BufWriter::new(tmp.as_file());
         fill(&mut w)?;
         w.flush()?;
         drop(w);
         tmp.as_file().sync_all()?;
+        let mut out = outputs();
         tmp.persist(path).map_err(|e| e.error)?;
+        out.finished.push(path.to_path_buf());
         Ok(())
     })();
-    if let Ok(mut v) = IN_FLIGHT.lock() {
-        v.retain(|p| p != &tmp_path);
-    }
+    outputs().in_flight.retain(|p| p != &tmp_path);
     result.map_err(err)
 }
 

@@ -1,0 +1,137 @@
+//! Ctrl-C (SIGINT) in the middle of a run: exit 130 and no file left in the
+//! output folder, neither a finished output nor a `.basr-*.part` temporary,
+//! whether the signal lands while basr computes or while it writes.
+//!
+//! Nothing here depends on how fast the machine is: the signal is sent once
+//! the handler is seen installed (/proc/PID/status) and, for the writing
+//! phase, once a temporary file is seen in the folder; a run that finishes
+//! before it could be interrupted is retried with a larger message.
+#![cfg(target_os = "linux")]
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+
+/// Messages of growing size: one word per line, so each one adds a line of
+/// letters (and seconds of computing, and megabytes of job to write).
+const MESSAGES: [&str; 4] = [
+    "STOP",
+    "STOP AHEAD",
+    "STOP AHEAD STOP AHEAD",
+    "STOP AHEAD STOP AHEAD STOP AHEAD STOP AHEAD",
+];
+
+fn spawn_compile(dir: &Path, message: &str) -> Child {
+    Command::new(assert_cmd::cargo::cargo_bin("basr"))
+        .current_dir(dir)
+        .args(["compile", message, "--csv", "setpoints.csv", "--quiet"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap()
+}
+
+/// Whether process `pid` catches SIGINT yet (bit 1 of SigCgt: signal 2).
+fn catches_sigint(pid: u32) -> bool {
+    let Ok(status) = std::fs::read_to_string(format!("/proc/{pid}/status")) else {
+        return false;
+    };
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("SigCgt:"))
+        .and_then(|hex| u64::from_str_radix(hex.trim(), 16).ok())
+        .is_some_and(|mask| mask & (1 << 1) != 0)
+}
+
+fn send_sigint(pid: u32) {
+    let sent = Command::new("kill")
+        .args(["-INT", &pid.to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success(), "kill -INT {pid}");
+}
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+fn has_temp(dir: &Path) -> bool {
+    entries(dir).iter().any(|n| n.starts_with(".basr-"))
+}
+
+/// Wait until the child catches SIGINT; None if it exited first.
+fn wait_for_handler(child: &mut Child) -> Option<()> {
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            return None;
+        }
+        if catches_sigint(child.id()) {
+            return Some(());
+        }
+        std::thread::sleep(std::time::Duration::from_micros(200));
+    }
+}
+
+/// Interrupt the run once `ready(dir)` holds; Some(exit code) if the signal
+/// was sent, None if the run finished first (the caller retries bigger).
+fn interrupt_when(message: &str, ready: impl Fn(&Path) -> bool) -> Option<(i32, Vec<String>)> {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = spawn_compile(dir.path(), message);
+    wait_for_handler(&mut child)?;
+    loop {
+        if child.try_wait().unwrap().is_some() {
+            return None;
+        }
+        if ready(dir.path()) {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_micros(200));
+    }
+    send_sigint(child.id());
+    let status = child.wait().unwrap();
+    if status.code() == Some(0) {
+        // It finished between our look and the signal.
+        return None;
+    }
+    Some((status.code().unwrap_or(-1), entries(dir.path())))
+}
+
+fn assert_interrupted_cleanly(phase: &str, ready: impl Fn(&Path) -> bool) {
+    for message in MESSAGES {
+        if let Some((code, left)) = interrupt_when(message, &ready) {
+            eprintln!("{phase}: interrupted compile {message:?}");
+            assert_eq!(code, 130, "{phase}: compile {message:?} interrupted");
+            assert!(left.is_empty(), "{phase}: left behind {left:?}");
+            return;
+        }
+    }
+    panic!("{phase}: every run finished before it could be interrupted");
+}
+
+#[test]
+fn interrupted_while_computing_leaves_nothing() {
+    // Ready as soon as the handler is in: compile is then planning, and
+    // nothing exists in the folder yet.
+    assert_interrupted_cleanly("computing", |dir| entries(dir).is_empty());
+}
+
+#[test]
+fn interrupted_while_writing_leaves_nothing() {
+    // Ready when a temporary file appears: the CSV or the job is being
+    // written (and for the job, the finished CSV must go too).
+    assert_interrupted_cleanly("writing", has_temp);
+}
+
+#[test]
+fn interrupted_between_outputs_removes_the_finished_one() {
+    // The CSV is complete and renamed, the job not yet there.
+    assert_interrupted_cleanly("between outputs", |dir| {
+        let e = entries(dir);
+        e.contains(&"setpoints.csv".to_string())
+    });
+}
