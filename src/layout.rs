@@ -72,8 +72,12 @@ pub enum LayoutError {
          ({MIN_LINE_GAP_HEIGHTS}× the letter height, MUTCD §3B.20): raise --line-gap"
     )]
     GapTooSmall { gap_m: f64, min_m: f64 },
-    #[error("{field} must be a finite number above zero, got {value}")]
-    BadNumber { field: String, value: f64 },
+    #[error("{field} must be {need}, got {value} m")]
+    BadNumber {
+        field: String,
+        need: &'static str,
+        value: f64,
+    },
     #[error("{origin}: {message}")]
     Marking { origin: String, message: String },
 }
@@ -239,6 +243,7 @@ impl Marking {
             if !(v.is_finite() && v > 0.0) {
                 return Err(LayoutError::BadNumber {
                     field: field.into(),
+                    need: "a finite number of metres above zero",
                     value: v,
                 });
             }
@@ -251,6 +256,11 @@ impl Marking {
             if !v.is_finite() || (field == "letter spacing" && v < 0.0) {
                 return Err(LayoutError::BadNumber {
                     field: field.into(),
+                    need: if field == "letter spacing" {
+                        "a finite number of metres, zero or more"
+                    } else {
+                        "a finite number of metres"
+                    },
                     value: v,
                 });
             }

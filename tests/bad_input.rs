@@ -203,6 +203,60 @@ fn negative_and_nan_letter_height_are_refused() {
     Scratch::new().refuses(&["compile", "STOP", "--lane-width", "inf"], &["lane"]);
 }
 
+/// A number given as its own argument (`--letter-height -2`, not `=-2`)
+/// reaches our validation instead of clap's "use '-- -2'" tip.
+#[test]
+fn negative_and_non_finite_numbers_as_separate_arguments_reach_validation() {
+    let cases: [(&[&str], &[&str]); 7] = [
+        (
+            &["compile", "STOP", "--letter-height", "-2"],
+            &["letter height", "above zero", "got -2 m"],
+        ),
+        (
+            &["compile", "STOP", "--letter-height", "-inf"],
+            &["letter height", "got -inf"],
+        ),
+        (
+            &["compile", "STOP", "--lane-width", "NaN"],
+            &["lane width", "got NaN"],
+        ),
+        (
+            &["compile", "STOP", "--period-s", "-1e-3"],
+            &["--period-s", "above zero"],
+        ),
+        (
+            &["compile", "STOP", "--gun-lag-s", "-0.1"],
+            &["--gun-lag-s", "zero or more"],
+        ),
+        (
+            &["workspace", "--yaw-deg", "inf"],
+            &["--yaw-deg", "finite", "got inf"],
+        ),
+        (
+            &["pose", "0", "3", "--tilt-deg", "-inf"],
+            &["tilt", "not a finite number"],
+        ),
+    ];
+    for (args, needles) in cases {
+        let err = Scratch::new().refuses(args, needles);
+        assert!(!err.contains("tip:"), "clap's tip, not our message:\n{err}");
+    }
+    let mut s = Scratch::new();
+    write_job(&mut s, "j.job.json", |_| {});
+    s.refuses(
+        &["preview", "j.job.json", "--resolution-mm", "-2"],
+        &["--resolution-mm", "above zero"],
+    );
+    s.refuses(
+        &["simulate", "j.job.json", "--tolerance-mm", "-1"],
+        &["--tolerance-mm", "positive"],
+    );
+    s.refuses(
+        &["simulate", "j.job.json", "--tolerance-mm", "inf"],
+        &["--tolerance-mm", "positive"],
+    );
+}
+
 #[test]
 fn missing_robot_file_is_named() {
     Scratch::new().refuses(

@@ -61,26 +61,41 @@ pub struct Args {
     #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
     pub tilt: TiltArg,
     /// Letter height in metres [default: 2.44, or the marking file's].
-    #[arg(long, value_name = "M")]
+    #[arg(allow_hyphen_values = true, long, value_name = "M")]
     pub letter_height: Option<f64>,
     /// Lane width in metres [default: 3.66, or the marking file's].
-    #[arg(long, value_name = "M")]
+    #[arg(allow_hyphen_values = true, long, value_name = "M")]
     pub lane_width: Option<f64>,
     /// Clear space between lines in metres, at least 4× the letter height
     /// [default: 4× the letter height, or the marking file's].
-    #[arg(long, value_name = "M")]
+    #[arg(allow_hyphen_values = true, long, value_name = "M")]
     pub line_gap: Option<f64>,
     /// Largest distance between rungs along a stroke, in millimetres.
-    #[arg(long, value_name = "MM", default_value_t = 20.0)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "MM",
+        default_value_t = 20.0
+    )]
     pub rung_spacing_mm: f64,
     /// Setpoint period in seconds (the controller samples at 0.005 s).
-    #[arg(long, value_name = "S", default_value_t = basr::plan::compile::DEFAULT_PERIOD_S)]
+    #[arg(allow_hyphen_values = true, long, value_name = "S", default_value_t = basr::plan::compile::DEFAULT_PERIOD_S)]
     pub period_s: f64,
     /// Switch the gun on this many seconds before a stroke starts.
-    #[arg(long, value_name = "S", default_value_t = 0.0)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "S",
+        default_value_t = 0.0
+    )]
     pub gun_lead_s: f64,
     /// Switch the gun off this many seconds before a stroke ends.
-    #[arg(long, value_name = "S", default_value_t = 0.0)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "S",
+        default_value_t = 0.0
+    )]
     pub gun_lag_s: f64,
     /// Print the summary as JSON on stdout.
     #[arg(long)]

@@ -27,13 +27,13 @@ pub struct Args {
     #[arg(allow_negative_numbers = true)]
     pub y: f64,
     /// Tip height over the road (m); default: the middle of the vertical stroke.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub height: Option<f64>,
     /// Fan direction in the base frame, degrees from +x counter-clockwise.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub yaw_deg: f64,
     /// Tilt in degrees (> 0 leans the nozzle towards the fan direction).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub tilt_deg: f64,
     /// Robot description file (TOML); default: the embedded BASR.
     #[arg(long, value_name = "FILE")]

@@ -44,7 +44,12 @@ pub struct Args {
     pub json: bool,
 
     /// Raster cell size in millimetres.
-    #[arg(long, value_name = "R", default_value_t = 5.0)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "R",
+        default_value_t = 5.0
+    )]
     pub resolution_mm: f64,
 
     /// Flux across the fan: `uniform` (even on the road, the seed's

@@ -54,7 +54,7 @@ pub struct Args {
     pub controller: ControllerArg,
 
     /// Largest allowed nozzle error while painting, in millimetres (1/4 in by default).
-    #[arg(long, default_value_t = 6.35)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 6.35)]
     pub tolerance_mm: f64,
 
     /// Robot description the job must have been compiled for (default: the embedded BASR).
@@ -74,7 +74,7 @@ pub struct Args {
     pub json: bool,
 
     /// RK4 sub-steps per 5 ms control period (default: the model's, 5).
-    #[arg(long, hide = true)]
+    #[arg(allow_hyphen_values = true, long, hide = true)]
     pub substeps: Option<u32>,
 }
 

@@ -31,10 +31,10 @@ pub struct Args {
     #[arg(long)]
     pub json: bool,
     /// Fan direction in the base frame, degrees from +x counter-clockwise.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub yaw_deg: f64,
     /// Tilt in degrees; the region where this tilt is reachable.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub tilt_deg: f64,
 }
 
@@ -42,6 +42,12 @@ pub struct Args {
 const BOUNDARY_STEP_RAD: f64 = 0.1 * std::f64::consts::PI / 180.0;
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    for (flag, v) in [("--yaw-deg", args.yaw_deg), ("--tilt-deg", args.tilt_deg)] {
+        anyhow::ensure!(
+            v.is_finite(),
+            "{flag} must be a finite number of degrees, got {v}"
+        );
+    }
     let robot = Robot::load_or_default(args.robot.as_deref())?;
     let region = robot.region_for(args.yaw_deg.to_radians(), args.tilt_deg.to_radians())?;
     let boundary = region.boundary(BOUNDARY_STEP_RAD);
