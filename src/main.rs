@@ -70,8 +70,10 @@ enum Command {
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
-    ///
-    /// Example: `basr completions bash > ~/.local/share/bash-completion/completions/basr`
+    #[command(after_help = "Examples:
+  basr completions bash > ~/.local/share/bash-completion/completions/basr
+  basr completions zsh > ~/.zfunc/_basr        # with fpath+=(~/.zfunc) in ~/.zshrc
+  basr completions fish > ~/.config/fish/completions/basr.fish")]
     Completions {
         /// The shell to complete for.
         shell: clap_complete::Shell,

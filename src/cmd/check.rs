@@ -5,8 +5,10 @@ use std::path::PathBuf;
 
 use super::{Global, Outcome};
 
-/// Validate basr files: fonts (.toml), robot descriptions (.toml), marking
-/// files (.toml) and jobs (.json). The kind is recognised from the content.
+/// Validate job, font, robot and marking files, listing every problem.
+///
+/// Fonts (.toml), robot descriptions (.toml), marking files (.toml) and jobs
+/// (.json); the kind is recognised from the content.
 ///
 /// Example: `basr check STOP.job.json fonts/basr.toml`;
 /// `basr robot --toml | basr check -` reads standard input.

@@ -11,7 +11,9 @@ use super::{Global, Outcome};
 /// Points per edge in `--json` (the issue asks for at least 50).
 const JSON_POINTS: usize = 64;
 
-/// List the glyphs of a font with their stroke counts; `--json` prints every
+/// List a font's glyphs; draw the alphabet sheet.
+///
+/// Lists each glyph with its stroke counts; `--json` prints every
 /// stroke's edges sampled at equal arc length (grid units: x 0..4 right,
 /// y 0..25 up); `--svg` draws the alphabet sheet.
 #[derive(clap::Args)]

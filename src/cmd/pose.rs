@@ -9,8 +9,9 @@ use serde_json::json;
 
 use super::{Global, Outcome};
 
-/// Inverse kinematics of one nozzle pose in the base frame (origin on the base
-/// rotation axis at road level, +y straight back along the arm's symmetry
+/// Joints, actuators and encoder counts of one nozzle pose (inverse kinematics).
+///
+/// The pose is given in the base frame (origin on the base rotation axis at road level, +y straight back along the arm's symmetry
 /// axis): prints the joints, actuator positions and encoder counts of the
 /// solution nearest the arm's rest position. An unreachable pose exits 2
 /// naming the binding limit and by how much it is exceeded. The engineer's

@@ -4,8 +4,9 @@ use std::path::PathBuf;
 
 use super::{Global, Outcome};
 
-/// Print the effective robot description: the embedded BASR (SPEC §4) or the
-/// file given with --robot, after validation. The TOML form reads back to an
+/// Print the effective robot description (TOML or JSON).
+///
+/// The description is the embedded BASR (SPEC §4) or the file given with --robot, after validation. The TOML form reads back to an
 /// identical robot, so it is a starting point for a customised description.
 #[derive(clap::Args)]
 #[command(

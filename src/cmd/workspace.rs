@@ -9,8 +9,9 @@ use svg::Document;
 
 use super::{Global, Outcome};
 
-/// Reachable region of the nozzle tip on the road, in the base frame (origin
-/// on the base rotation axis, +y straight back along the arm's symmetry
+/// Reachable region of the nozzle tip on the road.
+///
+/// The region is given in the base frame (origin on the base rotation axis, +y straight back along the arm's symmetry
 /// axis): bounded by the extension range (two arcs) and the base safety
 /// window (two straight edges). With --tilt-deg (and --yaw-deg for the fan
 /// direction) the region where that tilt is also reachable: the tilt moves
