@@ -35,11 +35,23 @@ pub const MIN_LINE_GAP_HEIGHTS: f64 = 4.0;
 /// Above this clear space between lines, in letter heights, warn (MUTCD §3B.20).
 pub const MAX_LINE_GAP_HEIGHTS: f64 = 10.0;
 
+/// Most letters one job takes. MUTCD §3B.20 advises word messages of at most
+/// three lines; assumed: 200 letters (twice the largest benchmark, 100) keeps
+/// a job's planning to minutes and its file to about 200 MB (some 1 700
+/// setpoints of 475 bytes per letter), so a pasted paragraph is refused at
+/// once instead of exhausting memory.
+pub const MAX_LETTERS: usize = 200;
+
 /// Errors of layout and of marking files.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum LayoutError {
     #[error("the message is empty: give at least one letter, e.g. `basr compile STOP`")]
     Empty,
+    #[error(
+        "the message has {letters} letters; one job takes at most {MAX_LETTERS} \
+         (MUTCD §3B.20 advises at most three lines): split it into several jobs"
+    )]
+    TooLong { letters: usize },
     #[error(
         "unsupported character {ch:?} at position {position} of {message:?}: messages take \
          the letters A–Z (lower case is read as upper case), the digits 0–9 and spaces"
@@ -231,6 +243,14 @@ impl Marking {
                     message: message.to_string(),
                 });
             }
+        }
+        let letters = self
+            .lines
+            .iter()
+            .map(|l| l.chars().filter(|c| !c.is_whitespace()).count())
+            .sum::<usize>();
+        if letters > MAX_LETTERS {
+            return Err(LayoutError::TooLong { letters });
         }
         if self.lines.iter().all(|l| l.is_empty()) {
             return Err(LayoutError::Empty);
@@ -452,6 +472,22 @@ mod tests {
 
     fn grid(_: char) -> Option<GlyphBox> {
         Some(GlyphBox::GRID)
+    }
+
+    #[test]
+    fn letter_count_is_capped_spaces_not_counted() {
+        let at_cap = vec!["ABCDE"; MAX_LETTERS / 5].join(" ");
+        assert!(Marking::from_message(&at_cap, &Overrides::default()).is_ok());
+        let over = format!("{at_cap} A");
+        assert_eq!(
+            Marking::from_message(&over, &Overrides::default()).unwrap_err(),
+            LayoutError::TooLong {
+                letters: MAX_LETTERS + 1
+            }
+        );
+        let text = format!("[marking]\nlines = [{}]\n", vec!["\"STOP\""; 51].join(", "));
+        let e = Marking::from_toml(&text, "m.toml", &Overrides::default()).unwrap_err();
+        assert!(e.to_string().contains("204 letters"), "{e}");
     }
 
     #[test]

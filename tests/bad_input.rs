@@ -124,10 +124,29 @@ fn message_wider_than_the_lane_names_both_widths() {
     );
 }
 
+/// 10 000 characters, as one word or as 2 000 lines that each fit the lane,
+/// are refused at once (the letter cap) rather than planned for hours in
+/// gigabytes of memory; so is a marking file of hundreds of lines.
 #[test]
 fn enormous_message_is_refused_quickly() {
     let long = "A".repeat(10_000);
-    Scratch::new().refuses(&["compile", &long], &["lane"]);
+    Scratch::new().refuses(&["compile", &long], &["10000 letters", "at most 200"]);
+    let many_lines = vec!["STOP"; 2_000].join(" ");
+    assert_eq!(many_lines.len(), 9_999);
+    Scratch::new().refuses(
+        &["compile", &many_lines],
+        &["8000 letters", "split it into several jobs"],
+    );
+    let mut s = Scratch::new();
+    let lines = vec!["\"STOP\""; 500].join(", ");
+    s.input(
+        "long.toml",
+        format!("[marking]\nlines = [{lines}]\n").as_bytes(),
+    );
+    s.refuses(
+        &["compile", "--marking", "long.toml"],
+        &["long.toml", "2000 letters"],
+    );
 }
 
 #[test]
