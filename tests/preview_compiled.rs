@@ -56,6 +56,47 @@ fn quadrilateral_tilt_narrows_u_on_the_letter_o() {
     }
 }
 
+/// Issue 5's bar for STOP at default settings: an even film (cv ≤ 0.10),
+/// the letters covered (≥ 0.95) and little paint outside them (≤ 0.05),
+/// with the mean film at the target.
+#[test]
+fn stop_at_default_settings_is_even_covered_and_clean() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = preview(
+        &compile(dir.path(), "STOP", "quadrilateral", "stop.json"),
+        &[],
+    );
+    let f = |k: &str| m[k].as_f64().unwrap();
+    assert!(f("cv") <= 0.10, "{m}");
+    assert!(f("coverage") >= 0.95, "{m}");
+    assert!(f("overspray") <= 0.05, "{m}");
+    assert!(
+        (f("mean_film_m") / f("target_film_m") - 1.0).abs() < 0.05,
+        "{m}"
+    );
+    // No glyph is badly off on its own either.
+    for g in m["glyphs"].as_array().unwrap() {
+        assert!(g["cv"].as_f64().unwrap() < 0.2, "{g}");
+    }
+}
+
+/// ONLY's O sits where following one fan branch through the bowl would
+/// run the yaw joint past its one-turn limit; the compiler must pick a
+/// branch that fits rather than turn the fan round mid-stroke with the gun
+/// on (which sprayed a disc 76× the target film).
+#[test]
+fn no_letter_gets_a_blob_where_the_yaw_joint_runs_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = preview(
+        &compile(dir.path(), "ONLY", "quadrilateral", "only.json"),
+        &[],
+    );
+    for g in m["glyphs"].as_array().unwrap() {
+        assert!(g["cv"].as_f64().unwrap() < 0.1, "{g}");
+        assert!(g["overspray"].as_f64().unwrap() < 0.05, "{g}");
+    }
+}
+
 #[test]
 fn compare_replans_each_tilt_method() {
     let dir = tempfile::tempdir().unwrap();

@@ -149,7 +149,11 @@ pub struct SampleRow {
     pub z_m: f64,
     pub yaw_rad: f64,
     pub tilt_rad: f64,
+    /// Nozzle speed over the road (m/s).
     pub speed_mps: f64,
+    /// Stroke width being painted (m): stroke area swept per metre of nozzle
+    /// travel, the rung length where rungs stand square to the path
+    /// (`plan::knots::pace`); 0 when the gun is off.
     pub width_m: f64,
     pub base_rot_rad: f64,
     pub extension_m: f64,

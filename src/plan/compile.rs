@@ -245,6 +245,10 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             for pass in &passes {
                 let mut kp = knots::knots(pass, &law, method, max_tilt).map_err(what)?;
                 let raised = lift_for_tilt(&robot, &law, &mut kp.knots);
+                if !raised.is_empty() {
+                    // Wider footprints sweep more road: re-pace the pass.
+                    knots::pace(pass, &mut kp.knots, law.k_m2ps);
+                }
                 clamped += kp
                     .clamped
                     .iter()
@@ -550,7 +554,6 @@ fn lift_for_tilt(robot: &Robot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
             let factor = crate::plan::tilt::height_factor(k.tilt_rad, law.fan_angle_rad);
             k.z_m = z_min;
             k.fan_width_m = law.width_at_height(z_min / factor).max(k.width_m);
-            k.speed_mps = law.k_m2ps / k.fan_width_m; // 001 eq. 2.6
             raised.push(i);
         }
     }
@@ -640,6 +643,12 @@ fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
     }
 }
 
+/// Largest yaw-joint change between two knots of a run (rad). Knots are a
+/// rung spacing apart (20 mm); the tightest turn in the font, a bowl's rung
+/// pivoting about its inner end, turns the fan by well under this. A larger
+/// step is a jump to the other fan branch (π) or yaw turn (2π).
+const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
+
 /// Joints for every knot of a run. The fan's two branches (ψ with β, ψ+π
 /// with −β) and every yaw turn are tried at the first knot; each is followed
 /// along the run by the nearest solution, and the branch with the least
@@ -661,6 +670,29 @@ fn solve_run(
         for (i, k) in ks.iter().enumerate().skip(1) {
             let p = *out.last().unwrap_or(&start);
             match robot.ik_nearest(&knot_pose(station, k), &p) {
+                // The nearest solution is on another branch or yaw turn: the
+                // one this branch follows has left the yaw joint's range.
+                // Turning the fan half or whole way round between two knots
+                // would spray a disc with the gun on, so the branch fails.
+                Ok(j) if (j.ee_yaw_rad - p.ee_yaw_rad).abs() > MAX_KNOT_YAW_STEP_RAD => {
+                    let lim = &robot.limits.ee_yaw_rad;
+                    let step = j.ee_yaw_rad - p.ee_yaw_rad;
+                    // What the branch would have needed: the step less the
+                    // half turns the jump added.
+                    let own = step - std::f64::consts::PI * (step / std::f64::consts::PI).round();
+                    let value = p.ee_yaw_rad + own;
+                    last_err = Some((
+                        i,
+                        crate::robot::Unreachable {
+                            joint: "ee_yaw_rad".into(),
+                            value,
+                            min: lim.min,
+                            max: lim.max,
+                            excess: (lim.min - value).max(value - lim.max).max(0.0),
+                        },
+                    ));
+                    continue 'branch;
+                }
                 Ok(j) => {
                     cost += travel(robot, &p, &j);
                     out.push(j);
@@ -727,16 +759,29 @@ fn check_settings(req: &CompileRequest) -> Result<(), CompileError> {
 /// before a stroke's first rung and keeps it past the last. assumed: 0.05 m
 /// lets a path acceleration of 0.3 m/s² reach 0.17 m/s (a one-unit stroke
 /// at 8 ft); shorter leads are tried where the arm cannot reach that far.
-const LEAD_M: f64 = 0.05;
+const LEAD_M: f64 = 0.10;
 /// Pseudo-knots per lead.
 const LEAD_KNOTS: usize = 5;
 
-/// A knot with the same spray moved `d` metres along `dir` (road frame).
-fn shifted(k: &Knot, dir: kurbo::Vec2, d: f64) -> Knot {
+/// A knot with the same spray moved `d` metres along `dir` (road frame),
+/// its fan turned by `dyaw`.
+fn shifted(k: &Knot, dir: kurbo::Vec2, d: f64, dyaw: f64) -> Knot {
     Knot {
         mid: k.mid + dir * d,
         tip: k.tip + dir * d,
+        yaw_rad: k.yaw_rad + dyaw,
         ..*k
+    }
+}
+
+/// Fan turn per metre of tip travel from knot `a` to knot `b` (rad/m).
+fn yaw_per_m(a: &Knot, b: &Knot) -> f64 {
+    let ds = (b.tip - a.tip).hypot();
+    let dyaw = crate::robot::kinematics::wrap_pi(b.yaw_rad - a.yaw_rad);
+    if ds > knots::MIN_TIP_STEP_M && dyaw.is_finite() {
+        dyaw / ds
+    } else {
+        0.0
     }
 }
 
@@ -753,17 +798,22 @@ fn with_leads(ks: &[Knot], lead: f64) -> (Vec<Knot>, usize, usize) {
     if !(dir_in.is_finite() && dir_out.is_finite()) {
         return (ks.to_vec(), 0, n - 1);
     }
+    // The fan already turns at the stroke's own rate when the gun opens: the
+    // lead winds the turn up from rest (dyaw/ds falls linearly from the
+    // stroke's rate at its end to 0 at the lead's far end), so a curved
+    // stroke does not start with a step in yaw rate that the servo's
+    // acceleration limit would answer by slowing the nozzle over paint.
+    let (turn_in, turn_out) = (yaw_per_m(&ks[1], &ks[0]), yaw_per_m(&ks[n - 2], &ks[n - 1]));
+    let wound = |d: f64| d - d * d / (2.0 * lead);
     let mut out = Vec::with_capacity(n + 2 * LEAD_KNOTS);
     for i in (1..=LEAD_KNOTS).rev() {
-        out.push(shifted(&ks[0], dir_in, lead * i as f64 / LEAD_KNOTS as f64));
+        let d = lead * i as f64 / LEAD_KNOTS as f64;
+        out.push(shifted(&ks[0], dir_in, d, turn_in * wound(d)));
     }
     out.extend_from_slice(ks);
     for i in 1..=LEAD_KNOTS {
-        out.push(shifted(
-            &ks[n - 1],
-            dir_out,
-            lead * i as f64 / LEAD_KNOTS as f64,
-        ));
+        let d = lead * i as f64 / LEAD_KNOTS as f64;
+        out.push(shifted(&ks[n - 1], dir_out, d, turn_out * wound(d)));
     }
     (out, LEAD_KNOTS, LEAD_KNOTS + n - 1)
 }
@@ -836,7 +886,7 @@ fn arc_lengths(ks: &[Knot]) -> Vec<f64> {
     for (i, k) in ks.iter().enumerate() {
         if i > 0 {
             let d = (k.tip - ks[i - 1].tip).hypot();
-            acc += d.max(1e-4);
+            acc += d.max(knots::MIN_TIP_STEP_M);
         }
         s.push(acc);
     }
@@ -1082,7 +1132,7 @@ fn interp_knot(ks: &[Knot], arcs: &[f64], s: f64) -> (f64, f64) {
     };
     let lerp = |a: f64, b: f64| a + f * (b - a);
     (
-        lerp(ks[i - 1].width_m, ks[i].width_m),
+        lerp(ks[i - 1].swept_width_m, ks[i].swept_width_m),
         lerp(ks[i - 1].speed_mps, ks[i].speed_mps),
     )
 }

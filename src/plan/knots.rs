@@ -151,7 +151,17 @@ pub struct Knot {
     pub width_m: f64,
     /// Width the fan actually covers: `width_m`, or more where the height was clamped up to the minimum.
     pub fan_width_m: f64,
-    /// Painting speed v = k / fan width (eq. 2.6), so the film stays the target even where clamped.
+    /// Stroke width painted across the direction of travel (m): the stroke
+    /// area the rung sweeps per metre of nozzle (tip) travel, over the tiles
+    /// on either side, so that speed × swept width = k wherever the fan spans
+    /// the rung. It equals `width_m` where rungs stand square to a straight
+    /// path and the tip follows the midpoint, and is less where rungs lean
+    /// (the outer edge of a curve is longer than the inner one, so opposing
+    /// points drift apart).
+    pub swept_width_m: f64,
+    /// Nozzle speed along the tip path that lays the target film: each tile
+    /// between two rungs is crossed in (area the fan sweeps over it) / k
+    /// (eq. 2.6 made physical, see [`pace`]).
     pub speed_mps: f64,
 }
 
@@ -294,15 +304,98 @@ pub fn knots(
             tilt_rad: beta,
             width_m: w,
             fan_width_m: fan_width,
+            swept_width_m: w,
             speed_mps: law.k_m2ps / fan_width, // 001 eq. 2.6
         });
     }
+    pace(rungs, &mut out, law.k_m2ps);
     Ok(KnotPlan {
         knots: out,
         u_before,
         u_after,
         clamped,
     })
+}
+
+/// Smallest tip step (m) the time law parameterises by; `plan::compile`
+/// floors each step of the arc length the same way, so a rung turning in
+/// place still takes its time.
+pub const MIN_TIP_STEP_M: f64 = 1e-4;
+
+/// Set each knot's painting speed so that every tile between two rungs gets
+/// the target film, and its swept width.
+///
+/// Eq. 2.6 (v = k / w) assumes the rung stands square to the path. On a
+/// curve the opposing edge points drift apart: the rung leans, the road it
+/// sweeps per metre of travel is less than its length, and v = k / w lays up
+/// to twice the film (the seed's tile areas, fig. 2.11, show the same
+/// thing). Here the fan's footprint (`fan_width_m` long, centred on the
+/// rung's midpoint, along ψ) is swept from knot to knot; tile j is crossed
+/// in Δt_j = A_fan,j / k, so the paint volume flow × efficiency × Δt_j
+/// covers the swept area at the target film. The speed at a knot is the tip
+/// travel over the time of its two tiles. Where a tile sweeps nothing (two
+/// coincident rungs), eq. 2.6 stands.
+pub fn pace(rungs: &[Rung], ks: &mut [Knot], k_m2ps: f64) {
+    let n = ks.len().min(rungs.len());
+    if n < 2 || k_m2ps.is_nan() || k_m2ps <= 0.0 {
+        return;
+    }
+    let footprint = |k: &Knot| {
+        let half = 0.5 * k.fan_width_m * Vec2::from_angle(k.yaw_rad);
+        (k.mid - half, k.mid + half)
+    };
+    // Per tile: fan-swept area, stroke-swept area, midpoint and tip travel.
+    let tiles: Vec<(f64, f64, f64, f64)> = (0..n - 1)
+        .map(|j| {
+            let (a0, b0) = footprint(&ks[j]);
+            let (a1, b1) = footprint(&ks[j + 1]);
+            let fan = swept_area(a0, b0, a1, b1);
+            let (r0, r1) = (&rungs[j], &rungs[j + 1]);
+            let stroke = swept_area(r0.left, r0.right, r1.left, r1.right);
+            let mid = (ks[j + 1].mid - ks[j].mid).hypot();
+            let tip = (ks[j + 1].tip - ks[j].tip).hypot().max(MIN_TIP_STEP_M);
+            (fan, stroke, mid, tip)
+        })
+        .collect();
+    for (i, knot) in ks.iter_mut().enumerate().take(n) {
+        let around = &tiles[i.saturating_sub(1)..i.min(n - 2) + 1];
+        let (fan, stroke, mid, tip) = around.iter().fold((0.0, 0.0, 0.0, 0.0), |acc, t| {
+            (acc.0 + t.0, acc.1 + t.1, acc.2 + t.2, acc.3 + t.3)
+        });
+        // Below a square micrometre nothing is swept: keep eq. 2.6.
+        if fan > 1e-12 && fan.is_finite() {
+            knot.speed_mps = tip * k_m2ps / fan;
+        }
+        if mid > 1e-9 && stroke.is_finite() {
+            knot.swept_width_m = stroke / tip;
+        }
+    }
+}
+
+/// Area (m²) swept by a segment whose ends move in straight lines from
+/// (`p0`, `q0`) to (`p1`, `q1`), each point of the segment keeping its
+/// fraction along it. The map (u, t) ↦ lerp(lerp(p0, q0, u), lerp(p1, q1, u), t)
+/// has a Jacobian bilinear in u and t; where it keeps one sign the area is
+/// the mean of its four corner values (exact), else it is integrated on a
+/// 16 × 16 midpoint grid (a rung turning about a point inside itself).
+pub fn swept_area(p0: Point, q0: Point, p1: Point, q1: Point) -> f64 {
+    let (a, b) = (q0 - p0, (q1 - p1) - (q0 - p0));
+    let (c, d) = (p1 - p0, (q1 - q0) - (p1 - p0));
+    // J(u, t) = cross(a + t b, c + u d)
+    let jac = |u: f64, t: f64| (a + t * b).cross(c + u * d);
+    let corners = [jac(0.0, 0.0), jac(1.0, 0.0), jac(0.0, 1.0), jac(1.0, 1.0)];
+    if corners.iter().all(|&j| j >= 0.0) || corners.iter().all(|&j| j <= 0.0) {
+        return (corners.iter().sum::<f64>() / 4.0).abs();
+    }
+    const N: usize = 16;
+    let h = 1.0 / N as f64;
+    let mut sum = 0.0;
+    for iu in 0..N {
+        for it in 0..N {
+            sum += jac((iu as f64 + 0.5) * h, (it as f64 + 0.5) * h).abs();
+        }
+    }
+    sum * h * h
 }
 
 /// ψ per rung; degenerate rungs borrow the nearest proper rung's direction.
@@ -428,6 +521,78 @@ mod tests {
                 }
             })
             .collect()
+    }
+
+    #[test]
+    fn swept_area_of_simple_motions() {
+        let p = Point::new;
+        // A 1 m segment moved 0.5 m square to itself sweeps 0.5 m².
+        let a = swept_area(p(0.0, 0.0), p(1.0, 0.0), p(0.0, 0.5), p(1.0, 0.5));
+        assert!((a - 0.5).abs() < 1e-12, "{a}");
+        // Slid along itself it sweeps nothing new.
+        let a = swept_area(p(0.0, 0.0), p(1.0, 0.0), p(0.3, 0.0), p(1.3, 0.0));
+        assert!(a.abs() < 1e-12, "{a}");
+        // Turned by θ about its midpoint (ends on straight chords): two
+        // triangles of legs ½ and chord ½·2 sin(θ/2), i.e. ¼ sin θ in all.
+        let th: f64 = 0.2;
+        let (c, s) = (0.5 * th.cos(), 0.5 * th.sin());
+        let a = swept_area(p(-0.5, 0.0), p(0.5, 0.0), p(-c, -s), p(c, s));
+        assert!((a - 0.25 * th.sin()).abs() < 2e-3 * a, "{a}");
+    }
+
+    #[test]
+    fn leaning_rungs_are_paced_by_the_road_they_sweep() {
+        // A straight band 0.1 m wide whose rungs lean: each right point sits
+        // 0.1 m further along than its left point. Rungs are 0.141 m long but
+        // sweep only 0.1 m of road per metre; eq. 2.6 with the rung length
+        // would lay 1.41× the film. Untilted, so tip = mid.
+        let l = law();
+        let rungs: Vec<Rung> = (0..40)
+            .map(|k| {
+                let x = 0.02 * k as f64;
+                Rung {
+                    left: Point::new(x, 0.0),
+                    right: Point::new(x + 0.1, 0.1),
+                }
+            })
+            .collect();
+        let plan = knots(&rungs, &l, TiltMethod::None, 0.0).unwrap();
+        for k in &plan.knots {
+            assert!((k.width_m - 0.1 * 2f64.sqrt()).abs() < 1e-12);
+            assert!((k.swept_width_m - 0.1).abs() < 1e-9, "{}", k.swept_width_m);
+            assert!((k.speed_mps * 0.1 / l.k_m2ps - 1.0).abs() < 1e-9);
+        }
+        // Square rungs on a straight band keep eq. 2.6 exactly.
+        let plan = knots(&straight(0.2, 5), &l, TiltMethod::None, 0.0).unwrap();
+        for k in &plan.knots {
+            assert!((k.speed_mps * 0.2 / l.k_m2ps - 1.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn radial_rungs_on_an_annulus_keep_eq_2_6() {
+        // Rungs from r = 1.0 to 1.2 m every 1°: the swept tile is an annulus
+        // sector whose area is the rung length × the midpoint's arc.
+        let l = law();
+        let rungs: Vec<Rung> = (0..30)
+            .map(|k| {
+                let d = Vec2::from_angle((k as f64).to_radians());
+                Rung {
+                    left: Point::ORIGIN + d,
+                    right: Point::ORIGIN + 1.2 * d,
+                }
+            })
+            .collect();
+        let plan = knots(&rungs, &l, TiltMethod::None, 0.0).unwrap();
+        for k in &plan.knots {
+            // Chords instead of arcs: the midpoint path is a polygon.
+            assert!(
+                (k.speed_mps * 0.2 / l.k_m2ps - 1.0).abs() < 1e-4,
+                "{}",
+                k.speed_mps
+            );
+            assert!((k.swept_width_m / 0.2 - 1.0).abs() < 1e-4);
+        }
     }
 
     #[test]
