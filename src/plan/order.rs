@@ -76,6 +76,60 @@ const MIN_GAIN: f64 = 1e-9;
 /// bound only guards against pathological cost functions).
 const MAX_SWEEPS: usize = 200;
 
+/// The caller's cost between every pair of points the tour can join: the
+/// start (node 0) and both ends of every item (item i's start is node
+/// 2i + 1, its end 2i + 2). Each pair is priced once; the searches then
+/// look costs up instead of calling the cost (the compile pipeline's is an
+/// arm-time estimate with trigonometry). The figures are the caller's own,
+/// added in the same order as before, so the tour is the same bit for bit.
+struct Table {
+    n: usize,
+    cost: Vec<f64>,
+}
+
+impl Table {
+    fn new(items: &[Ends], from: [f64; 2], cost: &impl Fn([f64; 2], [f64; 2]) -> f64) -> Table {
+        let mut pts = Vec::with_capacity(2 * items.len() + 1);
+        pts.push(from);
+        for e in items {
+            pts.push(e.start);
+            pts.push(e.end);
+        }
+        let n = pts.len();
+        let mut c = Vec::with_capacity(n * n);
+        for &a in &pts {
+            for &b in &pts {
+                c.push(cost(a, b));
+            }
+        }
+        Table { n, cost: c }
+    }
+
+    fn get(&self, a: usize, b: usize) -> f64 {
+        self.cost[a * self.n + b]
+    }
+
+    /// Summed air cost of a tour from node 0, in tour order.
+    fn tour<'a>(&self, tour: impl IntoIterator<Item = &'a Visit>) -> f64 {
+        let mut at = 0;
+        let mut total = 0.0;
+        for v in tour {
+            total += self.get(at, v.entry_node());
+            at = v.exit_node();
+        }
+        total
+    }
+}
+
+impl Visit {
+    fn entry_node(&self) -> usize {
+        2 * self.item + if self.reversed { 2 } else { 1 }
+    }
+    fn exit_node(&self) -> usize {
+        2 * self.item + if self.reversed { 1 } else { 2 }
+    }
+}
+
 /// Order and direction of `items` starting from `from`, minimising the summed
 /// `cost` of the air moves between them. `cost` must be symmetric.
 pub fn order(
@@ -83,10 +137,11 @@ pub fn order(
     from: [f64; 2],
     cost: impl Fn([f64; 2], [f64; 2]) -> f64,
 ) -> Vec<Visit> {
-    let mut tour = greedy(items, from, &cost);
+    let t = Table::new(items, from, &cost);
+    let mut tour = greedy_in(&t, items.len());
     for _ in 0..MAX_SWEEPS {
-        let a = two_opt(items, &mut tour, from, &cost);
-        let b = or_opt(items, &mut tour, from, &cost);
+        let a = two_opt(&t, &mut tour);
+        let b = or_opt(&t, &mut tour);
         if !(a || b) {
             break;
         }
@@ -94,16 +149,22 @@ pub fn order(
     tour
 }
 
+/// The nearest-neighbour tour alone (the improvement's starting point).
+#[cfg(test)]
 fn greedy(items: &[Ends], from: [f64; 2], cost: &impl Fn([f64; 2], [f64; 2]) -> f64) -> Vec<Visit> {
-    let mut used = vec![false; items.len()];
-    let mut tour = Vec::with_capacity(items.len());
-    let mut at = from;
-    for _ in 0..items.len() {
+    greedy_in(&Table::new(items, from, cost), items.len())
+}
+
+fn greedy_in(t: &Table, n: usize) -> Vec<Visit> {
+    let mut used = vec![false; n];
+    let mut tour = Vec::with_capacity(n);
+    let mut at = 0;
+    for _ in 0..n {
         let mut best: Option<(f64, Visit)> = None;
-        for (i, _) in items.iter().enumerate().filter(|(i, _)| !used[*i]) {
+        for i in (0..n).filter(|&i| !used[i]) {
             for reversed in [false, true] {
                 let v = Visit { item: i, reversed };
-                let c = cost(at, v.entry(items));
+                let c = t.get(at, v.entry_node());
                 if best.is_none_or(|(b, _)| c < b - MIN_GAIN) {
                     best = Some((c, v));
                 }
@@ -111,51 +172,37 @@ fn greedy(items: &[Ends], from: [f64; 2], cost: &impl Fn([f64; 2], [f64; 2]) -> 
         }
         if let Some((_, v)) = best {
             used[v.item] = true;
-            at = v.exit(items);
+            at = v.exit_node();
             tour.push(v);
         }
     }
     tour
 }
 
-/// Exit point before position `i` of the tour (the start point for i = 0).
-fn exit_before(items: &[Ends], tour: &[Visit], from: [f64; 2], i: usize) -> [f64; 2] {
+/// Exit node before position `i` of the tour (the start for i = 0).
+fn exit_before(tour: &[Visit], i: usize) -> usize {
     if i == 0 {
-        from
+        0
     } else {
-        tour[i - 1].exit(items)
+        tour[i - 1].exit_node()
     }
 }
 
 /// One sweep of 2-opt: reverse tour[i..=j] (flipping each item) when it
 /// shortens the tour. Returns whether anything changed.
-fn two_opt(
-    items: &[Ends],
-    tour: &mut [Visit],
-    from: [f64; 2],
-    cost: &impl Fn([f64; 2], [f64; 2]) -> f64,
-) -> bool {
+fn two_opt(t: &Table, tour: &mut [Visit]) -> bool {
     let n = tour.len();
     let mut changed = false;
     for i in 0..n {
         for j in i..n {
-            let before = exit_before(items, tour, from, i);
-            let first_in = tour[i].entry(items);
-            let last_out = tour[j].exit(items);
-            let old = cost(before, first_in)
-                + if j + 1 < n {
-                    cost(last_out, tour[j + 1].entry(items))
-                } else {
-                    0.0
-                };
+            let before = exit_before(tour, i);
+            let first_in = tour[i].entry_node();
+            let last_out = tour[j].exit_node();
+            let next = (j + 1 < n).then(|| tour[j + 1].entry_node());
+            let old = t.get(before, first_in) + next.map_or(0.0, |x| t.get(last_out, x));
             // Reversed run: enters at the old last item's exit, leaves at
             // the old first item's entry.
-            let new = cost(before, last_out)
-                + if j + 1 < n {
-                    cost(first_in, tour[j + 1].entry(items))
-                } else {
-                    0.0
-                };
+            let new = t.get(before, last_out) + next.map_or(0.0, |x| t.get(first_in, x));
             if new < old - MIN_GAIN {
                 tour[i..=j].reverse();
                 for v in &mut tour[i..=j] {
@@ -170,40 +217,36 @@ fn two_opt(
 
 /// One sweep of or-opt: move a run of 1–3 items to another place, either
 /// way round, when that shortens the tour.
-fn or_opt(
-    items: &[Ends],
-    tour: &mut Vec<Visit>,
-    from: [f64; 2],
-    cost: &impl Fn([f64; 2], [f64; 2]) -> f64,
-) -> bool {
+fn or_opt(t: &Table, tour: &mut Vec<Visit>) -> bool {
     let mut changed = false;
     for len in 1..=3usize {
         let mut i = 0;
         while i + len <= tour.len() {
-            let base = tour_cost(items, tour, from, cost);
-            let run: Vec<Visit> = tour[i..i + len].to_vec();
-            let mut rest: Vec<Visit> = tour[..i].to_vec();
-            rest.extend_from_slice(&tour[i + len..]);
-            let mut best: Option<(f64, Vec<Visit>)> = None;
-            for at in 0..=rest.len() {
+            let base = t.tour(tour.iter());
+            let run = &tour[i..i + len];
+            let flipped: Vec<Visit> = run.iter().rev().map(|v| v.flipped()).collect();
+            // The tour without the run, and that tour with the run put back
+            // at position `at` (either way round), walked without copying.
+            let rest = || tour[..i].iter().chain(&tour[i + len..]);
+            let m = tour.len() - len;
+            let mut best: Option<(f64, usize, bool)> = None;
+            for at in 0..=m {
                 if at == i {
                     continue; // the same place
                 }
                 for rev in [false, true] {
-                    let mut cand = rest[..at].to_vec();
-                    if rev {
-                        cand.extend(run.iter().rev().map(|v| v.flipped()));
-                    } else {
-                        cand.extend_from_slice(&run);
-                    }
-                    cand.extend_from_slice(&rest[at..]);
-                    let c = tour_cost(items, &cand, from, cost);
-                    if c < base - MIN_GAIN && best.as_ref().is_none_or(|(b, _)| c < *b - MIN_GAIN) {
-                        best = Some((c, cand));
+                    let put = if rev { &flipped[..] } else { run };
+                    let c = t.tour(rest().take(at).chain(put).chain(rest().skip(at)));
+                    if c < base - MIN_GAIN && best.is_none_or(|(b, _, _)| c < b - MIN_GAIN) {
+                        best = Some((c, at, rev));
                     }
                 }
             }
-            if let Some((_, cand)) = best {
+            if let Some((_, at, rev)) = best {
+                let put: Vec<Visit> = if rev { flipped } else { run.to_vec() };
+                let mut cand: Vec<Visit> = rest().take(at).copied().collect();
+                cand.extend_from_slice(&put);
+                cand.extend(rest().skip(at).copied());
                 *tour = cand;
                 changed = true;
             }

@@ -9,6 +9,7 @@
 //! reach is an interval along y); the station is then put where the worst
 //! margin over its items is largest.
 
+use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
 use crate::job::Station;
@@ -144,10 +145,18 @@ pub fn plan(
     };
     let mut group: Vec<usize> = vec![];
     let mut best: Option<(Station, f64)> = None;
+    let mut memo = Memo::default();
     for &i in &idx {
         let mut trial = group.clone();
         trial.push(i);
-        let pose = best_pose(items, &trial, lane_half_width_m, margin_m, &reach_margin);
+        let pose = best_pose(
+            items,
+            &trial,
+            lane_half_width_m,
+            margin_m,
+            &reach_margin,
+            &mut memo,
+        );
         if pose.1 >= margin_m {
             group = trial;
             best = Some(pose);
@@ -157,7 +166,14 @@ pub fn plan(
         if let Some((s, m)) = best.take() {
             close(&mut out, &group, s, m);
         }
-        let alone = best_pose(items, &[i], lane_half_width_m, margin_m, &reach_margin);
+        let alone = best_pose(
+            items,
+            &[i],
+            lane_half_width_m,
+            margin_m,
+            &reach_margin,
+            &mut memo,
+        );
         if alone.1 < margin_m {
             let (x, y) = worst_point(&items[i], &alone.0, &reach_margin);
             return Err(StationError::Unreachable {
@@ -184,6 +200,75 @@ fn close(out: &mut StationPlan, group: &[usize], s: Station, m: f64) {
     }
     out.stations.push(s);
     out.margin_m.push(m);
+}
+
+/// The worst margins of a growing group at the poses its searches tried.
+///
+/// `plan` grows a station's group one item at a time and searches the
+/// poses again after each; the worst margin of a group at a pose is the
+/// minimum over its items, so a pose already tried needs only the items
+/// added since (each search then costs one item's points, not the whole
+/// group's: station planning stays linear in the number of items instead
+/// of quadratic per station). Poses are keyed by their exact coordinates,
+/// and `f64::min` is exact and order-free, so every figure is bit for bit
+/// what a search from scratch gives.
+#[derive(Default)]
+struct Memo {
+    /// The group the entries belong to (a prefix of every later group).
+    group: Vec<usize>,
+    /// Lowest and highest y over the group's points.
+    y_low: f64,
+    y_top: f64,
+    /// Pose (x, y bits) → (worst margin over `group[..n]`, n).
+    at: HashMap<(u64, u64), (f64, usize)>,
+}
+
+impl Memo {
+    /// Make the memo describe `group`: kept when `group` extends the
+    /// memo's group, started afresh otherwise.
+    fn sync(&mut self, items: &[Vec<[f64; 2]>], group: &[usize]) {
+        if !group.starts_with(&self.group) || self.group.is_empty() {
+            self.group.clear();
+            self.at.clear();
+            self.y_low = f64::INFINITY;
+            self.y_top = f64::NEG_INFINITY;
+        }
+        for &g in &group[self.group.len()..] {
+            for p in &items[g] {
+                self.y_low = self.y_low.min(p[1]);
+                self.y_top = self.y_top.max(p[1]);
+            }
+        }
+        self.group.clear();
+        self.group.extend_from_slice(group);
+    }
+
+    /// Worst margin over the synced group from station `s`, or, once it is
+    /// known to be at most `beat` (the search only wants poses that beat
+    /// that), some value between the worst margin and `beat`. Items are
+    /// taken in group order, so an entry always holds an exact minimum
+    /// over a prefix of the group.
+    fn worst(
+        &mut self,
+        items: &[Vec<[f64; 2]>],
+        s: &Station,
+        reach_margin: &impl Fn(f64, f64) -> f64,
+        beat: f64,
+    ) -> f64 {
+        let key = (s.x_m.to_bits(), s.y_m.to_bits());
+        let (mut worst, mut done) = self.at.get(&key).copied().unwrap_or((f64::INFINITY, 0));
+        while done < self.group.len() && worst > beat {
+            worst = worst.min(worst_margin(
+                items,
+                &self.group[done..=done],
+                s,
+                reach_margin,
+            ));
+            done += 1;
+        }
+        self.at.insert(key, (worst, done));
+        worst
+    }
 }
 
 fn worst_margin(
@@ -227,10 +312,10 @@ fn best_pose(
     lane_half_width_m: f64,
     want_m: f64,
     reach_margin: &impl Fn(f64, f64) -> f64,
+    memo: &mut Memo,
 ) -> (Station, f64) {
-    let pts = || group.iter().flat_map(|&g| items[g].iter());
-    let y_top = pts().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
-    let y_low = pts().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    memo.sync(items, group);
+    let (y_top, y_low) = (memo.y_top, memo.y_low);
     // No arm reaches further than this behind its axis (generous bound).
     let span = (y_low + MAX_REACH_M - y_top).max(0.0);
     let n_x = (lane_half_width_m / X_STEP_M).floor().max(0.0) as i64;
@@ -239,22 +324,24 @@ fn best_pose(
         xs.push(k as f64 * X_STEP_M);
         xs.push(-(k as f64) * X_STEP_M);
     }
-    let at = |x: f64, y: f64| {
+    // `at(x, y, beat)`: the station there and its worst margin (exact when
+    // above `beat`).
+    let mut at = |x: f64, y: f64, beat: f64| {
         let s = Station {
             x_m: x,
             y_m: y,
             heading_rad: HEADING_RAD,
         };
-        let m = worst_margin(items, group, &s, reach_margin);
+        let m = memo.worst(items, &s, reach_margin, beat);
         (s, m)
     };
-    let mut best = at(0.0, y_top);
+    let mut best = at(0.0, y_top, f64::NEG_INFINITY);
     for &x in &xs {
         // Coarse scan along the lane, then a fine one around the best.
-        let mut local = at(x, y_top);
+        let mut local = at(x, y_top, f64::NEG_INFINITY);
         let n = (span / Y_COARSE_M).ceil() as usize;
         for k in 1..=n {
-            let c = at(x, y_top + k as f64 * Y_COARSE_M);
+            let c = at(x, y_top + k as f64 * Y_COARSE_M, local.1);
             if c.1 > local.1 {
                 local = c;
             }
@@ -266,7 +353,7 @@ fn best_pose(
             if y < y_top {
                 continue;
             }
-            let c = at(x, y);
+            let c = at(x, y, local.1);
             if c.1 > local.1 {
                 local = c;
             }
@@ -348,6 +435,118 @@ mod tests {
         assert_eq!(p.stations.len(), 2);
         assert_eq!(p.station_of, vec![0, 0, 0, 0, 1]);
         assert!(p.stations[1].y_m > p.stations[0].y_m);
+    }
+
+    /// The pose search as it was before `Memo`: every pose priced from
+    /// scratch over the whole group.
+    fn best_pose_reference(
+        items: &[Vec<[f64; 2]>],
+        group: &[usize],
+        lane_half_width_m: f64,
+        want_m: f64,
+        reach_margin: &impl Fn(f64, f64) -> f64,
+    ) -> (Station, f64) {
+        let pts = || group.iter().flat_map(|&g| items[g].iter());
+        let y_top = pts().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+        let y_low = pts().map(|p| p[1]).fold(f64::INFINITY, f64::min);
+        let span = (y_low + MAX_REACH_M - y_top).max(0.0);
+        let n_x = (lane_half_width_m / X_STEP_M).floor().max(0.0) as i64;
+        let mut xs = vec![0.0];
+        for k in 1..=n_x {
+            xs.push(k as f64 * X_STEP_M);
+            xs.push(-(k as f64) * X_STEP_M);
+        }
+        let at = |x: f64, y: f64| {
+            let s = Station {
+                x_m: x,
+                y_m: y,
+                heading_rad: HEADING_RAD,
+            };
+            let m = worst_margin(items, group, &s, reach_margin);
+            (s, m)
+        };
+        let mut best = at(0.0, y_top);
+        for &x in &xs {
+            let mut local = at(x, y_top);
+            for k in 1..=(span / Y_COARSE_M).ceil() as usize {
+                let c = at(x, y_top + k as f64 * Y_COARSE_M);
+                if c.1 > local.1 {
+                    local = c;
+                }
+            }
+            let y0 = local.0.y_m;
+            let n_fine = (Y_COARSE_M / Y_STEP_M).round() as i64;
+            for k in -n_fine..=n_fine {
+                let y = y0 + k as f64 * Y_STEP_M;
+                if y >= y_top {
+                    let c = at(x, y);
+                    if c.1 > local.1 {
+                        local = c;
+                    }
+                }
+            }
+            let bias = if x == 0.0 { 0.0 } else { 1e-3 };
+            if local.1 > best.1 + bias {
+                best = local;
+            }
+            if x == 0.0 && best.1 >= want_m {
+                break;
+            }
+        }
+        best
+    }
+
+    /// Thin letter-like strokes: a stem, a bar, a diagonal.
+    fn stroke(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<[f64; 2]> {
+        (0..=8)
+            .map(|i| {
+                let t = i as f64 / 8.0;
+                [x0 + t * (x1 - x0), y0 + t * (y1 - y0)]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn memo_search_matches_a_search_from_scratch() {
+        let region = crate::robot::Robot::basr().region();
+        let sector = SectorReach::default();
+        let reaches: [&dyn Fn(f64, f64) -> f64; 2] =
+            [&|x, y| region.margin(x, y), &|x, y| sector.margin(x, y)];
+        // Two lines of strokes; the growing group of the first line, the
+        // second line's first stroke (a trial that fails), then a group
+        // started afresh from that stroke.
+        let mut items = vec![];
+        for (line, y0) in [0.0, 12.2].into_iter().enumerate() {
+            for i in 0..4 {
+                let x = -1.0 + 0.6 * i as f64 + 0.1 * line as f64;
+                items.push(stroke(x, y0, x, y0 + 2.44));
+                items.push(stroke(x, y0 + 1.2, x + 0.4, y0 + 1.4 + 0.1 * i as f64));
+            }
+        }
+        let first: Vec<usize> = (0..8).collect();
+        for reach in reaches {
+            // want 0.05: the lane centre serves; 10 m: every lateral offset
+            // is searched (and pruned) too.
+            for want in [DEFAULT_MARGIN_M, 10.0] {
+                let mut memo = Memo::default();
+                let mut groups: Vec<Vec<usize>> = (1..=8).map(|n| first[..n].to_vec()).collect();
+                groups.push([&first[..], &[8]].concat());
+                groups.extend((9..=12).map(|n| (8..n).collect()));
+                for g in &groups {
+                    let (s, m) = best_pose(&items, g, 0.6, want, &reach, &mut memo);
+                    let (rs, rm) = best_pose_reference(&items, g, 0.6, want, &reach);
+                    assert_eq!(
+                        (s.x_m.to_bits(), s.y_m.to_bits(), m.to_bits()),
+                        (rs.x_m.to_bits(), rs.y_m.to_bits(), rm.to_bits()),
+                        "group {g:?}, want {want}: ({}, {}) {m} vs ({}, {}) {rm}",
+                        s.x_m,
+                        s.y_m,
+                        rs.x_m,
+                        rs.y_m
+                    );
+                }
+            }
+        }
     }
 
     #[test]
