@@ -260,6 +260,15 @@ fn negative_and_non_finite_numbers_as_separate_arguments_reach_validation() {
         let err = Scratch::new().refuses(args, needles);
         assert!(!err.contains("tip:"), "clap's tip, not our message:\n{err}");
     }
+    // Positive but so fine that the work would not fit in memory.
+    Scratch::new().refuses(
+        &["compile", "STOP", "--rung-spacing-mm", "1e-6"],
+        &["--rung-spacing-mm", "1 mm minimum"],
+    );
+    Scratch::new().refuses(
+        &["compile", "STOP", "--period-s", "1e-7"],
+        &["--period-s", "at least 0.005"],
+    );
     let mut s = Scratch::new();
     write_job(&mut s, "j.job.json", |_| {});
     s.refuses(
@@ -273,6 +282,33 @@ fn negative_and_non_finite_numbers_as_separate_arguments_reach_validation() {
     s.refuses(
         &["simulate", "j.job.json", "--tolerance-mm", "inf"],
         &["--tolerance-mm", "positive"],
+    );
+}
+
+/// Cells kilometres wide once made the SVG's axes loop for ever over tick
+/// labels; a vast cell size now draws a coarse plot and ends.
+#[test]
+fn preview_at_a_vast_cell_size_ends() {
+    let mut s = Scratch::new();
+    write_job(&mut s, "j.job.json", |_| {});
+    let out = Command::cargo_bin("basr")
+        .unwrap()
+        .current_dir(s.dir.path())
+        .args([
+            "preview",
+            "j.job.json",
+            "-o",
+            "j.svg",
+            "--resolution-mm",
+            "1e300",
+            "-q",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        matches!(out.status.code(), Some(0 | 2)),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
     );
 }
 

@@ -102,6 +102,14 @@ pub struct Args {
     pub json: bool,
 }
 
+/// Finest rung spacing, mm. Assumed: 1/20 of the default and far below the
+/// fan's footprint on the road (tens of mm); finer only multiplies the work
+/// (1e-6 mm asked for a 39 GB allocation).
+const MIN_RUNG_SPACING_MM: f64 = 1.0;
+/// Finest setpoint period, s: the controller samples every 5 ms (000 §III),
+/// so finer setpoints are never read and only multiply the job's size.
+const MIN_PERIOD_S: f64 = 0.005;
+
 /// File name stem for a message: spaces → `_`, and nothing that would leave
 /// the current folder.
 fn stem_of(text: &str) -> String {
@@ -120,6 +128,20 @@ fn stem_of(text: &str) -> String {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    // Non-finite and non-positive values are reported by the planner.
+    let too_fine = |v: f64, min: f64| v.is_finite() && v > 0.0 && v < min;
+    anyhow::ensure!(
+        !too_fine(args.rung_spacing_mm, MIN_RUNG_SPACING_MM),
+        "--rung-spacing-mm {} is finer than the {MIN_RUNG_SPACING_MM} mm minimum: \
+         finer rungs only multiply the work (default 20)",
+        args.rung_spacing_mm
+    );
+    anyhow::ensure!(
+        !too_fine(args.period_s, MIN_PERIOD_S),
+        "--period-s {} is below the controller's {MIN_PERIOD_S} s sampling period, \
+         which would never read the extra setpoints: give at least {MIN_PERIOD_S}",
+        args.period_s
+    );
     let source = match (&args.message, &args.marking) {
         (Some(m), None) => Source::Message(m.clone()),
         (None, Some(path)) => Source::Marking {

@@ -256,6 +256,9 @@ pub fn nice_step(raw: f64) -> f64 {
         .unwrap_or(10.0 * p)
 }
 
+/// Most ticks along one axis (assumed: beyond this the labels overlap anyway).
+const MAX_TICKS: f64 = 100.0;
+
 /// Axes around a frame: a box and metre ticks along the bottom and left.
 pub fn axes(frame: &Frame, tick_m: f64) -> Group {
     let (x0, y0) = frame.px([frame.road_min[0], frame.road_max[1]]);
@@ -270,7 +273,15 @@ pub fn axes(frame: &Frame, tick_m: f64) -> Group {
             .set("stroke", palette::INK)
             .set("stroke-width", 0.8),
     );
-    if tick_m.is_nan() || tick_m <= 0.0 {
+    // A caller's tick on a vast frame (a preview at kilometre cells) would
+    // mean millions of labels or, past i64, a loop without end: coarsen it.
+    let span = (frame.road_max[0] - frame.road_min[0]).max(frame.road_max[1] - frame.road_min[1]);
+    let tick_m = if span / tick_m > MAX_TICKS {
+        nice_step(span / MAX_TICKS)
+    } else {
+        tick_m
+    };
+    if !(tick_m.is_finite() && tick_m > 0.0) {
         return g;
     }
     let first = |lo: f64| (lo / tick_m).ceil() as i64;
@@ -376,6 +387,19 @@ mod tests {
         assert_eq!(nice_step(0.3), 0.5);
         assert_eq!(nice_step(2.0), 2.0);
         assert_eq!(nice_step(-1.0), 0.0);
+    }
+
+    #[test]
+    fn axes_on_a_vast_frame_keep_a_bounded_number_of_ticks() {
+        let labels = |f: &Frame, tick: f64| axes(f, tick).to_string().matches("<text").count();
+        let small = Frame::new(0.0, 0.0, 100.0, [0.0, 0.0], [2.0, 1.0]);
+        // 0..2 and 0..1 at 0.5 m: 5 + 3 ticks and two axis titles.
+        assert_eq!(labels(&small, 0.5), 10);
+        let vast = Frame::new(0.0, 0.0, 1e-6, [-1e9, -1e9], [1e9, 1e9]);
+        let n = labels(&vast, 50.0);
+        assert!(n > 2 && n <= 2 * 101 + 2, "{n} labels");
+        let endless = Frame::new(0.0, 0.0, 1e-300, [-1e300, 0.0], [1e300, 1.0]);
+        assert!(labels(&endless, 50.0) <= 2 * 101 + 2);
     }
 
     #[test]
