@@ -42,6 +42,11 @@ pub const MAX_LINE_GAP_HEIGHTS: f64 = 10.0;
 /// once instead of exhausting memory.
 pub const MAX_LETTERS: usize = 200;
 
+/// Largest line gap or anchor offset, m. Assumed: one marking is laid at one
+/// site, within a kilometre; far beyond that the letters' curves lose their
+/// millimetres to round-off (a line gap of 10³⁰⁰ m overflowed the planner).
+pub const MAX_OFFSET_M: f64 = 1000.0;
+
 /// Errors of layout and of marking files.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum LayoutError {
@@ -52,6 +57,11 @@ pub enum LayoutError {
          (MUTCD §3B.20 advises at most three lines): split it into several jobs"
     )]
     TooLong { letters: usize },
+    #[error(
+        "{field} {value} m is more than {MAX_OFFSET_M} m from the origin: a marking is laid at one site; \
+         split it into several jobs"
+    )]
+    TooFar { field: String, value: f64 },
     #[error(
         "unsupported character {ch:?} at position {position} of {message:?}: messages take \
          the letters A–Z (lower case is read as upper case), the digits 0–9 and spaces"
@@ -285,6 +295,18 @@ impl Marking {
                 });
             }
         }
+        for (field, v) in [
+            ("line gap", self.line_gap_m),
+            ("anchor x", self.anchor_x_m),
+            ("anchor y", self.anchor_y_m),
+        ] {
+            if v.abs() > MAX_OFFSET_M {
+                return Err(LayoutError::TooFar {
+                    field: field.into(),
+                    value: v,
+                });
+            }
+        }
         Ok(())
     }
 }
@@ -472,6 +494,27 @@ mod tests {
 
     fn grid(_: char) -> Option<GlyphBox> {
         Some(GlyphBox::GRID)
+    }
+
+    #[test]
+    fn line_gap_and_anchors_stay_within_a_site() {
+        let far = |o: Overrides| Marking::from_message("A B", &o).unwrap_err();
+        let e = far(Overrides {
+            line_gap_m: Some(1e300),
+            ..Overrides::default()
+        });
+        assert!(matches!(e, LayoutError::TooFar { .. }), "{e}");
+        assert!(Marking::from_message(
+            "A B",
+            &Overrides {
+                line_gap_m: Some(MAX_OFFSET_M),
+                ..Overrides::default()
+            }
+        )
+        .is_ok());
+        let text = "[marking]\nlines = [\"A\"]\nanchor_y_m = -2000.0\n";
+        let e = Marking::from_toml(text, "m.toml", &Overrides::default()).unwrap_err();
+        assert!(e.to_string().contains("anchor y -2000 m"), "{e}");
     }
 
     #[test]

@@ -260,6 +260,11 @@ fn negative_and_non_finite_numbers_as_separate_arguments_reach_validation() {
         let err = Scratch::new().refuses(args, needles);
         assert!(!err.contains("tip:"), "clap's tip, not our message:\n{err}");
     }
+    // A line gap or anchor far beyond one site (10³⁰⁰ m overflowed the planner).
+    Scratch::new().refuses(
+        &["compile", "A B", "--line-gap", "1e300"],
+        &["line gap", "more than 1000 m"],
+    );
     // Positive but so fine that the work would not fit in memory.
     Scratch::new().refuses(
         &["compile", "STOP", "--rung-spacing-mm", "1e-6"],
