@@ -23,7 +23,8 @@ pub const DEFAULT_MARGIN_M: f64 = 0.05;
 /// Steps of the search over the station's position along the lane (m).
 const Y_COARSE_M: f64 = 0.05;
 const Y_STEP_M: f64 = 0.005;
-/// No arm of this class reaches further (m); bounds the search.
+/// No arm of this class reaches further (m); bounds the search, and a group
+/// taller than this is never tried as one station.
 const MAX_REACH_M: f64 = 10.0;
 /// Step of the search over the station's lateral position (m).
 const X_STEP_M: f64 = 0.05;
@@ -149,15 +150,23 @@ pub fn plan(
     for &i in &idx {
         let mut trial = group.clone();
         trial.push(i);
-        let pose = best_pose(
-            items,
-            &trial,
-            lane_half_width_m,
-            margin_m,
-            &reach_margin,
-            &mut memo,
-        );
-        if pose.1 >= margin_m {
+        // The search puts the truck at or ahead of the group's top, so a
+        // group taller than any arm reaches cannot share a station: skip
+        // the search (for a message's next line, 4 letter heights on, the
+        // search over every lateral offset was most of the planning time).
+        let pose = if margin_m >= 0.0 && memo.height_with(&group, &items[i]) > MAX_REACH_M {
+            None
+        } else {
+            Some(best_pose(
+                items,
+                &trial,
+                lane_half_width_m,
+                margin_m,
+                &reach_margin,
+                &mut memo,
+            ))
+        };
+        if let Some(pose) = pose.filter(|p| p.1 >= margin_m) {
             group = trial;
             best = Some(pose);
             continue;
@@ -241,6 +250,17 @@ impl Memo {
         }
         self.group.clear();
         self.group.extend_from_slice(group);
+    }
+
+    /// Extent along the lane (m) of `group` plus the points `pts`; 0 when
+    /// `group` is empty or not the synced group (nothing is known then).
+    fn height_with(&self, group: &[usize], pts: &[[f64; 2]]) -> f64 {
+        if group.is_empty() || group != self.group {
+            return 0.0;
+        }
+        let lo = pts.iter().map(|p| p[1]).fold(self.y_low, f64::min);
+        let hi = pts.iter().map(|p| p[1]).fold(self.y_top, f64::max);
+        hi - lo
     }
 
     /// Worst margin over the synced group from station `s`, or, once it is
