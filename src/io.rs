@@ -29,7 +29,9 @@ fn outputs() -> std::sync::MutexGuard<'static, Outputs> {
 /// Errors from writing an output file.
 #[derive(Debug, thiserror::Error)]
 pub enum WriteError {
-    #[error("cannot write {path}: {source} (check that the folder exists and is writable)")]
+    // The OS reason is the source, printed after this by `{:#}` (main's
+    // error line), so it is not repeated here.
+    #[error("cannot write {path} (check that the folder exists and is writable)")]
     Io {
         path: PathBuf,
         #[source]
@@ -58,6 +60,16 @@ fn folder_of(path: &Path) -> &Path {
     match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
+    }
+}
+
+/// tempfile's error names the random temporary (`at path …/.basr-x1Y2.part`),
+/// a file the user never asked for; keep only the OS reason.
+fn without_temp_name(e: std::io::Error) -> std::io::Error {
+    let text = e.to_string();
+    match text.split_once(" at path ") {
+        Some((reason, _)) => std::io::Error::new(e.kind(), reason.to_string()),
+        None => e,
     }
 }
 
@@ -113,7 +125,9 @@ pub fn write_atomic_with(
     }
     let (tmp, tmp_path) = {
         let mut out = outputs();
-        let tmp = builder.tempfile_in(folder_of(path)).map_err(err)?;
+        let tmp = builder
+            .tempfile_in(folder_of(path))
+            .map_err(|e| err(without_temp_name(e)))?;
         let tmp_path = tmp.path().to_path_buf();
         out.in_flight.push(tmp_path.clone());
         (tmp, tmp_path)
@@ -214,6 +228,20 @@ mod tests {
             let mode = std::fs::metadata(&p).unwrap().permissions().mode();
             assert_eq!(mode & 0o777, 0o644, "outputs are world-readable documents");
         }
+    }
+
+    #[test]
+    fn a_missing_folder_is_reported_without_the_temporary_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("no-such-folder").join("out.txt");
+        let e = anyhow::Error::from(write_atomic(&p, b"x").unwrap_err());
+        let text = format!("{e:#}");
+        assert!(
+            text.contains("out.txt") && text.contains("folder exists"),
+            "{text}"
+        );
+        assert!(!text.contains(".basr-"), "{text}");
+        assert_eq!(text.matches("os error").count(), 1, "{text}");
     }
 
     #[test]

@@ -3,7 +3,6 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use basr::layout::Overrides;
 use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
 
@@ -187,8 +186,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
             written.push(adept.clone());
         }
-        job.write(&out)
-            .with_context(|| format!("cannot write the job to {}", out.display()))?;
+        // WriteError names the path and the OS reason.
+        job.write(&out)?;
         Ok(())
     })();
     if let Err(e) = result {
