@@ -349,6 +349,36 @@ fn robot_with_negative_flow_names_the_field() {
 }
 
 #[test]
+fn robot_with_a_reversed_range_says_swap() {
+    let mut s = Scratch::new();
+    let bad = set_key(&basr_toml(), "tip_life_min_m3", "0.3");
+    s.input("rev.toml", bad.as_bytes());
+    s.refuses(
+        &["compile", "STOP", "--robot", "rev.toml"],
+        &["rev.toml", "tip_life_min_m3", "reversed range", "swap"],
+    );
+}
+
+#[test]
+fn letters_out_of_reach_name_the_stroke_and_the_fix() {
+    Scratch::new().refuses(
+        &[
+            "compile",
+            "I",
+            "--letter-height",
+            "4.5",
+            "--lane-width",
+            "6",
+        ],
+        &[
+            "cannot be reached",
+            "outside the arm's reach",
+            "--letter-height",
+        ],
+    );
+}
+
+#[test]
 fn robot_toml_syntax_error_gives_line() {
     let mut s = Scratch::new();
     let bad = format!("[arm\n{}", basr_toml());
