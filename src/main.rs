@@ -4,6 +4,10 @@
 //! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage,
 //! 130 interrupted (Ctrl-C).
 
+// println!/eprintln! panic when the reader has gone (`| head`): machine
+// output goes through basr::io::print_stdout, human text through note!.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 /// `eprintln!` for human text that never panics: `basr … 2>&1 | head` closes
 /// stderr as well, and a note nobody reads is no reason to stop (exit 101)
 /// in the middle of writing a job. Defined before `mod cmd` so every
