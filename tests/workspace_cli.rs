@@ -21,7 +21,7 @@ fn json_area_and_boundary() {
     let shoelace = basr::robot::workspace::polygon_area(&poly);
     assert!((shoelace - area).abs() < 1e-3, "{shoelace}");
     let z = v["z_range_m"].as_array().unwrap();
-    assert!((z[0].as_f64().unwrap() - 0.081).abs() < 1e-9);
+    assert!((z[0].as_f64().unwrap() - 0.078).abs() < 1e-9);
 }
 
 #[test]

@@ -612,7 +612,7 @@ mod tests {
         let p = r.fk(&j);
         let w = r.yaw_axis(1.2, 3.0);
         assert!((p.x_m - w[0]).abs() < 1e-15 && (p.y_m - w[1]).abs() < 1e-15);
-        assert!((p.z_m - (0.335 - 0.1)).abs() < 1e-15);
+        assert!((p.z_m - (0.332 - 0.1)).abs() < 1e-15);
         // |W|² = R² + a2².
         assert!((w[0].hypot(w[1]) - (9.0f64 + 1e-4).sqrt()).abs() < 1e-14);
     }
