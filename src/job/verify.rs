@@ -232,5 +232,125 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
             );
         }
     }
+    derived_columns(job, origin, &mut c);
+    summary_totals(job, origin, &mut c);
     c.finish(origin)
+}
+
+/// Columns the compiler derives from the joints and the nozzle path: the
+/// actuator positions and encoder counts (robot model), the width (0 with
+/// the gun off) and the nozzle speed (central difference within a station,
+/// one-sided at its ends, as `plan::compile` writes it). An edit that keeps
+/// the hashes but changes one of them would send the truck counts that do
+/// not match the path.
+fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
+    let s = &job.samples;
+    let n = s.len();
+    let p = job.control_period_s;
+    let robot = &job.robot;
+    for i in 0..n {
+        let j = joints_at(job, i);
+        let act = robot.actuators(&j);
+        let enc = robot.encoders(&j);
+        let off = (act.cylinder_m - s.cylinder_m[i])
+            .abs()
+            .max((act.tilt_nut_m - s.tilt_nut_m[i]).abs());
+        if !(off <= FK_TOL) {
+            c.add(
+                "actuator",
+                format!(
+                    "{origin}: row {i}: cylinder_m {} / tilt_nut_m {} are not what the robot                      model gives for the joints ({} / {})",
+                    s.cylinder_m[i], s.tilt_nut_m[i], act.cylinder_m, act.tilt_nut_m
+                ),
+            );
+        }
+        let stated = [
+            s.enc_base[i],
+            s.enc_extension[i],
+            s.enc_yaw[i],
+            s.enc_tilt[i],
+            s.enc_vertical[i],
+        ];
+        let want = [enc.base, enc.extension, enc.yaw, enc.tilt, enc.vertical];
+        if stated != want {
+            c.add(
+                "encoder",
+                format!(
+                    "{origin}: row {i}: encoder counts {stated:?} (base, extension, yaw, tilt,                      vertical) are not the robot model's {want:?} for the joints"
+                ),
+            );
+        }
+        if (s.paint[i] == 0) != (s.width_m[i] == 0.0) {
+            c.add(
+                "width",
+                format!(
+                    "{origin}: row {i}: width_m is {} with the gun {}; it is the stroke's                      width while painting and 0 otherwise",
+                    s.width_m[i],
+                    if s.paint[i] == 1 { "on" } else { "off" }
+                ),
+            );
+        }
+        let same = |k: usize| s.station[k] == s.station[i];
+        let a = if i > 0 && same(i - 1) { i - 1 } else { i };
+        let b = if i + 1 < n && same(i + 1) { i + 1 } else { i };
+        let speed = if b > a {
+            (s.x_m[b] - s.x_m[a]).hypot(s.y_m[b] - s.y_m[a]) / ((b - a) as f64 * p)
+        } else {
+            0.0
+        };
+        if !((speed - s.speed_mps[i]).abs() <= FK_TOL) {
+            c.add(
+                "speed",
+                format!(
+                    "{origin}: row {i} (t {:.3} s): speed_mps is {} but the nozzle columns                      move at {speed:.6} m/s there",
+                    s.t_s[i], s.speed_mps[i]
+                ),
+            );
+        }
+    }
+}
+
+/// The summary's totals against the samples (SPEC §3).
+fn summary_totals(job: &Job, origin: &str, c: &mut Collector) {
+    let s = &job.samples;
+    let sum = &job.summary;
+    let p = job.control_period_s;
+    let gun_on = s.paint.iter().filter(|&&v| v == 1).count();
+    let paint_time = gun_on as f64 * p;
+    let duration = s.t_s.last().copied().unwrap_or(0.0);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+    let checks = [
+        (
+            "duration_s",
+            sum.duration_s,
+            duration,
+            "the last setpoint's time",
+        ),
+        (
+            "paint_time_s",
+            sum.paint_time_s,
+            paint_time,
+            "the gun-on setpoints × the period",
+        ),
+        (
+            "air_time_s",
+            sum.air_time_s,
+            (duration - paint_time).max(0.0),
+            "the duration less the paint time",
+        ),
+        (
+            "paint_volume_m3",
+            sum.paint_volume_m3,
+            job.robot.paint.flow_m3ps * paint_time,
+            "the nozzle flow × the paint time",
+        ),
+    ];
+    for (name, stated, want, why) in checks {
+        if !close(stated, want) {
+            c.add(
+                "summary",
+                format!("{origin}: summary.{name} is {stated} but {why} gives {want}"),
+            );
+        }
+    }
 }
