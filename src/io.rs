@@ -171,6 +171,44 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
     s
 }
 
+/// The file a path names, for telling whether two paths are one file: the
+/// canonical path when the file exists, else the canonical folder joined
+/// with the name (a file about to be written), else the path as given.
+fn file_identity(p: &Path) -> std::path::PathBuf {
+    if let Ok(c) = p.canonicalize() {
+        return c;
+    }
+    let parent = match p.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    match (parent.canonicalize(), p.file_name()) {
+        (Ok(d), Some(name)) => d.join(name),
+        _ => p.to_path_buf(),
+    }
+}
+
+/// The first pair of `(what, path)` entries that name the same file, so a
+/// command can refuse to write one output over another or over its input
+/// (`compile -o STOP.csv --csv STOP.csv` wrote the job over the CSV).
+/// `-` (standard input or output) is never a file and never clashes.
+pub fn same_file_pair<'a>(
+    paths: &[(&'a str, &'a Path)],
+) -> Option<((&'a str, &'a Path), (&'a str, &'a Path))> {
+    let ids: Vec<_> = paths
+        .iter()
+        .map(|(_, p)| (*p != Path::new("-")).then(|| file_identity(p)))
+        .collect();
+    for i in 0..paths.len() {
+        for j in i + 1..paths.len() {
+            if ids[i].is_some() && ids[i] == ids[j] {
+                return Some((paths[i], paths[j]));
+            }
+        }
+    }
+    None
+}
+
 /// Read a whole input file as UTF-8 text, or `-` for standard input, with an
 /// error that names the file and says what to do.
 pub fn read_text(path: &Path) -> anyhow::Result<String> {
@@ -213,6 +251,27 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn same_file_pair_sees_one_file_under_two_spellings() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.csv");
+        let a2 = dir.path().join(".").join("a.csv");
+        let b = dir.path().join("b.json");
+        let clash = same_file_pair(&[("-o", &b), ("--csv", &a), ("--adept", &a2)]);
+        assert_eq!(
+            clash,
+            Some((("--csv", a.as_path()), ("--adept", a2.as_path())))
+        );
+        assert_eq!(same_file_pair(&[("-o", &b), ("--csv", &a)]), None);
+        let dash = Path::new("-");
+        assert_eq!(same_file_pair(&[("--robot", dash), ("--font", dash)]), None);
+        // An existing file reached through a symlink is the same file.
+        std::fs::write(&a, "x").unwrap();
+        let link = dir.path().join("link.csv");
+        std::os::unix::fs::symlink(&a, &link).unwrap();
+        assert!(same_file_pair(&[("--csv", &a), ("-o", &link)]).is_some());
+    }
 
     #[test]
     fn atomic_write_replaces_whole_file_and_leaves_no_temp() {
