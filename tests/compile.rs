@@ -77,12 +77,20 @@ fn stop_writes_job_and_csv_with_spec_columns() {
     assert_eq!(header, COLUMNS);
     let rows: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
     assert_eq!(rows.len(), job.samples.len());
-    // t_s steps by exactly the period.
+    // t_s steps by exactly the period: row i reads as the decimal i × 32 ms
+    // (not a float product's 0.28800000000000003).
     let p = job.control_period_s;
     assert_eq!(p, 0.032);
     for (i, r) in rows.iter().enumerate() {
-        let t: f64 = r[0].parse().unwrap();
-        assert_eq!(t, i as f64 * p, "row {i}");
+        let ms = i * 32;
+        let frac = format!("{:03}", ms % 1000);
+        let frac = frac.trim_end_matches('0');
+        let want = if frac.is_empty() {
+            format!("{}", ms / 1000)
+        } else {
+            format!("{}.{frac}", ms / 1000)
+        };
+        assert_eq!(&r[0], want, "row {i}");
         // Encoder columns are integers.
         for c in 17..22 {
             r[c].parse::<i64>()
@@ -323,4 +331,84 @@ fn check_reports_a_sample_over_a_limit() {
         .code(1)
         .stderr(predicate::str::contains("extension_m moves at"))
         .stderr(predicate::str::contains("nozzle columns"));
+}
+
+#[test]
+fn check_reports_derived_columns_and_totals_that_disagree() {
+    let dir = compile_in(&["STOP"]);
+    let mut job = read_job(&dir.path().join("STOP.job.json"));
+    let i = job.samples.len() / 3;
+    job.samples.enc_base[i] += 50;
+    job.samples.speed_mps[i + 1] = 0.5;
+    job.samples.cylinder_m[i + 2] += 1e-3;
+    job.summary.paint_time_s = 1.0;
+    job.seal(); // the hashes hold: only the content is wrong
+    job.write(&dir.path().join("bad.json")).unwrap();
+    basr()
+        .current_dir(dir.path())
+        .args(["check", "bad.json"])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("encoder counts"))
+        .stderr(predicate::str::contains("speed_mps is 0.5"))
+        .stderr(predicate::str::contains("cylinder_m"))
+        .stderr(predicate::str::contains("summary.paint_time_s is 1"));
+}
+
+#[test]
+fn outputs_that_name_one_file_or_an_input_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = dir.path().join("m.toml");
+    let marking = "[marking]\nlines = [\"STOP\"]\n";
+    std::fs::write(&m, marking).unwrap();
+    let cases: [&[&str]; 3] = [
+        &["STOP", "-o", "x.csv", "--csv", "x.csv"],
+        &["STOP", "--csv", "x.csv", "--adept", "./x.csv"],
+        &["--marking", "m.toml", "-o", "m.toml"],
+    ];
+    for args in cases {
+        basr()
+            .current_dir(dir.path())
+            .arg("compile")
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains("are the same file"))
+            .stderr(predicate::str::contains("give a different path"));
+        assert_eq!(files(dir.path()), vec!["m.toml"], "{args:?}");
+        assert_eq!(std::fs::read_to_string(&m).unwrap(), marking);
+    }
+}
+
+/// The U range per stroke before and after tilt is in the job (issue 4):
+/// on B's full bowls (primitive 1) untilted is the seed's ~42–58 and the
+/// quadrilateral method is inside the seed's trapezoid result (47–52).
+#[test]
+fn job_reports_u_per_stroke_and_quadrilateral_beats_the_seed_on_b() {
+    let range = |tilt: &str| -> Vec<([f64; 2], [f64; 2])> {
+        let dir = compile_in(&["B", "--tilt", tilt]);
+        let job = read_job(&dir.path().join("B.job.json"));
+        assert_eq!(job.summary.balance.len(), job.summary.strokes);
+        job.summary
+            .balance
+            .iter()
+            .map(|b| (b.u_untilted, b.u_tilted))
+            .collect()
+    };
+    let none = range("none");
+    let trap = range("trapezoid");
+    let quad = range("quadrilateral");
+    // Strokes 1 and 5 are B's whole bowls (primitive 1 placed twice).
+    for s in [1, 5] {
+        let (u0, u_none) = none[s];
+        assert_eq!(u0, u_none, "no tilt leaves U as it is");
+        assert!(u0[0] < 0.43 && u0[1] > 0.57, "untilted {u0:?}");
+        let (_, u_trap) = trap[s];
+        let (_, u_quad) = quad[s];
+        assert!(u_trap[0] > u0[0] && u_trap[1] < u0[1], "trapezoid {u_trap:?}");
+        assert!(u_quad[0] > 0.47 && u_quad[1] < 0.52, "quadrilateral {u_quad:?}");
+        assert!(u_quad[1] - u_quad[0] < u_trap[1] - u_trap[0]);
+    }
+    // The stem is straight: even with or without tilt.
+    assert!((quad[0].0[0] - 0.5).abs() < 1e-9 && (quad[0].1[1] - 0.5).abs() < 1e-9);
 }

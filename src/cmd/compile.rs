@@ -126,6 +126,40 @@ fn stem_of(text: &str) -> String {
         .collect()
 }
 
+/// Refuse outputs that name one file twice, or an input: each would be
+/// written over the other (the job over `--csv`, or over the marking file).
+fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
+    let mut paths: Vec<(&str, &Path)> = vec![("the job (-o)", out)];
+    if let Some(p) = &args.csv {
+        paths.push(("--csv", p));
+    }
+    if let Some(p) = &args.adept {
+        paths.push(("--adept", p));
+    }
+    let outputs = paths.len();
+    if let Some(p) = &args.marking {
+        paths.push(("the marking file (--marking)", p));
+    }
+    if let Some(p) = &args.robot {
+        paths.push(("the robot file (--robot)", p));
+    }
+    if let Some(f) = &args.font {
+        paths.push(("the font file (--font)", Path::new(f)));
+    }
+    if let Some(((a, pa), (b, _))) = basr::io::same_file_pair(&paths) {
+        let what = if paths[..outputs].iter().any(|(n, _)| *n == b) {
+            "each would be written over the other"
+        } else {
+            "writing it would destroy the input"
+        };
+        anyhow::bail!(
+            "{a} and {b} are the same file, {}: {what}; give a different path for {a}",
+            pa.display()
+        );
+    }
+    Ok(())
+}
+
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // Non-finite and non-positive values are reported by the planner.
     let too_fine = |v: f64, min: f64| v.is_finite() && v > 0.0 && v < min;
@@ -174,6 +208,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
+    refuse_clashing_paths(&args, &out)?;
     // Write the extras first, the job last; on any failure remove what this
     // run wrote so no partial set of files is left behind.
     let mut written: Vec<PathBuf> = vec![];
@@ -235,6 +270,26 @@ fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
         s.air_time_s,
         s.paint_volume_m3 * 1e3
     );
+    if let Some((none, tilted)) = s.u_overall() {
+        // The stroke whose tilted U strays furthest from even (0.5).
+        let spread = |u: [f64; 2]| (0.5 - u[0]).max(u[1] - 0.5);
+        let worst = s
+            .balance
+            .iter()
+            .max_by(|a, b| spread(a.u_tilted).total_cmp(&spread(b.u_tilted)));
+        note!(
+            "  paint balance U (001 eq. 2.7, 0.5 is even): {:.3}–{:.3} untilted, \
+             {:.3}–{:.3} with {} tilt{}",
+            none[0],
+            none[1],
+            tilted[0],
+            tilted[1],
+            job.layout.tilt_method,
+            worst
+                .map(|w| format!(" (widest: stroke {} of letter {})", w.stroke, w.char))
+                .unwrap_or_default()
+        );
+    }
     for (i, st) in job.stations.iter().enumerate() {
         note!(
             "  station {i}: arm axis at x {:+.3} m, y {:.3} m",

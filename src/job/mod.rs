@@ -108,6 +108,40 @@ pub struct Summary {
     pub strokes: usize,
     pub paint_volume_m3: f64,
     pub warnings: Vec<Warning>,
+    /// The paint balance of every stroke before and after tilt (issue 4:
+    /// "report the U range per stroke before and after tilt"), in stroke order.
+    #[serde(default)]
+    pub balance: Vec<StrokeBalance>,
+}
+
+/// Range of the seed's tile area ratio U of one stroke (001 eq. 2.7–2.8:
+/// the share of a tile's paint on its left half; 0.5 is even), over every
+/// tile between consecutive rungs of every pass, as a fraction.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StrokeBalance {
+    pub stroke: usize,
+    pub char: String,
+    /// Message line (0 = nearest the approaching driver).
+    pub line: usize,
+    /// `[min, max]` with the fan untilted (`--tilt none`).
+    pub u_untilted: [f64; 2],
+    /// `[min, max]` with the tilts the job paints with (`layout.tilt_method`).
+    pub u_tilted: [f64; 2],
+}
+
+impl Summary {
+    /// `[min, max]` of U over every stroke, untilted and tilted; `None`
+    /// for a job without strokes (or one written before `balance` existed).
+    pub fn u_overall(&self) -> Option<([f64; 2], [f64; 2])> {
+        let mut it = self.balance.iter();
+        let first = it.next()?;
+        Some(it.fold((first.u_untilted, first.u_tilted), |(a, b), s| {
+            (
+                [a[0].min(s.u_untilted[0]), a[1].max(s.u_untilted[1])],
+                [b[0].min(s.u_tilted[0]), b[1].max(s.u_tilted[1])],
+            )
+        }))
+    }
 }
 
 /// A glyph as placed on the road: its strokes' edges in the road frame (m).
@@ -248,6 +282,19 @@ impl Samples {
     pub fn is_empty(&self) -> bool {
         self.t_s.is_empty()
     }
+}
+
+/// Time of setpoint `k` at `period_s`: k × period rounded to the nanosecond,
+/// so `t_s` prints as the decimal a person reads (`0.288`, not the plain
+/// product's `0.28800000000000003`). Any period the compiler accepts
+/// (≥ 5 ms) is a whole number of nanoseconds to well under 1e-9 relative.
+pub fn tick_time(k: usize, period_s: f64) -> f64 {
+    round_ns(k as f64 * period_s)
+}
+
+/// `t` rounded to the nanosecond (the job's time resolution; see [`tick_time`]).
+pub fn round_ns(t: f64) -> f64 {
+    (t * 1e9).round() / 1e9
 }
 
 /// The whole job document.
@@ -422,6 +469,7 @@ mod tests {
                 strokes: 0,
                 paint_volume_m3: 0.0,
                 warnings: vec![],
+                balance: vec![],
             },
             sha256: String::new(),
         };

@@ -9,7 +9,7 @@ use kurbo::Affine;
 use crate::font::Font;
 use crate::job::{
     self, FontRef, Job, Layout as JobLayout, PlacedGlyph, PlacedStroke, SampleRow, Samples,
-    Station, Summary, Warning,
+    Station, StrokeBalance, Summary, Warning,
 };
 use crate::layout::{self, LayoutError, Marking, Overrides};
 use crate::plan::knots::{self, HeightLaw, Knot, PaintLaw, Rung, TiltMethod};
@@ -204,6 +204,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     let mut glyphs = vec![];
     let mut items: Vec<Item> = vec![];
     let mut strokes: Vec<StrokeInfo> = vec![];
+    let mut balance: Vec<StrokeBalance> = vec![];
     for letter in &placed.letters {
         let Some(glyph) = font.glyph(letter.ch) else {
             continue; // place() has already refused letters without a glyph
@@ -242,8 +243,19 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             let mut clamped = 0usize;
             let mut rung_count = 0usize;
             let mut worst = 1.0f64;
+            // knots::KnotPlan keeps U in percent; the job keeps fractions.
+            let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
+            let mut u_tilted = u_untilted;
             for pass in &passes {
                 let mut kp = knots::knots(pass, &law, method, max_tilt).map_err(what)?;
+                u_untilted = [
+                    u_untilted[0].min(kp.u_before.0 / 100.0),
+                    u_untilted[1].max(kp.u_before.1 / 100.0),
+                ];
+                u_tilted = [
+                    u_tilted[0].min(kp.u_after.0 / 100.0),
+                    u_tilted[1].max(kp.u_after.1 / 100.0),
+                ];
                 let raised = lift_for_tilt(&robot, &law, &mut kp.knots);
                 if !raised.is_empty() {
                     // Wider footprints sweep more road: re-pace the pass.
@@ -264,6 +276,15 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                 items.push(Item {
                     stroke: sid,
                     knots: kp.knots,
+                });
+            }
+            if u_untilted[0].is_finite() && u_tilted[0].is_finite() {
+                balance.push(StrokeBalance {
+                    stroke: sid,
+                    char: letter.ch.to_string(),
+                    line: letter.line,
+                    u_untilted,
+                    u_tilted,
                 });
             }
             if passes.len() > 1 {
@@ -412,7 +433,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             warnings.push(Warning {
                 kind: "slowed".into(),
                 stroke: run.stroke as i64,
-                t_s: Some(t0 + sl.t_s),
+                t_s: Some(job::round_ns(t0 + sl.t_s)),
                 factor: Some(sl.factor),
                 message: format!(
                     "stroke {} (letter {} of line {}): {} slows the nozzle below the painting \
@@ -442,21 +463,18 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
 
     let n = samples.len();
     let paint_samples = samples.paint.iter().filter(|&&p| p == 1).count();
-    let duration_s = if n > 0 {
-        (n - 1) as f64 * req.period_s
-    } else {
-        0.0
-    };
-    let paint_time_s = paint_samples as f64 * req.period_s;
+    let duration_s = job::tick_time(n.saturating_sub(1), req.period_s);
+    let paint_time_s = job::tick_time(paint_samples, req.period_s);
     let summary = Summary {
         duration_s,
         paint_time_s,
-        air_time_s: (duration_s - paint_time_s).max(0.0),
+        air_time_s: job::round_ns((duration_s - paint_time_s).max(0.0)),
         strokes: strokes.len(),
         // Paint sprayed = flow × gun-on time (what leaves the tip; the film
         // gets the transfer-efficiency share of it).
         paint_volume_m3: robot.paint.flow_m3ps * paint_time_s,
         warnings,
+        balance,
     };
     let mut job = Job {
         format: job::FORMAT.into(),
@@ -1094,7 +1112,7 @@ fn append_samples(
             None => (-1, 0u8, 0.0),
         };
         samples.push(&SampleRow {
-            t_s: (t0 + i) as f64 * period,
+            t_s: job::tick_time(t0 + i, period),
             station: station_index,
             stroke,
             paint,

@@ -228,6 +228,7 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
             strokes: strokes.len(),
             paint_volume_m3: 0.0,
             warnings: vec![],
+            balance: vec![],
         },
         sha256: String::new(),
     };

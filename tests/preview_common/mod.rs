@@ -135,6 +135,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             strokes: 1,
             paint_volume_m3: on * FLOW,
             warnings: vec![],
+            balance: vec![],
         },
         sha256: String::new(),
     };
