@@ -1,29 +1,71 @@
 //! Output files written atomically: a temporary file in the target's folder,
 //! renamed over the target only when complete. An interrupted or failed run
 //! leaves no partial file (SPEC §1).
+//!
+//! The binary stages its outputs ([`stage_outputs`]): every file of a run is
+//! written to its temporary and all are renamed together at the end
+//! ([`commit_outputs`]) or all dropped ([`discard_outputs`]). A run that fails
+//! or is interrupted after writing its CSV but before its job leaves neither,
+//! and the files an earlier run left under those names are untouched.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// What an interrupt must remove: temporary files being written, and the
-/// outputs this run already finished (an interrupted run leaves no output
-/// file, not even the CSV written before its job). One lock for both: the
-/// handler holds it while it removes files and exits, and a writer holds it
-/// while it creates or renames, so no file slips between the two lists.
+/// The temporary files of this run and, when staging, the finished ones
+/// waiting for [`commit_outputs`]. One lock for all: the interrupt handler
+/// holds it while it removes files and exits, and a writer holds it while it
+/// creates or renames, so no file slips between the two.
 struct Outputs {
+    /// Temporary files on disk (being written, or staged).
     in_flight: Vec<PathBuf>,
-    finished: Vec<PathBuf>,
+    /// Complete temporaries and their targets, renamed by `commit_outputs`.
+    staged: Vec<(tempfile::NamedTempFile, PathBuf)>,
+    staging: bool,
+    /// The run's outputs are in place: an interrupt now changes nothing.
+    committed: bool,
 }
 
 static OUTPUTS: Mutex<Outputs> = Mutex::new(Outputs {
     in_flight: Vec::new(),
-    finished: Vec::new(),
+    staged: Vec::new(),
+    staging: false,
+    committed: false,
 });
 
 fn outputs() -> std::sync::MutexGuard<'static, Outputs> {
     // A panic while the lock was held leaves the lists intact: keep going.
     OUTPUTS.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// From now on, [`write_atomic`] keeps each finished file as a temporary
+/// until [`commit_outputs`]. The binary calls it once at start-up; library
+/// callers (tests, benches) that do not, get the file in place at once.
+pub fn stage_outputs() {
+    outputs().staging = true;
+}
+
+/// Rename every staged output over its target, in the order written. Call
+/// once, when the run has succeeded (or reached its verdict).
+pub fn commit_outputs() -> Result<(), WriteError> {
+    let mut out = outputs();
+    out.committed = true;
+    out.in_flight.clear();
+    for (tmp, path) in std::mem::take(&mut out.staged) {
+        tmp.persist(&path).map_err(|e| WriteError::Io {
+            path: path.clone(),
+            source: e.error,
+        })?;
+    }
+    Ok(())
+}
+
+/// Drop every staged output (their temporaries are deleted); the targets
+/// keep whatever they held before the run.
+pub fn discard_outputs() {
+    let mut out = outputs();
+    out.staged.clear();
+    out.in_flight.clear();
 }
 
 /// Errors from writing an output file.
@@ -39,14 +81,18 @@ pub enum WriteError {
     },
 }
 
-/// Install a Ctrl-C handler that deletes the temporary files in flight and
-/// the outputs this run has finished, then exits with 130. Call once at
-/// start-up; later calls are ignored.
+/// Install a Ctrl-C handler that deletes this run's temporary files (being
+/// written or staged), then exits with 130. After [`commit_outputs`] the
+/// signal is ignored: the outputs are complete and the run is ending. Call
+/// once at start-up; later calls are ignored.
 pub fn install_interrupt_cleanup() {
     let _ = ctrlc::set_handler(|| {
         // Held until exit: no writer creates or renames a file after this.
         let out = outputs();
-        for p in out.in_flight.iter().chain(&out.finished) {
+        if out.committed {
+            return;
+        }
+        for p in &out.in_flight {
             let _ = std::fs::remove_file(p);
         }
         // Not eprintln!: with stderr closed it would panic in the handler's
@@ -139,12 +185,18 @@ pub fn write_atomic_with(
         drop(w);
         tmp.as_file().sync_all()?;
         let mut out = outputs();
+        if out.staging {
+            // Stays in `in_flight` (its temporary is on disk) until commit.
+            out.staged.push((tmp, path.to_path_buf()));
+            return Ok(true);
+        }
         tmp.persist(path).map_err(|e| e.error)?;
-        out.finished.push(path.to_path_buf());
-        Ok(())
+        Ok(false)
     })();
-    outputs().in_flight.retain(|p| p != &tmp_path);
-    result.map_err(err)
+    if !matches!(result, Ok(true)) {
+        outputs().in_flight.retain(|p| p != &tmp_path);
+    }
+    result.map(|_| ()).map_err(err)
 }
 
 /// Write machine output (`--json`, `robot --toml`, completions) to standard
@@ -188,13 +240,14 @@ fn file_identity(p: &Path) -> std::path::PathBuf {
     }
 }
 
+/// A path with what it is for (`"--csv"`), for messages.
+pub type NamedPath<'a> = (&'a str, &'a Path);
+
 /// The first pair of `(what, path)` entries that name the same file, so a
 /// command can refuse to write one output over another or over its input
 /// (`compile -o STOP.csv --csv STOP.csv` wrote the job over the CSV).
 /// `-` (standard input or output) is never a file and never clashes.
-pub fn same_file_pair<'a>(
-    paths: &[(&'a str, &'a Path)],
-) -> Option<((&'a str, &'a Path), (&'a str, &'a Path))> {
+pub fn same_file_pair<'a>(paths: &[NamedPath<'a>]) -> Option<(NamedPath<'a>, NamedPath<'a>)> {
     let ids: Vec<_> = paths
         .iter()
         .map(|(_, p)| (*p != Path::new("-")).then(|| file_identity(p)))
@@ -209,26 +262,61 @@ pub fn same_file_pair<'a>(
     None
 }
 
+/// A number for a message: as written for everyday magnitudes (`-2`,
+/// `2.44`), in scientific notation when plain digits would run long
+/// (`1e300`, not three hundred digits; `1e-12`, not `0.000000000001`).
+pub fn show_num(v: f64) -> String {
+    let a = v.abs();
+    if v.is_finite() && a != 0.0 && !(1e-4..1e6).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// Largest input file basr reads, bytes. The largest file basr itself writes
+/// is a job at the compiler's limits (200 letters, 5 ms setpoints, 1 mm
+/// rungs): about 0.9 GB; fonts, robots and markings are kilobytes. Past 2 GiB
+/// the input is not a basr file (`basr check /dev/zero` read until the
+/// machine ran out of memory).
+pub const MAX_INPUT_BYTES: u64 = 2 << 30;
+
 /// Read a whole input file as UTF-8 text, or `-` for standard input, with an
-/// error that names the file and says what to do.
+/// error that names the file and says what to do. At most
+/// [`MAX_INPUT_BYTES`] are read.
 pub fn read_text(path: &Path) -> anyhow::Result<String> {
     use anyhow::Context;
-    if path == Path::new("-") {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
-            .context("cannot read standard input as UTF-8 text")?;
-        return Ok(s);
-    }
-    let bytes = std::fs::read(path).with_context(|| {
-        format!(
-            "cannot read {}: check the path and that the file is readable",
-            path.display()
-        )
-    })?;
+    use std::io::Read;
+    let (name, bytes) = if path == Path::new("-") {
+        let mut bytes = Vec::new();
+        std::io::stdin()
+            .take(MAX_INPUT_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .context("cannot read standard input")?;
+        ("standard input".to_string(), bytes)
+    } else {
+        let why = || {
+            format!(
+                "cannot read {}: check the path and that the file is readable",
+                path.display()
+            )
+        };
+        let file = std::fs::File::open(path).with_context(why)?;
+        let mut bytes = Vec::new();
+        file.take(MAX_INPUT_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .with_context(why)?;
+        (path.display().to_string(), bytes)
+    };
+    anyhow::ensure!(
+        bytes.len() as u64 <= MAX_INPUT_BYTES,
+        "{name} is larger than {} GiB, more than any file basr reads (the largest job \
+         basr writes is about 0.9 GB): give a font, robot, marking or job file",
+        MAX_INPUT_BYTES >> 30
+    );
     String::from_utf8(bytes).map_err(|e| {
         anyhow::anyhow!(
-            "{} is not UTF-8 text (invalid byte at offset {}): save it as UTF-8",
-            path.display(),
+            "{name} is not UTF-8 text (invalid byte at offset {}): save it as UTF-8",
             e.utf8_error().valid_up_to()
         )
     })
@@ -251,6 +339,16 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn show_num_keeps_messages_short() {
+        assert_eq!(show_num(-2.0), "-2");
+        assert_eq!(show_num(2.44), "2.44");
+        assert_eq!(show_num(1e300), "1e300");
+        assert_eq!(show_num(1e-12), "1e-12");
+        assert_eq!(show_num(f64::NAN), "NaN");
+        assert_eq!(show_num(f64::NEG_INFINITY), "-inf");
+    }
 
     #[test]
     fn same_file_pair_sees_one_file_under_two_spellings() {

@@ -86,6 +86,7 @@ enum Command {
 
 fn main() -> ExitCode {
     basr::io::install_interrupt_cleanup();
+    basr::io::stage_outputs();
     let cli = Cli::parse();
     let global = cmd::Global { quiet: cli.quiet };
     let result = match cli.command {
@@ -106,6 +107,16 @@ fn main() -> ExitCode {
             basr::io::print_stdout(&String::from_utf8_lossy(&script))
                 .map(|()| cmd::Outcome::Success)
                 .map_err(Into::into)
+        }
+    };
+    // Every output of the run is renamed into place together, or none is.
+    let result = match result {
+        Ok(outcome) => basr::io::commit_outputs()
+            .map(|()| outcome)
+            .map_err(Into::into),
+        Err(e) => {
+            basr::io::discard_outputs();
+            Err(e)
         }
     };
     match result {

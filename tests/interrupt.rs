@@ -1,6 +1,7 @@
 //! Ctrl-C (SIGINT) in the middle of a run: exit 130 and no file left in the
 //! output folder, neither a finished output nor a `.basr-*.part` temporary,
-//! whether the signal lands while basr computes or while it writes.
+//! whether the signal lands while basr computes or while it writes; and
+//! files an earlier run left under the same names keep their contents.
 //!
 //! Nothing here depends on how fast the machine is: the signal is sent once
 //! the handler is seen installed (/proc/PID/status) and, for the writing
@@ -127,11 +128,53 @@ fn interrupted_while_writing_leaves_nothing() {
     assert_interrupted_cleanly("writing", has_temp);
 }
 
+/// Temporary files in the folder.
+fn temps(dir: &Path) -> usize {
+    entries(dir)
+        .iter()
+        .filter(|n| n.starts_with(".basr-") && n.ends_with(".part"))
+        .count()
+}
+
 #[test]
-fn interrupted_between_outputs_removes_the_finished_one() {
-    // The CSV is complete and renamed, the job not yet there.
-    assert_interrupted_cleanly("between outputs", |dir| {
-        let e = entries(dir);
-        e.contains(&"setpoints.csv".to_string())
-    });
+fn interrupted_between_outputs_keeps_the_earlier_files() {
+    // The CSV is complete (staged) and the job is being written: the run
+    // stops with 130, no temporary is left, and the files of an earlier run
+    // under the same names keep their contents (the outputs are renamed into
+    // place together, or not at all).
+    for message in MESSAGES {
+        let dir = tempfile::tempdir().unwrap();
+        let job_name = format!("{}.job.json", message.replace(' ', "_"));
+        std::fs::write(dir.path().join("setpoints.csv"), "earlier csv\n").unwrap();
+        std::fs::write(dir.path().join(&job_name), "earlier job\n").unwrap();
+        let mut child = spawn_compile(dir.path(), message);
+        if wait_for_handler(&mut child).is_none() {
+            continue;
+        }
+        let mut finished = false;
+        while temps(dir.path()) < 2 {
+            if child.try_wait().unwrap().is_some() {
+                finished = true;
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_micros(200));
+        }
+        if finished {
+            continue;
+        }
+        send_sigint(child.id());
+        let code = child.wait().unwrap().code();
+        if code == Some(0) {
+            continue; // it committed between our look and the signal
+        }
+        assert_eq!(code, Some(130), "compile {message:?} interrupted");
+        let mut want = vec!["setpoints.csv".to_string(), job_name.clone()];
+        want.sort();
+        assert_eq!(entries(dir.path()), want, "only the earlier files");
+        let read = |n: &str| std::fs::read_to_string(dir.path().join(n)).unwrap();
+        assert_eq!(read("setpoints.csv"), "earlier csv\n");
+        assert_eq!(read(&job_name), "earlier job\n");
+        return;
+    }
+    panic!("every run finished before it could be interrupted");
 }

@@ -36,8 +36,10 @@ Examples:
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
-    #[arg(required_unless_present = "marking", conflicts_with = "marking")]
-    pub message: Option<String>,
+    // Taken as raw bytes and checked in `run`, so a missing message or one
+    // that is not UTF-8 gets our message naming --marking and the letters.
+    #[arg(conflicts_with = "marking", value_parser = clap::value_parser!(std::ffi::OsString))]
+    pub message: Option<std::ffi::OsString>,
     /// A marking file (TOML, see markings/) giving the lines and layout.
     #[arg(long, value_name = "FILE")]
     pub marking: Option<PathBuf>,
@@ -59,17 +61,17 @@ pub struct Args {
     /// Nozzle tilt method.
     #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
     pub tilt: TiltArg,
-    /// Letter height in metres [default: 2.44, or the marking file's].
+    /// Letter height in metres, 0.3–10 [default: 2.44, or the marking file's].
     #[arg(allow_hyphen_values = true, long, value_name = "M")]
     pub letter_height: Option<f64>,
-    /// Lane width in metres [default: 3.66, or the marking file's].
+    /// Lane width in metres, at most 30 [default: 3.66, or the marking file's].
     #[arg(allow_hyphen_values = true, long, value_name = "M")]
     pub lane_width: Option<f64>,
     /// Clear space between lines in metres, at least 4× the letter height
     /// [default: 4× the letter height, or the marking file's].
     #[arg(allow_hyphen_values = true, long, value_name = "M")]
     pub line_gap: Option<f64>,
-    /// Largest distance between rungs along a stroke, in millimetres.
+    /// Largest distance between rungs along a stroke, in millimetres (1–100).
     #[arg(
         allow_negative_numbers = true,
         long,
@@ -77,10 +79,10 @@ pub struct Args {
         default_value_t = 20.0
     )]
     pub rung_spacing_mm: f64,
-    /// Setpoint period in seconds (the controller samples at 0.005 s).
+    /// Setpoint period in seconds, 0.005–0.1 (the controller samples at 0.005 s).
     #[arg(allow_hyphen_values = true, long, value_name = "S", default_value_t = basr::plan::compile::DEFAULT_PERIOD_S)]
     pub period_s: f64,
-    /// Switch the gun on this many seconds before a stroke starts.
+    /// Switch the gun on this many seconds before a stroke starts (0–1).
     #[arg(
         allow_negative_numbers = true,
         long,
@@ -88,7 +90,7 @@ pub struct Args {
         default_value_t = 0.0
     )]
     pub gun_lead_s: f64,
-    /// Switch the gun off this many seconds before a stroke ends.
+    /// Switch the gun off this many seconds before a stroke ends (0–1).
     #[arg(
         allow_negative_numbers = true,
         long,
@@ -176,12 +178,25 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         args.period_s
     );
     let source = match (&args.message, &args.marking) {
-        (Some(m), None) => Source::Message(m.clone()),
+        (Some(m), None) => Source::Message(
+            m.to_str()
+                .ok_or_else(|| {
+                    anyhow::anyhow!(
+                        "the message {:?} is not UTF-8 text: messages take the letters A–Z, \
+                         the digits 0–9 and spaces",
+                        m.to_string_lossy()
+                    )
+                })?
+                .to_string(),
+        ),
         (None, Some(path)) => Source::Marking {
             text: basr::io::read_text(path)?,
             origin: path.display().to_string(),
         },
-        _ => anyhow::bail!("give a MESSAGE or --marking FILE (not both)"),
+        _ => anyhow::bail!(
+            "give the message to paint or a marking file: `basr compile STOP` or \
+             `basr compile --marking markings/stop.toml`"
+        ),
     };
     let req = CompileRequest {
         source,
@@ -209,28 +224,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
     refuse_clashing_paths(&args, &out)?;
-    // Write the extras first, the job last; on any failure remove what this
-    // run wrote so no partial set of files is left behind.
-    let mut written: Vec<PathBuf> = vec![];
-    let result = (|| -> anyhow::Result<()> {
-        if let Some(csv) = &args.csv {
-            basr::job::csv::write(&job.samples, csv)?;
-            written.push(csv.clone());
-        }
-        if let Some(adept) = &args.adept {
-            basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
-            written.push(adept.clone());
-        }
-        // WriteError names the path and the OS reason.
-        job.write(&out)?;
-        Ok(())
-    })();
-    if let Err(e) = result {
-        for p in &written {
-            let _ = std::fs::remove_file(p);
-        }
-        return Err(e);
+    // main renames all three into place together when the run succeeds, and
+    // drops them all when any fails or the run is interrupted.
+    if let Some(csv) = &args.csv {
+        basr::job::csv::write(&job.samples, csv)?;
     }
+    if let Some(adept) = &args.adept {
+        basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+    }
+    // WriteError names the path and the OS reason.
+    job.write(&out)?;
     let s = &job.summary;
     if args.json {
         let v = serde_json::json!({
