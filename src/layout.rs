@@ -47,6 +47,19 @@ pub const MAX_LETTERS: usize = 200;
 /// millimetres to round-off (a line gap of 10³⁰⁰ m overflowed the planner).
 pub const MAX_OFFSET_M: f64 = 1000.0;
 
+/// Range of letter heights, m. Assumed bounds for sanity, not style: MUTCD
+/// pavement words are 6–8 ft (1.8–2.4 m) and elongated symbols up to about
+/// 24 ft; below 0.3 m a one-unit stroke (12 mm) is a fraction of the fan's
+/// narrowest line, and above 10 m a letter outgrows any arm (BASR reaches
+/// 5.36 m). Outside, a number is a typo (`--letter-height 244` for cm).
+pub const LETTER_HEIGHT_RANGE_M: (f64, f64) = (0.3, 10.0);
+
+/// Widest lane, m. Assumed: a marking is laid in one lane (3.66 m default,
+/// 12 ft; MUTCD lanes are 2.7–4.6 m); 30 m spans a whole multi-lane approach.
+/// Beyond it a number is a typo; unbounded (1e9 m) the station search grew to
+/// 14 GB.
+pub const MAX_LANE_WIDTH_M: f64 = 30.0;
+
 /// Errors of layout and of marking files.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum LayoutError {
@@ -58,8 +71,8 @@ pub enum LayoutError {
     )]
     TooLong { letters: usize },
     #[error(
-        "{field} {value} m is more than {MAX_OFFSET_M} m from the origin: a marking is laid at one site; \
-         split it into several jobs"
+        "{field} {} m is more than {MAX_OFFSET_M} m from the origin: a marking is laid at one site; \
+         split it into several jobs", crate::io::show_num(*value)
     )]
     TooFar { field: String, value: f64 },
     #[error(
@@ -94,7 +107,15 @@ pub enum LayoutError {
          ({MIN_LINE_GAP_HEIGHTS}× the letter height, MUTCD §3B.20): raise --line-gap"
     )]
     GapTooSmall { gap_m: f64, min_m: f64 },
-    #[error("{field} must be {need}, got {value} m")]
+    #[error("{field} {} m is outside {min}..{max} m: {why}", crate::io::show_num(*value))]
+    OutOfRange {
+        field: String,
+        value: f64,
+        min: f64,
+        max: f64,
+        why: &'static str,
+    },
+    #[error("{field} must be {need}, got {} m", crate::io::show_num(*value))]
     BadNumber {
         field: String,
         need: &'static str,
@@ -185,8 +206,19 @@ impl Marking {
             origin: origin.to_string(),
             message,
         };
-        let file: MarkingFileToml =
-            toml::from_str(text).map_err(|e| err(toml_message(text, &e)))?;
+        const SHAPE: &str = "a marking file is a [marking] table with at least \
+                             lines = [\"STOP\"]; see markings/stop.toml";
+        if text.trim().is_empty() {
+            return Err(err(format!("the file is empty: {SHAPE}")));
+        }
+        let file: MarkingFileToml = toml::from_str(text).map_err(|e| {
+            let m = toml_message(text, &e);
+            err(if m.contains("missing field") {
+                format!("{m}: {SHAPE}")
+            } else {
+                m
+            })
+        })?;
         let t = file.marking;
         let h_file = match (t.letter_height_m, t.letter_height_ft) {
             (Some(_), Some(_)) => {
@@ -278,6 +310,33 @@ impl Marking {
                 });
             }
         }
+        let (h_min, h_max) = LETTER_HEIGHT_RANGE_M;
+        for (field, v, min, max, why) in [
+            (
+                "letter height",
+                self.letter_height_m,
+                h_min,
+                h_max,
+                "road letters are 1.8–2.4 m (6–8 ft); give metres (--letter-height 2.44)",
+            ),
+            (
+                "lane width",
+                self.lane_width_m,
+                0.0,
+                MAX_LANE_WIDTH_M,
+                "a marking is laid in one lane (3.66 m, 12 ft, by default); give metres",
+            ),
+        ] {
+            if v < min || v > max {
+                return Err(LayoutError::OutOfRange {
+                    field: field.into(),
+                    value: v,
+                    min,
+                    max,
+                    why,
+                });
+            }
+        }
         for (field, v) in [
             ("letter spacing", self.letter_spacing_m),
             ("anchor x", self.anchor_x_m),
@@ -314,7 +373,7 @@ impl Marking {
 /// A toml error as `line L, column C: what` (toml's own text already names
 /// the line and column; keep it on one line).
 fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let what = e.message().to_string();
+    let what = e.message().trim().replace('\n', "; ");
     match e.span() {
         Some(span) => {
             let (line, col) = crate::io::line_col(text, span.start);
@@ -322,6 +381,13 @@ fn toml_message(text: &str, e: &toml::de::Error) -> String {
         }
         None => what,
     }
+}
+
+/// Whether a text that does not parse as TOML was meant as a marking file
+/// (it has a `[marking]` table header), so `basr check` reports its syntax
+/// error with the line instead of "not a basr file".
+pub fn looks_like_marking(text: &str) -> bool {
+    text.lines().any(|l| l.trim() == "[marking]")
 }
 
 /// Every problem of a marking file's text (empty when valid); for `basr check`.

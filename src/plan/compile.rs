@@ -104,7 +104,7 @@ pub enum CompileError {
     Layout(#[from] LayoutError),
     #[error(transparent)]
     Stations(#[from] StationError),
-    #[error("{field} must be {what}, got {value}")]
+    #[error("{field} must be {what}, got {}", crate::io::show_num(*value))]
     Setting {
         field: &'static str,
         what: &'static str,
@@ -770,8 +770,51 @@ fn check_settings(req: &CompileRequest) -> Result<(), CompileError> {
     non_negative("--gun-lead-s", req.gun_lead_s)?;
     non_negative("--gun-lag-s", req.gun_lag_s)?;
     non_negative("reach margin", req.reach_margin_m)?;
+    let at_most = |field: &'static str, value: f64, max: f64, what: &'static str| {
+        if value <= max {
+            Ok(())
+        } else {
+            Err(CompileError::Setting { field, what, value })
+        }
+    };
+    at_most(
+        "--rung-spacing-mm",
+        req.rung_spacing_m * 1e3,
+        MAX_RUNG_SPACING_M * 1e3,
+        "at most 100 mm: farther apart, rungs cut the corners of a letter's curves (default 20)",
+    )?;
+    at_most(
+        "--period-s",
+        req.period_s,
+        MAX_PERIOD_S,
+        "at most 0.1 s: a longer period would skip rungs at the painting speed (default 0.032)",
+    )?;
+    for (field, v) in [
+        ("--gun-lead-s", req.gun_lead_s),
+        ("--gun-lag-s", req.gun_lag_s),
+    ] {
+        at_most(
+            field,
+            v,
+            MAX_GUN_SHIFT_S,
+            "at most 1 s: the gun valve opens in tens of milliseconds, and a second is a \
+             sixth of a metre of stroke at the painting speed (default 0)",
+        )?;
+    }
     Ok(())
 }
+
+/// Widest rung spacing, m. Assumed: the tightest curves of the road letters
+/// (the S spine, the bowls) have radii of 0.1–0.2 m at 8 ft; rungs 0.1 m
+/// apart already cut their chords by millimetres.
+const MAX_RUNG_SPACING_M: f64 = 0.1;
+/// Longest setpoint period, s: at the painting speed (≈ 0.16 m/s, SPEC §4) a
+/// period past 0.125 s passes more than one default 20 mm rung between
+/// setpoints; 0.1 s keeps every rung's change of speed and yaw in the job.
+const MAX_PERIOD_S: f64 = 0.1;
+/// Largest gun lead or lag, s. Assumed: an airless gun valve switches in tens
+/// of milliseconds; a shift of a second moves the line's end by 0.16 m.
+const MAX_GUN_SHIFT_S: f64 = 1.0;
 
 /// Lead-in and lead-out length (m): the nozzle reaches the painting speed
 /// before a stroke's first rung and keeps it past the last. assumed: 0.05 m
