@@ -342,6 +342,9 @@ fn check_reports_derived_columns_and_totals_that_disagree() {
     job.samples.speed_mps[i + 1] = 0.5;
     job.samples.cylinder_m[i + 2] += 1e-3;
     job.summary.paint_time_s = 1.0;
+    job.summary.strokes = 999;
+    job.paint.k_m2ps = 123.0;
+    job.robot.end_effector.mass_kg = -35.0;
     job.seal(); // the hashes hold: only the content is wrong
     job.write(&dir.path().join("bad.json")).unwrap();
     basr()
@@ -352,7 +355,10 @@ fn check_reports_derived_columns_and_totals_that_disagree() {
         .stderr(predicate::str::contains("encoder counts"))
         .stderr(predicate::str::contains("speed_mps is 0.5"))
         .stderr(predicate::str::contains("cylinder_m"))
-        .stderr(predicate::str::contains("summary.paint_time_s is 1"));
+        .stderr(predicate::str::contains("summary.paint_time_s is 1"))
+        .stderr(predicate::str::contains("summary.strokes is 999"))
+        .stderr(predicate::str::contains("paint.k_m2ps is 123"))
+        .stderr(predicate::str::contains("robot.end_effector.mass_kg"));
 }
 
 #[test]
@@ -405,8 +411,14 @@ fn job_reports_u_per_stroke_and_quadrilateral_beats_the_seed_on_b() {
         assert!(u0[0] < 0.43 && u0[1] > 0.57, "untilted {u0:?}");
         let (_, u_trap) = trap[s];
         let (_, u_quad) = quad[s];
-        assert!(u_trap[0] > u0[0] && u_trap[1] < u0[1], "trapezoid {u_trap:?}");
-        assert!(u_quad[0] > 0.47 && u_quad[1] < 0.52, "quadrilateral {u_quad:?}");
+        assert!(
+            u_trap[0] > u0[0] && u_trap[1] < u0[1],
+            "trapezoid {u_trap:?}"
+        );
+        assert!(
+            u_quad[0] > 0.47 && u_quad[1] < 0.52,
+            "quadrilateral {u_quad:?}"
+        );
         assert!(u_quad[1] - u_quad[0] < u_trap[1] - u_trap[0]);
     }
     // The stem is straight: even with or without tilt.

@@ -1,14 +1,16 @@
-//! `basr check FILE...`: validate font, robot, marking and job files,
+//! `basr check FILE...`: validate font, robot, marking, job and CSV files,
 //! reporting every problem found (exit 1 when any file has problems).
 
 use std::path::PathBuf;
 
 use super::{Global, Outcome};
 
-/// Validate job, font, robot and marking files, listing every problem.
+/// Validate job, setpoint CSV, font, robot and marking files, listing every
+/// problem.
 ///
-/// Fonts (.toml), robot descriptions (.toml), marking files (.toml) and jobs
-/// (.json); the kind is recognised from the content.
+/// Fonts (.toml), robot descriptions (.toml), marking files (.toml), jobs
+/// (.json) and the setpoint CSVs `compile --csv` writes; the kind is
+/// recognised from the content.
 ///
 /// Example: `basr check STOP.job.json fonts/basr.toml`;
 /// `basr robot --toml | basr check -` reads standard input.
@@ -27,12 +29,16 @@ enum Kind {
     Font,
     Robot,
     Marking,
+    Csv,
 }
 
 fn kind_of(text: &str) -> Option<Kind> {
     let trimmed = text.trim_start();
     if trimmed.starts_with('{') {
         return Some(Kind::Job);
+    }
+    if basr::job::csv::looks_like_csv(text) {
+        return Some(Kind::Csv);
     }
     let table: toml::Table = toml::from_str(text).ok()?;
     if table.contains_key("glyphs") || table.contains_key("primitives") {
@@ -54,14 +60,18 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
             Err(e) => vec![e.to_string()],
         },
         Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),
+        Some(Kind::Csv) => basr::job::csv::check_source(text, origin),
+        None if basr::layout::looks_like_marking(text) => {
+            basr::layout::check_marking_source(text, origin)
+        }
         Some(Kind::Robot) => basr::robot::check_source(text, origin),
         // A robot file with a TOML syntax error: report where, not "unknown".
         None if basr::robot::looks_like_robot(text) => basr::robot::check_source(text, origin),
         Some(Kind::Font) => basr::font::check_source(text, origin),
         None if basr::font::looks_like_font(text) => basr::font::check_source(text, origin),
         None => vec![format!(
-            "{origin}: not a basr file: expected a job (JSON) or a font, robot or marking \
-             description (TOML with a [glyphs], [arm] or [marking] table)"
+            "{origin}: not a basr file: expected a job (JSON), a setpoint CSV or a font, robot \
+             or marking description (TOML with a [glyphs], [arm] or [marking] table)"
         )],
     }
 }

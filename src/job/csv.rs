@@ -18,3 +18,163 @@ pub fn write(samples: &Samples, path: &Path) -> anyhow::Result<()> {
     })?;
     Ok(())
 }
+
+/// Columns that hold integers (the rest are finite decimals).
+const INTEGER_COLUMNS: &[&str] = &[
+    "station",
+    "stroke",
+    "paint",
+    "enc_base",
+    "enc_extension",
+    "enc_yaw",
+    "enc_tilt",
+    "enc_vertical",
+];
+
+/// Whether a text is a setpoint CSV (its header starts with SPEC §3's columns).
+pub fn looks_like_csv(text: &str) -> bool {
+    text.starts_with("t_s,station,stroke,paint,")
+}
+
+/// Every problem of a setpoint CSV's text (empty when sound), for `basr
+/// check`: the SPEC §3 header, whole rows of numbers (integers where the
+/// column counts), and `t_s` stepping by one period from 0. A CSV cut off
+/// mid-row (a copy that did not finish) is reported at its last line. The
+/// CSV carries no hash: to check its setpoints against the robot, check the
+/// job it was written with.
+pub fn check_source(text: &str, origin: &str) -> Vec<String> {
+    const LIST: usize = 5;
+    let mut out = vec![];
+    let mut more = 0usize;
+    let mut add = |out: &mut Vec<String>, m: String| {
+        if out.len() < LIST {
+            out.push(m);
+        } else {
+            more += 1;
+        }
+    };
+    let mut lines = text.split_inclusive('\n').enumerate();
+    let Some((_, header)) = lines.next() else {
+        return vec![format!("{origin}: the file is empty")];
+    };
+    let names: Vec<&str> = header.trim_end().split(',').collect();
+    if names.len() < COLUMNS.len() || names[..COLUMNS.len()] != *COLUMNS {
+        return vec![format!(
+            "{origin}:1: the header is not SPEC §3's setpoint columns ({}…): write it \
+             again with `basr compile … --csv FILE`",
+            COLUMNS[..4].join(",")
+        )];
+    }
+    let t_col = 0;
+    let mut times: Vec<f64> = vec![];
+    for (i, line) in lines {
+        let n = i + 1;
+        if !line.ends_with('\n') {
+            add(
+                &mut out,
+                format!(
+                    "{origin}:{n}: the last row has no line end: the file is truncated; \
+                     write it again with `basr compile … --csv FILE`"
+                ),
+            );
+        }
+        let fields: Vec<&str> = line.trim_end().split(',').collect();
+        if fields.len() != names.len() {
+            add(
+                &mut out,
+                format!(
+                    "{origin}:{n}: {} fields but the header has {}: the row is cut short or \
+                     was edited",
+                    fields.len(),
+                    names.len()
+                ),
+            );
+            continue;
+        }
+        for (name, f) in names.iter().zip(&fields) {
+            let ok = if INTEGER_COLUMNS.contains(name) {
+                f.parse::<i64>().is_ok()
+            } else {
+                f.parse::<f64>().is_ok_and(f64::is_finite)
+            };
+            if !ok {
+                add(
+                    &mut out,
+                    format!("{origin}:{n}: column {name} holds {f:?}, not a finite number"),
+                );
+            }
+        }
+        if let Ok(t) = fields[t_col].parse::<f64>() {
+            times.push(t);
+        }
+    }
+    if times.is_empty() && out.is_empty() {
+        add(&mut out, format!("{origin}: the file has no setpoints"));
+    }
+    if let (Some(&t0), Some(&t1)) = (times.first(), times.get(1)) {
+        let p = t1 - t0;
+        if t0 != 0.0 || p.is_nan() || p <= 0.0 {
+            add(
+                &mut out,
+                format!("{origin}:2: t_s starts at {t0}, then {t1}: it starts at 0 and grows"),
+            );
+        } else {
+            for (k, &t) in times.iter().enumerate() {
+                let want = super::tick_time(k, p);
+                if (t - want).abs() > 1e-9 * want.max(1.0) {
+                    add(
+                        &mut out,
+                        format!(
+                            "{origin}:{}: t_s is {t} but a period of {p} s puts row {k} at {want}",
+                            k + 2
+                        ),
+                    );
+                }
+            }
+        }
+    }
+    if more > 0 {
+        out.push(format!("{origin}: … and {more} more problem(s)"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn csv_of(job: &crate::job::Job) -> String {
+        let mut text = COLUMNS.join(",") + "\n";
+        for i in 0..job.samples.len() {
+            text += &(job.samples.csv_fields(i).join(",") + "\n");
+        }
+        text
+    }
+
+    #[test]
+    fn written_csv_checks_and_a_cut_one_does_not() {
+        let job = crate::sim::synthetic::letter_job();
+        let text = csv_of(&job);
+        assert!(looks_like_csv(&text));
+        assert_eq!(check_source(&text, "s.csv"), Vec::<String>::new());
+        // Cut in the middle of a row.
+        let cut = &text[..text.len() - 40];
+        let p = check_source(cut, "s.csv");
+        assert!(p.iter().any(|m| m.contains("truncated")), "{p:?}");
+        assert!(
+            p.iter().any(|m| m.contains("fields but the header has 22")),
+            "{p:?}"
+        );
+        // A time out of step and a word where a count belongs.
+        let bad = text
+            .replacen("\n0.064,", "\n0.065,", 1)
+            .replacen(",0\n", ",x\n", 1);
+        let p = check_source(&bad, "s.csv");
+        assert!(
+            p.iter().any(|m| m.contains("s.csv:4: t_s is 0.065")),
+            "{p:?}"
+        );
+        assert!(p.iter().any(|m| m.contains("not a finite number")), "{p:?}");
+        assert!(!check_source("x,y\n1,2\n", "s.csv")[0].contains("truncated"));
+    }
+}

@@ -234,7 +234,54 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
     }
     derived_columns(job, origin, &mut c);
     summary_totals(job, origin, &mut c);
+    settings(job, origin, &mut c);
     c.finish(origin)
+}
+
+/// The job's own settings: its robot description passes the checks a robot
+/// file gets, the paint block is that robot's (k = flow·efficiency/film,
+/// 001 eq. 2.6), and the stroke count is the layout's.
+fn settings(job: &Job, origin: &str, c: &mut Collector) {
+    for (field, what) in job.robot.problems() {
+        c.add(
+            "robot",
+            format!("{origin}: the job's robot description: field `robot.{field}`: {what}"),
+        );
+    }
+    let want = job.robot.paint.job_paint();
+    let stated = &job.paint;
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-12);
+    for (name, a, b) in [
+        ("fan_angle_rad", stated.fan_angle_rad, want.fan_angle_rad),
+        ("flow_m3ps", stated.flow_m3ps, want.flow_m3ps),
+        (
+            "transfer_efficiency",
+            stated.transfer_efficiency,
+            want.transfer_efficiency,
+        ),
+        ("film_m", stated.film_m, want.film_m),
+        ("k_m2ps", stated.k_m2ps, want.k_m2ps),
+    ] {
+        if !close(a, b) {
+            c.add(
+                "paint",
+                format!(
+                    "{origin}: paint.{name} is {a} but the job's robot description gives {b} \
+                     (k = flow × efficiency / film)"
+                ),
+            );
+        }
+    }
+    let laid: usize = job.layout.glyphs.iter().map(|g| g.strokes.len()).sum();
+    if job.summary.strokes != laid {
+        c.add(
+            "summary",
+            format!(
+                "{origin}: summary.strokes is {} but the layout has {laid} strokes",
+                job.summary.strokes
+            ),
+        );
+    }
 }
 
 /// Columns the compiler derives from the joints and the nozzle path: the
@@ -255,7 +302,7 @@ fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
         let off = (act.cylinder_m - s.cylinder_m[i])
             .abs()
             .max((act.tilt_nut_m - s.tilt_nut_m[i]).abs());
-        if !(off <= FK_TOL) {
+        if off.is_nan() || off > FK_TOL {
             c.add(
                 "actuator",
                 format!(
@@ -298,7 +345,8 @@ fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
         } else {
             0.0
         };
-        if !((speed - s.speed_mps[i]).abs() <= FK_TOL) {
+        let dv = (speed - s.speed_mps[i]).abs();
+        if dv.is_nan() || dv > FK_TOL {
             c.add(
                 "speed",
                 format!(

@@ -282,6 +282,13 @@ impl Robot {
         crate::io::sha256_hex(&crate::job::canonical_json(&v))
     }
 
+    /// What is wrong with a description already read (a job's embedded
+    /// robot): (dotted field, what and how to fix it); empty when valid.
+    /// The same semantic checks a robot file gets on load.
+    pub fn problems(&self) -> Vec<(String, String)> {
+        describe::validate(self)
+    }
+
     /// Angular compliance of joint F (rad per N·m) at extension `r`:
     /// the measured deflection under the test torque (001 table 3.2),
     /// interpolated linearly and held constant beyond the measured range.
