@@ -65,8 +65,9 @@ pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String
         let tilt_code =
             ((samples.tilt_rad[i].to_degrees() / TILT_STEP_DEG).round() as i64).clamp(-127, 127);
         let _ = writeln!(
+            // 001 app. A prints every field with %5.1f.
             out,
-            "move trans({:.1},{:.1},({:.1}+offset),0,180,{:.1})",
+            "move trans({:5.1},{:5.1},({:5.1}+offset),0,180,{:5.1})",
             b[0] * 1e3,
             b[1] * 1e3,
             samples.z_m[i] * 1e3,
@@ -74,7 +75,7 @@ pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String
         );
         let _ = writeln!(
             out,
-            "speed ({:.1}*scale), rotate MMPS",
+            "speed ({:5.1}*scale), rotate MMPS",
             samples.speed_mps[i] * 1e3
         );
         // The tilt code only when it changes (the Zworld holds the last one).
@@ -145,7 +146,7 @@ mod tests {
         });
         let p = program("STOP", &s, &stations);
         assert!(
-            p.contains("move trans(0.0,2000.0,(200.0+offset),0,180,180.0)"),
+            p.contains("move trans(  0.0,2000.0,(200.0+offset),0,180,180.0)"),
             "{p}"
         );
         assert!(p.contains("speed (160.0*scale), rotate MMPS"), "{p}");

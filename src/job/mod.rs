@@ -32,7 +32,7 @@ pub enum JobError {
         #[source]
         source: serde_json::Error,
     },
-    #[error("{path}: not a basr job (format is {found:?}, expected \"basr-job\")")]
+    #[error("{path}: not a basr job (format is {found}, expected \"basr-job\"); give a job written by `basr compile`")]
     Format { path: String, found: String },
     #[error("{path}: job version {found} is not known to this basr (it reads version {VERSION}); use the basr that wrote it or compile it again")]
     Version { path: String, found: String },
