@@ -131,35 +131,24 @@ fn stem_of(text: &str) -> String {
 /// Refuse outputs that name one file twice, or an input: each would be
 /// written over the other (the job over `--csv`, or over the marking file).
 fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
-    let mut paths: Vec<(&str, &Path)> = vec![("the job (-o)", out)];
+    let mut outputs: Vec<(&str, &Path)> = vec![("the job (-o)", out)];
     if let Some(p) = &args.csv {
-        paths.push(("--csv", p));
+        outputs.push(("--csv", p));
     }
     if let Some(p) = &args.adept {
-        paths.push(("--adept", p));
+        outputs.push(("--adept", p));
     }
-    let outputs = paths.len();
+    let mut inputs: Vec<(&str, &Path)> = vec![];
     if let Some(p) = &args.marking {
-        paths.push(("the marking file (--marking)", p));
+        inputs.push(("the marking file (--marking)", p));
     }
     if let Some(p) = &args.robot {
-        paths.push(("the robot file (--robot)", p));
+        inputs.push(("the robot file (--robot)", p));
     }
     if let Some(f) = &args.font {
-        paths.push(("the font file (--font)", Path::new(f)));
+        inputs.push(("the font file (--font)", Path::new(f)));
     }
-    if let Some(((a, pa), (b, _))) = basr::io::same_file_pair(&paths) {
-        let what = if paths[..outputs].iter().any(|(n, _)| *n == b) {
-            "each would be written over the other"
-        } else {
-            "writing it would destroy the input"
-        };
-        anyhow::bail!(
-            "{a} and {b} are the same file, {}: {what}; give a different path for {a}",
-            pa.display()
-        );
-    }
-    Ok(())
+    super::refuse_clashes(&outputs, &inputs)
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
