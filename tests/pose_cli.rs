@@ -100,3 +100,19 @@ fn human_table_goes_to_stderr() {
         .stdout("")
         .stderr(predicate::str::contains("enc_base"));
 }
+
+#[test]
+fn tip_on_the_base_axis_names_the_extension_it_would_need() {
+    // Within a2 = 0.01 m of the rotation axis no arm pose exists; the
+    // message gives R ≈ |W| and its real shortfall, not "not finite".
+    basr()
+        .args(["pose", "0", "0"])
+        .assert()
+        .code(2)
+        .stdout("")
+        .stderr(
+            predicate::str::contains("extension_m would be 0.0000 m")
+                .and(predicate::str::contains("by 1.5500 m"))
+                .and(predicate::str::contains("finite").not()),
+        );
+}

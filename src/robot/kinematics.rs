@@ -294,7 +294,18 @@ impl Robot {
             let (s, c) = psi.sin_cos();
             let w = [pose.x_m - off[0] * c, pose.y_m - off[0] * s];
             let vertical = self.end_effector.tip_height_top_m + off[1] - pose.z_m;
-            for (theta1, ext) in self.arm_ik(w) {
+            let arm = self.arm_ik(w);
+            if arm.is_empty() {
+                // |W| < a2: the yaw axis would have to be nearer the base
+                // axis than the arm's offset allows; R would be about |W|,
+                // far below its minimum.
+                note(Unreachable::of(
+                    "extension_m",
+                    &self.limits.extension_m,
+                    w[0].hypot(w[1]),
+                ));
+            }
+            for (theta1, ext) in arm {
                 let mut j = Joints {
                     base_rot_rad: theta1,
                     extension_m: ext,
@@ -331,12 +342,10 @@ impl Robot {
             }
         }
         if found.is_empty() {
-            return Err(closest.unwrap_or(Unreachable {
-                joint: "extension_m".into(),
-                value: f64::NAN,
-                min: self.limits.extension_m.min,
-                max: self.limits.extension_m.max,
-                excess: f64::NAN,
+            // Every branch above either finds joints or notes why not, so
+            // `closest` is set; the fallback only keeps this panic-free.
+            return Err(closest.unwrap_or_else(|| {
+                Unreachable::of("tilt_rad", &self.limits.tilt_rad, pose.tilt_rad)
             }));
         }
         found.sort_by(|a, b| {
@@ -665,6 +674,28 @@ mod tests {
             ..pose
         };
         assert_eq!(r.ik(&nan).unwrap_err().joint, "x_m");
+    }
+
+    #[test]
+    fn tip_on_the_base_axis_names_extension_and_its_excess() {
+        let r = robot();
+        // Within a2 = 0.01 m of the axis no (θ1, R) exists at all
+        // (|W|² = R² + a2²): R would be about |W|.
+        for (x, y) in [(0.0, 0.0), (0.0, 0.005), (-0.003, 0.004)] {
+            let pose = NozzlePose {
+                x_m: x,
+                y_m: y,
+                z_m: 0.2,
+                yaw_rad: 0.0,
+                tilt_rad: 0.0,
+            };
+            let e = r.ik(&pose).unwrap_err();
+            let w = f64::hypot(x, y);
+            assert_eq!(e.joint, "extension_m");
+            assert!((e.value - w).abs() < 1e-12, "{e:?}");
+            assert!((e.excess - (1.55 - w)).abs() < 1e-12, "{e:?}");
+            assert!(e.to_string().contains("would be"), "{e}");
+        }
     }
 
     #[test]
