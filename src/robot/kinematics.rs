@@ -118,11 +118,32 @@ pub struct Unreachable {
     pub excess: f64,
 }
 
-fn show(name: &str, v: f64) -> String {
-    if name.ends_with("_rad") {
-        format!("{:.4} rad ({:.2}°)", v, v.to_degrees())
+/// `v` with `decimals` decimals for a person to read: never `-0.000`
+/// (a rounded-away sign says nothing), and in scientific form from 10⁶ up
+/// (`--tilt-deg 1e300` must not print 300 digits).
+pub fn show_number(v: f64, decimals: usize) -> String {
+    if v.is_finite() && v.abs() >= 1e6 {
+        return format!("{v:.4e}");
+    }
+    let s = format!("{v:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// Decimals that show `excess` with two significant digits, at least `min`
+/// (15 at most: an f64 holds no more). A limit broken by 1e-9 rad must not
+/// read "by 0.0000 rad".
+fn decimals_for(excess: f64, min: usize) -> usize {
+    if !(excess.is_finite() && excess > 0.0) {
+        return min;
+    }
+    let needed = 1.0 - excess.log10().floor();
+    if needed <= min as f64 {
+        min
     } else {
-        format!("{v:.4} m")
+        (needed as usize).min(15)
     }
 }
 
@@ -134,13 +155,35 @@ impl Unreachable {
                 self.joint
             );
         }
+        let angle = self.joint.ends_with("_rad");
+        // Radians and metres to 0.1 mm / 0.1 mrad, degrees to 0.01°, more
+        // when the excess is smaller.
+        let (d, d_deg) = if angle {
+            (
+                decimals_for(self.excess, 4),
+                decimals_for(self.excess.to_degrees(), 2),
+            )
+        } else {
+            (decimals_for(self.excess, 4), 0)
+        };
+        let show = |v: f64| {
+            if angle {
+                format!(
+                    "{} rad ({}°)",
+                    show_number(v, d),
+                    show_number(v.to_degrees(), d_deg)
+                )
+            } else {
+                format!("{} m", show_number(v, d))
+            }
+        };
         format!(
             "unreachable: {} would be {}, outside its range {} .. {} by {}",
             self.joint,
-            show(&self.joint, self.value),
-            show(&self.joint, self.min),
-            show(&self.joint, self.max),
-            show(&self.joint, self.excess),
+            show(self.value),
+            show(self.min),
+            show(self.max),
+            show(self.excess),
         )
     }
 
@@ -361,15 +404,19 @@ impl Robot {
     /// of 000 app. B eq. 2.40 are R = ±√(|W|² − a2²)). θ1 is taken in the
     /// turn that holds the base window when one does.
     fn arm_ik(&self, w: [f64; 2]) -> Vec<(f64, f64)> {
-        let a2 = self.arm.a2_m;
-        let rr = w[0] * w[0] + w[1] * w[1] - a2 * a2;
-        if rr < 0.0 {
+        let a2 = self.arm.a2_m.abs();
+        // √(|W|² − a2²) as √(|W| − a2)·√(|W| + a2): squaring a tip 1e300 m
+        // away would overflow to an infinite R.
+        let d = w[0].hypot(w[1]);
+        if d < a2 {
             return vec![];
         }
+        let r = (d - a2).sqrt() * (d + a2).sqrt();
+        let a2 = self.arm.a2_m;
         let arg = w[1].atan2(w[0]);
         let bl = &self.limits.base_rot_rad;
         let mut out = Vec::with_capacity(2);
-        for ext in [rr.sqrt(), -rr.sqrt()] {
+        for ext in [r, -r] {
             let mut t = wrap_pi(arg + a2.atan2(ext));
             let mid = 0.5 * (bl.min + bl.max);
             t += TAU * ((mid - t) / TAU).round();
@@ -674,6 +721,18 @@ mod tests {
             ..pose
         };
         assert_eq!(r.ik(&nan).unwrap_err().joint, "x_m");
+    }
+
+    #[test]
+    fn numbers_for_people() {
+        assert_eq!(show_number(-0.0, 4), "0.0000");
+        assert_eq!(show_number(-1e-17, 6), "0.000000");
+        assert_eq!(show_number(-0.5, 2), "-0.50");
+        assert_eq!(show_number(1e300, 4), "1.0000e300");
+        assert_eq!(decimals_for(0.6417, 4), 4);
+        assert_eq!(decimals_for(1.745e-9, 4), 10);
+        assert_eq!(decimals_for(1e-300, 4), 15);
+        assert_eq!(decimals_for(0.0, 2), 2);
     }
 
     #[test]
