@@ -689,6 +689,7 @@ fn solve_run(
                             min: lim.min,
                             max: lim.max,
                             excess: (lim.min - value).max(value - lim.max).max(0.0),
+                            flipped: false,
                         },
                     ));
                     continue 'branch;
@@ -721,6 +722,7 @@ fn unreachable_pose() -> crate::robot::Unreachable {
         min: f64::NAN,
         max: f64::NAN,
         excess: f64::NAN,
+        flipped: false,
     }
 }
 

@@ -116,6 +116,9 @@ pub struct Unreachable {
     pub max: f64,
     /// Distance outside [min, max], in the joint's unit.
     pub excess: f64,
+    /// Whether the limit binds on the flipped fan (ψ+π, −β), the branch IK
+    /// came closest with.
+    pub flipped: bool,
 }
 
 /// `v` with `decimals` decimals for a person to read: never `-0.000`
@@ -178,7 +181,13 @@ impl Unreachable {
             }
         };
         format!(
-            "unreachable: {} would be {}, outside its range {} .. {} by {}",
+            "unreachable: {}{} would be {}, outside its range {} .. {} by {}",
+            if self.flipped {
+                // The fan as asked came out further from its limits.
+                "with the fan flipped (ψ+π, the tilt negated; as asked it is further out of reach) "
+            } else {
+                ""
+            },
             self.joint,
             show(self.value),
             show(self.min),
@@ -187,18 +196,19 @@ impl Unreachable {
         )
     }
 
-    fn of(name: &str, l: &JointLimit, value: f64) -> Unreachable {
+    pub(super) fn of(name: &str, l: &JointLimit, value: f64) -> Unreachable {
         Unreachable {
             joint: name.to_string(),
             value,
             min: l.min,
             max: l.max,
             excess: l.excess(value),
+            flipped: false,
         }
     }
 
     /// Excess relative to the joint's range: compares different units.
-    fn severity(&self) -> f64 {
+    pub(super) fn severity(&self) -> f64 {
         let span = (self.max - self.min).abs().max(1e-12);
         self.excess / span
     }
@@ -276,6 +286,7 @@ impl Robot {
                     min: l.min,
                     max: l.max,
                     excess: f64::NAN,
+                    flipped: false,
                 });
             }
             if !l.contains(v) {
@@ -310,22 +321,26 @@ impl Robot {
                     min: f64::NAN,
                     max: f64::NAN,
                     excess: f64::NAN,
+                    flipped: false,
                 });
             }
         }
         let mut found = Vec::new();
         let mut closest: Option<Unreachable> = None;
-        let mut note = |u: Unreachable| {
+        let mut note_on = |flip: bool, u: Unreachable| {
+            let u = Unreachable { flipped: flip, ..u };
             if closest.as_ref().is_none_or(|c| u.severity() < c.severity()) {
                 closest = Some(u);
             }
         };
         for flip in [false, true] {
             let (psi, beta) = if flip {
-                (pose.yaw_rad + PI, -pose.tilt_rad)
+                // 0 − β: a zero tilt flipped stays +0.0.
+                (pose.yaw_rad + PI, 0.0 - pose.tilt_rad)
             } else {
                 (pose.yaw_rad, pose.tilt_rad)
             };
+            let mut note = |u: Unreachable| note_on(flip, u);
             if !self.limits.tilt_rad.contains(beta) {
                 note(Unreachable::of("tilt_rad", &self.limits.tilt_rad, beta));
                 continue;
@@ -572,6 +587,7 @@ impl Robot {
                 } else {
                     nut_m - max
                 },
+                flipped: false,
             }
         })
     }
