@@ -157,9 +157,9 @@ fn non_finite_numbers_reach_our_validation() {
     // `-inf` is no number to clap's negative-number test: it used to fail
     // with "unexpected argument '-i'".
     for (args, what) in [
-        (["pose", "0", "-inf"], "Y must be a finite number"),
-        (["pose", "-inf", "3"], "X must be a finite number"),
-        (["pose", "nan", "3"], "X must be a finite number"),
+        (["pose", "0", "-inf"], "Y is not a finite number"),
+        (["pose", "-inf", "3"], "X is not a finite number"),
+        (["pose", "nan", "3"], "X is not a finite number"),
     ] {
         basr()
             .args(args)
@@ -172,7 +172,7 @@ fn non_finite_numbers_reach_our_validation() {
         .args(["pose", "0", "3", "--height", "-inf"])
         .assert()
         .code(2)
-        .stderr(predicate::str::contains("--height must be a finite number"));
+        .stderr(predicate::str::contains("--height is not a finite number"));
     basr().args(["pose", "-1", "3"]).assert().success();
     basr()
         .args(["pose", "-1", "3", "--json"])

@@ -88,7 +88,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if let Some(v) = v {
             anyhow::ensure!(
                 v.is_finite(),
-                "{what} must be a finite number of {unit}, got {v}"
+                "{what} is not a finite number of {unit} (got {v}); give a finite number"
             );
         }
     }
