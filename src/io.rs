@@ -172,26 +172,33 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
 }
 
 /// Read a whole input file as UTF-8 text, or `-` for standard input, with an
-/// error that names the file and says what to do.
+/// error that names the file and says what to do; text that is not UTF-8 is
+/// refused at `file:line:col` of its first invalid byte.
 pub fn read_text(path: &Path) -> anyhow::Result<String> {
     use anyhow::Context;
-    if path == Path::new("-") {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
-            .context("cannot read standard input as UTF-8 text")?;
-        return Ok(s);
-    }
-    let bytes = std::fs::read(path).with_context(|| {
-        format!(
-            "cannot read {}: check the path and that the file is readable",
-            path.display()
-        )
-    })?;
+    let (bytes, name) = if path == Path::new("-") {
+        let mut b = Vec::new();
+        std::io::Read::read_to_end(&mut std::io::stdin(), &mut b)
+            .context("cannot read standard input")?;
+        (b, "standard input".to_string())
+    } else {
+        let b = std::fs::read(path).with_context(|| {
+            format!(
+                "cannot read {}: check the path and that the file is readable",
+                path.display()
+            )
+        })?;
+        (b, path.display().to_string())
+    };
     String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        // Everything before `at` is valid UTF-8 by definition.
+        let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
+        let (line, col) = line_col(before, at);
         anyhow::anyhow!(
-            "{} is not UTF-8 text (invalid byte at offset {}): save it as UTF-8",
-            path.display(),
-            e.utf8_error().valid_up_to()
+            "{name}:{line}:{col}: not UTF-8 text (invalid byte 0x{:02x}); save the file as UTF-8",
+            bytes[at]
         )
     })
 }
@@ -299,6 +306,17 @@ mod tests {
         assert_eq!(line_col(t, 6), (2, 3));
         assert_eq!(line_col(t, 4), (2, 1), "inside a character: no panic");
         assert_eq!(line_col(t, 99), (3, 2));
+    }
+
+    #[test]
+    fn non_utf8_is_refused_at_line_and_column() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("latin1.toml");
+        std::fs::write(&p, b"[a]\nname = \"\xc3\xa7a\xdfe\"\n").unwrap();
+        let e = format!("{:#}", read_text(&p).unwrap_err());
+        // Line 2, column 11: after `name = "ça` (10 characters).
+        assert!(e.contains("latin1.toml:2:11: not UTF-8"), "{e}");
+        assert!(e.contains("0xdf") && !e.contains("offset"), "{e}");
     }
 
     #[test]

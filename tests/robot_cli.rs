@@ -129,3 +129,80 @@ fn missing_file_exits_2() {
         .code(2)
         .stderr(predicate::str::contains("no/such/robot.toml"));
 }
+
+#[test]
+fn missing_field_has_its_dotted_name_and_line() {
+    // Line of the [end_effector] header: serde points at the table.
+    let text = default_toml();
+    let header = text.lines().position(|l| l == "[end_effector]").unwrap() + 1;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, text.replacen("mass_kg = 35.0\n", "", 1)).unwrap();
+    let want = format!(
+        "{}:{header}:1: missing field `end_effector.mass_kg`",
+        path.display()
+    );
+    basr()
+        .args(["robot", "--robot"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stdout("")
+        .stderr(predicate::str::contains(want.clone()));
+    basr()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains(want));
+}
+
+#[test]
+fn nan_in_an_array_names_its_line() {
+    assert_rejected(
+        "joint_f_deflection_extension_m = [1.470",
+        "joint_f_deflection_extension_m = [nan",
+        "end_effector.joint_f_deflection_extension_m[0]",
+    );
+}
+
+#[test]
+fn non_utf8_file_is_refused_at_line_and_column() {
+    let text = default_toml();
+    let line = text.lines().position(|l| l.starts_with("mass_kg")).unwrap() + 1;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("latin1.toml");
+    // A Latin-1 'ß' (0xdf) in a comment, column 18 of the mass_kg line.
+    let mut bytes = text
+        .replacen("mass_kg = 35.0", "mass_kg = 35.0 # X", 1)
+        .into_bytes();
+    let x = bytes.windows(3).position(|w| w == b"# X").unwrap() + 2;
+    bytes[x] = 0xdf;
+    std::fs::write(&path, bytes).unwrap();
+    let want = format!("{}:{line}:18: not UTF-8", path.display());
+    basr()
+        .args(["robot", "--robot"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains(want.clone()).and(predicate::str::contains("offset").not()),
+        );
+    basr()
+        .arg("check")
+        .arg(&path)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(want));
+}
+
+#[test]
+fn multi_line_syntax_message_is_joined() {
+    let dir = tempfile::tempdir().unwrap();
+    let (path, _) = bad_file(&dir, "a2_m = 0.01", "a2_m = [1,");
+    let out = basr().arg("check").arg(&path).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains("invalid array; expected `]`"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}
