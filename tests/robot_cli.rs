@@ -242,3 +242,44 @@ fn toml_output_reads_back_byte_identically() {
     std::fs::write(&c1, &once).unwrap();
     assert_eq!(toml_of(&c1), once);
 }
+
+#[test]
+fn check_carries_on_past_an_unreadable_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("good.toml");
+    std::fs::write(&good, default_toml()).unwrap();
+    let (bad, line) = bad_file(&dir, "mass_kg = 35.0", "mass_kg = -35.0");
+    let missing = dir.path().join("nosuch.toml");
+    // The file after the unreadable one is checked too; exit 2 at the end.
+    let out = basr()
+        .arg("check")
+        .args([&good, &missing, &bad])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(err.contains(&format!("{}: ok", good.display())), "{err}");
+    assert!(
+        err.contains(&format!("cannot read {}", missing.display())),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!(
+            "{}:{line}: field `end_effector.mass_kg`",
+            bad.display()
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains("1 of 3 files could not be read, 1 with problems"),
+        "{err}"
+    );
+    // Without the unreadable one: problems found, exit 1.
+    basr()
+        .arg("check")
+        .args([&good, &bad])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("could not be read").not());
+    basr().arg("check").arg(&good).assert().success();
+}
