@@ -282,7 +282,8 @@ pub fn show_num(v: f64) -> String {
 pub const MAX_INPUT_BYTES: u64 = 2 << 30;
 
 /// Read a whole input file as UTF-8 text, or `-` for standard input, with an
-/// error that names the file and says what to do. At most
+/// error that names the file and says what to do; text that is not UTF-8 is
+/// refused at `file:line:col` of its first invalid byte. At most
 /// [`MAX_INPUT_BYTES`] are read.
 pub fn read_text(path: &Path) -> anyhow::Result<String> {
     use anyhow::Context;
@@ -315,9 +316,14 @@ pub fn read_text(path: &Path) -> anyhow::Result<String> {
         MAX_INPUT_BYTES >> 30
     );
     String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        // Everything before `at` is valid UTF-8 by definition.
+        let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
+        let (line, col) = line_col(before, at);
         anyhow::anyhow!(
-            "{name} is not UTF-8 text (invalid byte at offset {}): save it as UTF-8",
-            e.utf8_error().valid_up_to()
+            "{name}:{line}:{col}: not UTF-8 text (invalid byte 0x{:02x}); save the file as UTF-8",
+            bytes[at]
         )
     })
 }
@@ -456,6 +462,17 @@ mod tests {
         assert_eq!(line_col(t, 6), (2, 3));
         assert_eq!(line_col(t, 4), (2, 1), "inside a character: no panic");
         assert_eq!(line_col(t, 99), (3, 2));
+    }
+
+    #[test]
+    fn non_utf8_is_refused_at_line_and_column() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("latin1.toml");
+        std::fs::write(&p, b"[a]\nname = \"\xc3\xa7a\xdfe\"\n").unwrap();
+        let e = format!("{:#}", read_text(&p).unwrap_err());
+        // Line 2, column 11: after `name = "ça` (10 characters).
+        assert!(e.contains("latin1.toml:2:11: not UTF-8"), "{e}");
+        assert!(e.contains("0xdf") && !e.contains("offset"), "{e}");
     }
 
     #[test]

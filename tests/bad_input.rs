@@ -203,7 +203,7 @@ fn non_utf8_marking_is_refused() {
     s.input("latin1.toml", b"[marking]\nlines = [\"STRA\xdfE\"]\n");
     s.refuses(
         &["compile", "--marking", "latin1.toml"],
-        &["latin1.toml", "not utf-8", "save it as utf-8"],
+        &["latin1.toml", "not utf-8", "save the file as utf-8"],
     );
 }
 
@@ -604,7 +604,7 @@ fn empty_and_non_utf8_robot_files_are_refused() {
     s.input("latin1.toml", b"name = \"BASR \xe9\"\n");
     s.refuses(
         &["pose", "0", "3", "--robot", "latin1.toml"],
-        &["latin1.toml", "not utf-8", "save it as utf-8"],
+        &["latin1.toml", "not utf-8", "save the file as utf-8"],
     );
 }
 
@@ -630,7 +630,7 @@ fn non_utf8_job_is_refused() {
     s.input("j.job.json", b"{\"format\": \"basr-j\xffob\"}");
     s.refuses(
         &["preview", "j.job.json"],
-        &["j.job.json", "not utf-8", "save it as utf-8"],
+        &["j.job.json", "not utf-8", "save the file as utf-8"],
     );
 }
 

@@ -1,5 +1,6 @@
 //! `basr check FILE...`: validate font, robot, marking, job and CSV files,
-//! reporting every problem found (exit 1 when any file has problems).
+//! reporting every problem found (exit 1 when any file has problems, 2 when
+//! any could not be read; the others are still checked).
 
 use std::path::PathBuf;
 
@@ -77,10 +78,20 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
-    let mut bad = 0usize;
+    // Every file is checked, an unreadable one included: the README promises
+    // all problems at once. Unreadable files decide the exit code (2) at the
+    // end, ahead of problems found (1).
+    let (mut bad, mut unreadable) = (0usize, 0usize);
     for path in &args.files {
         let origin = path.display().to_string();
-        let text = basr::io::read_text(path)?;
+        let text = match basr::io::read_text(path) {
+            Ok(t) => t,
+            Err(e) => {
+                unreadable += 1;
+                note!("{e:#}");
+                continue;
+            }
+        };
         let found = problems(&text, &origin);
         if found.is_empty() {
             if !global.quiet {
@@ -93,6 +104,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             }
         }
     }
+    anyhow::ensure!(
+        unreadable == 0,
+        "{unreadable} of {} files could not be read{}",
+        args.files.len(),
+        if bad > 0 {
+            format!(", {bad} with problems (see above)")
+        } else {
+            String::new()
+        }
+    );
     Ok(if bad == 0 {
         Outcome::Success
     } else {

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
+use basr::robot::kinematics::{show_number, wrap_pi};
 use basr::robot::{Joints, NozzlePose, Robot};
 use serde_json::json;
 
@@ -22,10 +23,10 @@ use super::{Global, Outcome};
 )]
 pub struct Args {
     /// Tip x in the base frame (m).
-    #[arg(allow_negative_numbers = true)]
+    #[arg(allow_hyphen_values = true)]
     pub x: f64,
     /// Tip y in the base frame (m).
-    #[arg(allow_negative_numbers = true)]
+    #[arg(allow_hyphen_values = true)]
     pub y: f64,
     /// Tip height over the road (m); default: the middle of the vertical stroke.
     #[arg(long, allow_hyphen_values = true)]
@@ -58,102 +59,152 @@ fn rest(robot: &Robot) -> Joints {
     }
 }
 
+/// Zero without its sign: `--tilt-deg 0` flipped is −0.0, which says
+/// nothing a reader can use and must not be printed.
+fn unsigned_zero(v: f64) -> f64 {
+    v + 0.0
+}
+
+/// A fixed-point number for the table, right-aligned, never `-0.000000`.
+fn cell(v: f64, width: usize, decimals: usize) -> String {
+    format!("{:>width$}", show_number(v, decimals))
+}
+
+/// Degrees wrapped to (−180°, 180°]. `%` on floats is exact, so even
+/// `--yaw-deg 1e300` wraps to the direction it names, not to a 300-digit yaw.
+fn wrap_deg(d: f64) -> f64 {
+    let w = d.rem_euclid(360.0);
+    unsigned_zero(if w > 180.0 { w - 360.0 } else { w })
+}
+
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    for (what, v, unit) in [
+        ("X", Some(args.x), "metres"),
+        ("Y", Some(args.y), "metres"),
+        ("--height", args.height, "metres"),
+        ("--yaw-deg", Some(args.yaw_deg), "degrees"),
+        ("--tilt-deg", Some(args.tilt_deg), "degrees"),
+    ] {
+        if let Some(v) = v {
+            anyhow::ensure!(
+                v.is_finite(),
+                "{what} is not a finite number of {unit} (got {v}); give a finite number"
+            );
+        }
+    }
     let robot = Robot::load_or_default(args.robot.as_deref())?;
     let top = robot.end_effector.tip_height_top_m;
     let lv = &robot.limits.vertical_m;
+    let yaw_deg = wrap_deg(args.yaw_deg);
+    let tilt_deg = unsigned_zero(args.tilt_deg);
     let pose = NozzlePose {
-        x_m: args.x,
-        y_m: args.y,
-        z_m: args.height.unwrap_or(top - 0.5 * (lv.min + lv.max)),
-        yaw_rad: args.yaw_deg.to_radians(),
-        tilt_rad: args.tilt_deg.to_radians(),
+        x_m: unsigned_zero(args.x),
+        y_m: unsigned_zero(args.y),
+        z_m: unsigned_zero(args.height.unwrap_or(top - 0.5 * (lv.min + lv.max))),
+        yaw_rad: yaw_deg.to_radians(),
+        tilt_rad: tilt_deg.to_radians(),
     };
     let all = robot.ik(&pose).with_context(|| {
         format!(
-            "pose x {:.4} m, y {:.4} m, height {:.4} m, yaw {}°, tilt {}° cannot be reached",
-            pose.x_m, pose.y_m, pose.z_m, args.yaw_deg, args.tilt_deg
+            "pose x {} m, y {} m, height {} m, yaw {}°, tilt {}° cannot be reached",
+            show_number(pose.x_m, 4),
+            show_number(pose.y_m, 4),
+            show_number(pose.z_m, 4),
+            show_number(yaw_deg, 2),
+            show_number(tilt_deg, 2)
         )
     })?;
-    // Nearest the rest position, keeping the fan as asked (ψ, β) when a
-    // solution does; the flipped fan (ψ+π, −β) paints the same.
+    // Nearest the rest position, keeping the fan as asked (its direction ψ,
+    // so its tilt β) when a solution does; the flipped fan (ψ+π, −β) paints
+    // the same. Compared by direction: at zero tilt β = −β.
     let as_asked: Vec<_> = all
         .iter()
-        .filter(|j| (j.tilt_rad - pose.tilt_rad).abs() < 1e-12)
+        .filter(|j| wrap_pi(j.base_rot_rad + j.ee_yaw_rad - pose.yaw_rad).abs() < 1e-9)
         .copied()
         .collect();
     let pool = if as_asked.is_empty() { &all } else { &as_asked };
     let j = robot
         .nearest_of(pool, &rest(&robot))
         .context("inverse kinematics returned no solution")?;
+    let j = Joints {
+        base_rot_rad: unsigned_zero(j.base_rot_rad),
+        extension_m: unsigned_zero(j.extension_m),
+        vertical_m: unsigned_zero(j.vertical_m),
+        ee_yaw_rad: unsigned_zero(j.ee_yaw_rad),
+        tilt_rad: unsigned_zero(j.tilt_rad),
+    };
     let a = robot.actuators(&j);
     let e = robot.encoders(&j);
     // Distance to the edge of the region reachable with this yaw and tilt.
     let margin = robot
         .region_for(pose.yaw_rad, pose.tilt_rad)
         .map(|r| r.margin(pose.x_m, pose.y_m))?;
+    let z = unsigned_zero;
     if args.json {
         let out = json!({
             "pose": pose,
             "joints": j,
             "actuators": {
-                "base_motor_rad": a.base_motor_rad,
-                "cylinder_m": a.cylinder_m,
-                "vertical_m": a.vertical_m,
-                "yaw_motor_rad": a.yaw_motor_rad,
-                "tilt_nut_m": a.tilt_nut_m,
-                "tilt_motor_rad": a.tilt_motor_rad,
+                "base_motor_rad": z(a.base_motor_rad),
+                "cylinder_m": z(a.cylinder_m),
+                "vertical_m": z(a.vertical_m),
+                "yaw_motor_rad": z(a.yaw_motor_rad),
+                "tilt_nut_m": z(a.tilt_nut_m),
+                "tilt_motor_rad": z(a.tilt_motor_rad),
             },
             "encoders": e,
             "solutions": all.len(),
-            "reach_margin_m": margin,
+            "reach_margin_m": z(margin),
         });
         basr::io::print_stdout(&(serde_json::to_string_pretty(&out)? + "\n"))?;
     } else if !global.quiet {
-        let deg = |r: f64| r.to_degrees();
+        let deg = |r: f64| show_number(r.to_degrees(), 3);
         note!(
-            "pose (base frame): x {:.4} m  y {:.4} m  height {:.4} m  yaw {:.2}°  tilt {:.2}°",
-            pose.x_m,
-            pose.y_m,
-            pose.z_m,
-            deg(pose.yaw_rad),
-            deg(pose.tilt_rad)
+            "pose (base frame): x {} m  y {} m  height {} m  yaw {}°  tilt {}°",
+            show_number(pose.x_m, 4),
+            show_number(pose.y_m, 4),
+            show_number(pose.z_m, 4),
+            show_number(yaw_deg, 2),
+            show_number(tilt_deg, 2)
         );
         note!(
             "joints ({} solutions; nearest the rest position shown):",
             all.len()
         );
         note!(
-            "  base_rot_rad  {:>12.6}  ({:.3}°)",
-            j.base_rot_rad,
+            "  base_rot_rad  {}  ({}°)",
+            cell(j.base_rot_rad, 12, 6),
             deg(j.base_rot_rad)
         );
-        note!("  extension_m   {:>12.6}", j.extension_m);
-        note!("  vertical_m    {:>12.6}", j.vertical_m);
+        note!("  extension_m   {}", cell(j.extension_m, 12, 6));
+        note!("  vertical_m    {}", cell(j.vertical_m, 12, 6));
         note!(
-            "  ee_yaw_rad    {:>12.6}  ({:.3}°)",
-            j.ee_yaw_rad,
+            "  ee_yaw_rad    {}  ({}°)",
+            cell(j.ee_yaw_rad, 12, 6),
             deg(j.ee_yaw_rad)
         );
         note!(
-            "  tilt_rad      {:>12.6}  ({:.3}°)",
-            j.tilt_rad,
+            "  tilt_rad      {}  ({}°)",
+            cell(j.tilt_rad, 12, 6),
             deg(j.tilt_rad)
         );
         note!("actuators:");
-        note!("  base_motor_rad {:>12.6}", a.base_motor_rad);
-        note!("  cylinder_m     {:>12.6}", a.cylinder_m);
-        note!("  vertical_m     {:>12.6}", a.vertical_m);
-        note!("  yaw_motor_rad  {:>12.6}", a.yaw_motor_rad);
-        note!("  tilt_nut_m     {:>12.6}", a.tilt_nut_m);
-        note!("  tilt_motor_rad {:>12.6}", a.tilt_motor_rad);
+        note!("  base_motor_rad {}", cell(a.base_motor_rad, 12, 6));
+        note!("  cylinder_m     {}", cell(a.cylinder_m, 12, 6));
+        note!("  vertical_m     {}", cell(a.vertical_m, 12, 6));
+        note!("  yaw_motor_rad  {}", cell(a.yaw_motor_rad, 12, 6));
+        note!("  tilt_nut_m     {}", cell(a.tilt_nut_m, 12, 6));
+        note!("  tilt_motor_rad {}", cell(a.tilt_motor_rad, 12, 6));
         note!("encoders:");
         note!("  enc_base      {:>10}", e.base);
         note!("  enc_extension {:>10}", e.extension);
         note!("  enc_yaw       {:>10}", e.yaw);
         note!("  enc_tilt      {:>10}", e.tilt);
         note!("  enc_vertical  {:>10}", e.vertical);
-        note!("reach margin: {margin:.3} m inside the workspace boundary");
+        note!(
+            "reach margin: {} m inside the workspace boundary",
+            show_number(margin, 3)
+        );
     }
     Ok(Outcome::Success)
 }

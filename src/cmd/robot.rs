@@ -19,8 +19,9 @@ pub struct Args {
     /// Print JSON (the form embedded in job files) instead of TOML.
     #[arg(long, conflicts_with = "toml")]
     pub json: bool,
-    /// Print TOML (the default): the embedded file with its sources, or the
-    /// effective values of --robot FILE.
+    /// Print TOML (the default): the embedded file with its sources when the
+    /// robot is the default (also when read from a file), else the effective
+    /// values of --robot FILE; either reads back to the same text.
     #[arg(long)]
     pub toml: bool,
 }
@@ -34,12 +35,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         }
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     } else {
-        // The embedded robot prints as shipped, with every value's source.
-        if args.robot.is_none() {
-            basr::io::print_stdout(basr::robot::BASR_TOML)?;
-        } else {
-            basr::io::print_stdout(&robot.to_toml_string())?;
-        }
+        // The default robot prints as shipped, with every value's source,
+        // also when read back from a file: `robot --toml > f` then
+        // `robot --robot f --toml` gives the same text.
+        basr::io::print_stdout(&robot.to_toml_text())?;
         if !global.quiet {
             note!("robot {} sha256 {}", robot.name, robot.sha256());
         }

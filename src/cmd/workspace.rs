@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use anyhow::Context;
 use basr::robot::{Region, Robot};
 use serde_json::json;
 use svg::node::element::{Circle, Line, Path, Text};
@@ -15,11 +16,13 @@ use super::{Global, Outcome};
 /// axis): bounded by the extension range (two arcs) and the base safety
 /// window (two straight edges). With --tilt-deg (and --yaw-deg for the fan
 /// direction) the region where that tilt is also reachable: the tilt moves
-/// the tip, so the region shifts. Prints the area, ranges and tip heights;
+/// the tip, so the region shifts, and where only one of the fan's two
+/// branches (ψ with β, ψ+π with −β) has its tilt in range, the yaw joint's
+/// range may leave only part of the base window. Prints the area, ranges and tip heights;
 /// --json adds the boundary polygon, --svg draws it.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  basr workspace                       # area and ranges of the embedded BASR\n  basr workspace --svg ws.svg          # drawing of the region\n  basr workspace --tilt-deg 15 --yaw-deg 90 --json"
+    after_help = "Examples:\n  basr workspace                       # area and ranges of the embedded BASR\n  basr workspace --svg ws.svg          # drawing of the region\n  basr workspace --tilt-deg 15 --yaw-deg 90 --json\n\nJSON: \"boundaries\" holds one polygon per part of the region (several when the\nyaw range cuts the base window); \"boundary\" is the first of them."
 )]
 pub struct Args {
     /// Robot description file (TOML); default: the embedded BASR.
@@ -39,6 +42,12 @@ pub struct Args {
     pub tilt_deg: f64,
 }
 
+/// Degrees wrapped to (−180°, 180°]; `%` on floats is exact.
+fn wrap_deg(d: f64) -> f64 {
+    let w = d.rem_euclid(360.0);
+    (if w > 180.0 { w - 360.0 } else { w }) + 0.0
+}
+
 /// Arc sampling of the boundary polygon: 0.1° (≤ 0.5 mm chord error at 5.4 m).
 const BOUNDARY_STEP_RAD: f64 = 0.1 * std::f64::consts::PI / 180.0;
 
@@ -50,10 +59,18 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         );
     }
     let robot = Robot::load_or_default(args.robot.as_deref())?;
-    let region = robot.region_for(args.yaw_deg.to_radians(), args.tilt_deg.to_radians())?;
-    let boundary = region.boundary(BOUNDARY_STEP_RAD);
+    let yaw_deg = wrap_deg(args.yaw_deg);
+    let region = robot
+        .region_for(yaw_deg.to_radians(), args.tilt_deg.to_radians())
+        .with_context(|| {
+            format!(
+                "no tip position is reachable with fan {yaw_deg}° and tilt {}°",
+                args.tilt_deg
+            )
+        })?;
+    let boundaries = region.boundaries(BOUNDARY_STEP_RAD);
     if let Some(path) = &args.svg {
-        let doc = draw(&region, &boundary);
+        let doc = draw(&region, &boundaries);
         basr::io::write_atomic(path, doc.to_string().as_bytes())?;
         if !global.quiet {
             note!("wrote {}", path.display());
@@ -69,11 +86,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "tilt_rad": region.tilt_rad,
             "area_m2": region.area_m2(),
             "base_rot_rad": region.base_rot_rad,
+            "sectors_rad": region.sectors_rad,
             "extension_m": region.extension_m,
             "radius_m": [inner, outer],
             "shift_m": region.shift_m,
             "z_range_m": region.z_range_m,
-            "boundary": boundary,
+            "boundary": boundaries[0],
+            "boundaries": boundaries,
         });
         basr::io::print_stdout(&(serde_json::to_string_pretty(&out)? + "\n"))?;
     } else if !global.quiet {
@@ -81,7 +100,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "{}: reachable tip region on the road (base frame), tilt {:.2}°, fan {:.2}°",
             robot.name,
             args.tilt_deg,
-            args.yaw_deg
+            yaw_deg
         );
         note!("  area          {:.3} m²", region.area_m2());
         note!(
@@ -91,6 +110,25 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             region.base_rot_rad[0].to_degrees(),
             region.base_rot_rad[1].to_degrees()
         );
+        if region.sectors_rad != [region.base_rot_rad] {
+            let parts: Vec<String> = region
+                .sectors_rad
+                .iter()
+                .map(|s| {
+                    format!(
+                        "{:.4} .. {:.4} rad ({:.2}° .. {:.2}°)",
+                        s[0],
+                        s[1],
+                        s[0].to_degrees(),
+                        s[1].to_degrees()
+                    )
+                })
+                .collect();
+            note!(
+                "  fan reaches   {} only: elsewhere the yaw joint's range cannot turn it there with the tilt in range",
+                parts.join(", ")
+            );
+        }
         note!(
             "  extension     {:.4} .. {:.4} m (tip radius {:.4} .. {:.4} m)",
             region.extension_m[0],
@@ -115,10 +153,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
 }
 
 /// SVG of the region: base frame with +y up the page, 100 px per metre.
-fn draw(region: &Region, boundary: &[[f64; 2]]) -> Document {
+fn draw(region: &Region, boundaries: &[Vec<[f64; 2]>]) -> Document {
     let scale = 100.0;
     let (mut x0, mut x1, mut y0, mut y1) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    for p in boundary {
+    for p in boundaries.iter().flatten() {
         x0 = x0.min(p[0]);
         x1 = x1.max(p[0]);
         y0 = y0.min(p[1]);
@@ -129,15 +167,17 @@ fn draw(region: &Region, boundary: &[[f64; 2]]) -> Document {
     let px = |x: f64| (x - x0 + pad) * scale;
     let py = |y: f64| (y1 + pad - y) * scale;
     let mut d = String::new();
-    for (i, p) in boundary.iter().enumerate() {
-        d.push_str(&format!(
-            "{}{:.2},{:.2} ",
-            if i == 0 { "M" } else { "L" },
-            px(p[0]),
-            py(p[1])
-        ));
+    for boundary in boundaries {
+        for (i, p) in boundary.iter().enumerate() {
+            d.push_str(&format!(
+                "{}{:.2},{:.2} ",
+                if i == 0 { "M" } else { "L" },
+                px(p[0]),
+                py(p[1])
+            ));
+        }
+        d.push_str("Z ");
     }
-    d.push('Z');
     let area = Path::new()
         .set("d", d)
         .set("fill", "#cfe3f7")

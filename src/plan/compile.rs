@@ -707,6 +707,7 @@ fn solve_run(
                             min: lim.min,
                             max: lim.max,
                             excess: (lim.min - value).max(value - lim.max).max(0.0),
+                            flipped: false,
                         },
                     ));
                     continue 'branch;
@@ -739,6 +740,7 @@ fn unreachable_pose() -> crate::robot::Unreachable {
         min: f64::NAN,
         max: f64::NAN,
         excess: f64::NAN,
+        flipped: false,
     }
 }
 

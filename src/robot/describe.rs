@@ -56,8 +56,10 @@ fn key_of(line: &str) -> Option<&str> {
 }
 
 /// 1-based line of a dotted field in the text: its `key =` line in its table,
-/// else its table's header; `None` when absent (e.g. a missing field).
+/// else its table's header; `None` when absent (e.g. a missing field). An
+/// array element (`a.b[3]`) is found at its array's line.
 fn locate(text: &str, path: &str) -> Option<usize> {
+    let path = path.split_once('[').map_or(path, |(p, _)| p);
     let (table, key) = match path.rfind('.') {
         Some(i) => (&path[..i], &path[i + 1..]),
         None => ("", path),
@@ -96,6 +98,50 @@ fn field_at_line(text: &str, line_no: usize) -> Option<String> {
         }
     }
     None
+}
+
+/// Name of the table a line belongs to (the last header at or above it;
+/// "" for the root table).
+fn table_at_line(text: &str, line_no: usize) -> String {
+    let mut current = String::new();
+    for line in text.lines().take(line_no) {
+        if let Some(h) = header(line) {
+            current = h;
+        }
+    }
+    current
+}
+
+/// A parser's message on one line: toml's span further messages over
+/// several ("invalid array\nexpected `]`").
+fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// serde's "missing field `k`" names the key alone; give its dotted name
+/// from the table the error points at, and what to do.
+fn dotted_missing(
+    message: &str,
+    text: &str,
+    span: Option<std::ops::Range<usize>>,
+) -> Option<String> {
+    let key = message.strip_prefix("missing field `")?.strip_suffix('`')?;
+    let table = span
+        .map(|s| table_at_line(text, crate::io::line_col(text, s.start).0))
+        .unwrap_or_default();
+    let dotted = if table.is_empty() {
+        key.to_string()
+    } else {
+        format!("{table}.{key}")
+    };
+    Some(format!(
+        "missing field `{dotted}`; add it (`basr robot --toml` shows every field with its source)"
+    ))
 }
 
 fn at(origin: &str, text: &str, path: &str, what: &str) -> String {
@@ -151,7 +197,7 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
                 .unwrap_or_default();
             return Err(invalid(vec![format!(
                 "{loc}: TOML syntax error{field}: {}; fix the syntax (see https://toml.io)",
-                e.message().trim()
+                one_line(e.message())
             )]));
         }
     };
@@ -168,10 +214,13 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
         Ok(r) => r,
         Err(e) => {
             let (loc, field) = span_location(text, origin, e.span());
+            let message = one_line(e.message());
+            if let Some(missing) = dotted_missing(&message, text, e.span()) {
+                return Err(invalid(vec![format!("{loc}: {missing}")]));
+            }
             let field = field.map(|f| format!("field `{f}`: ")).unwrap_or_default();
             return Err(invalid(vec![format!(
-                "{loc}: {field}{}; compare with `basr robot --toml`",
-                e.message().trim()
+                "{loc}: {field}{message}; compare with `basr robot --toml`"
             )]));
         }
     };
@@ -567,5 +616,63 @@ mod tests {
         let text = with("a2_m = 0.01\n", "");
         let p = check_source(&text, "bad.toml");
         assert!(p[0].contains("a2_m"), "{}", p[0]);
+    }
+
+    fn line_of(text: &str, needle: &str) -> usize {
+        text.lines().position(|l| l.starts_with(needle)).unwrap() + 1
+    }
+
+    #[test]
+    fn missing_field_has_its_dotted_name() {
+        for (cut, dotted, table) in [
+            ("mass_kg = 35.0\n", "end_effector.mass_kg", "[end_effector]"),
+            (
+                "rocker_m = 0.23\n",
+                "end_effector.fourbar.rocker_m",
+                "[end_effector.fourbar]",
+            ),
+            (
+                "max_vel = 0.8\n",
+                "limits.vertical_m.max_vel",
+                "[limits.vertical_m]",
+            ),
+            ("name = \"BASR\"\n", "name", "#"),
+        ] {
+            let text = with(cut, "");
+            let p = check_source(&text, "bad.toml");
+            assert_eq!(p.len(), 1);
+            let line = line_of(&text, table);
+            assert!(
+                p[0].starts_with(&format!("bad.toml:{line}:1: missing field `{dotted}`")),
+                "{}",
+                p[0]
+            );
+        }
+    }
+
+    #[test]
+    fn nan_in_an_array_has_its_line() {
+        let text = with(
+            "joint_f_deflection_extension_m = [1.470",
+            "joint_f_deflection_extension_m = [nan",
+        );
+        let p = check_source(&text, "bad.toml");
+        let line = line_of(&text, "joint_f_deflection_extension_m");
+        assert_eq!(
+            p,
+            [format!(
+                "bad.toml:{line}: field `end_effector.joint_f_deflection_extension_m[0]`: \
+                 must be a finite number (nan/inf given)"
+            )]
+        );
+    }
+
+    #[test]
+    fn multi_line_syntax_message_is_one_line() {
+        let text = with("a2_m = 0.01", "a2_m = [1,");
+        let p = check_source(&text, "bad.toml");
+        assert_eq!(p.len(), 1);
+        assert!(!p[0].contains('\n'), "{}", p[0]);
+        assert!(p[0].contains("invalid array; expected `]`"), "{}", p[0]);
     }
 }

@@ -116,13 +116,37 @@ pub struct Unreachable {
     pub max: f64,
     /// Distance outside [min, max], in the joint's unit.
     pub excess: f64,
+    /// Whether the limit binds on the flipped fan (ψ+π, −β), the branch IK
+    /// came closest with.
+    pub flipped: bool,
 }
 
-fn show(name: &str, v: f64) -> String {
-    if name.ends_with("_rad") {
-        format!("{:.4} rad ({:.2}°)", v, v.to_degrees())
+/// `v` with `decimals` decimals for a person to read: never `-0.000`
+/// (a rounded-away sign says nothing), and in scientific form from 10⁶ up
+/// (`--tilt-deg 1e300` must not print 300 digits).
+pub fn show_number(v: f64, decimals: usize) -> String {
+    if v.is_finite() && v.abs() >= 1e6 {
+        return format!("{v:.4e}");
+    }
+    let s = format!("{v:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// Decimals that show `excess` with two significant digits, at least `min`
+/// (15 at most: an f64 holds no more). A limit broken by 1e-9 rad must not
+/// read "by 0.0000 rad".
+fn decimals_for(excess: f64, min: usize) -> usize {
+    if !(excess.is_finite() && excess > 0.0) {
+        return min;
+    }
+    let needed = 1.0 - excess.log10().floor();
+    if needed <= min as f64 {
+        min
     } else {
-        format!("{v:.4} m")
+        (needed as usize).min(15)
     }
 }
 
@@ -134,28 +158,57 @@ impl Unreachable {
                 self.joint
             );
         }
+        let angle = self.joint.ends_with("_rad");
+        // Radians and metres to 0.1 mm / 0.1 mrad, degrees to 0.01°, more
+        // when the excess is smaller.
+        let (d, d_deg) = if angle {
+            (
+                decimals_for(self.excess, 4),
+                decimals_for(self.excess.to_degrees(), 2),
+            )
+        } else {
+            (decimals_for(self.excess, 4), 0)
+        };
+        let show = |v: f64| {
+            if angle {
+                format!(
+                    "{} rad ({}°)",
+                    show_number(v, d),
+                    show_number(v.to_degrees(), d_deg)
+                )
+            } else {
+                format!("{} m", show_number(v, d))
+            }
+        };
         format!(
-            "unreachable: {} would be {}, outside its range {} .. {} by {}",
+            "unreachable: {}{} would be {}, outside its range {} .. {} by {}",
+            if self.flipped {
+                // The fan as asked came out further from its limits.
+                "with the fan flipped (ψ+π, the tilt negated; as asked it is further out of reach) "
+            } else {
+                ""
+            },
             self.joint,
-            show(&self.joint, self.value),
-            show(&self.joint, self.min),
-            show(&self.joint, self.max),
-            show(&self.joint, self.excess),
+            show(self.value),
+            show(self.min),
+            show(self.max),
+            show(self.excess),
         )
     }
 
-    fn of(name: &str, l: &JointLimit, value: f64) -> Unreachable {
+    pub(super) fn of(name: &str, l: &JointLimit, value: f64) -> Unreachable {
         Unreachable {
             joint: name.to_string(),
             value,
             min: l.min,
             max: l.max,
             excess: l.excess(value),
+            flipped: false,
         }
     }
 
     /// Excess relative to the joint's range: compares different units.
-    fn severity(&self) -> f64 {
+    pub(super) fn severity(&self) -> f64 {
         let span = (self.max - self.min).abs().max(1e-12);
         self.excess / span
     }
@@ -233,6 +286,7 @@ impl Robot {
                     min: l.min,
                     max: l.max,
                     excess: f64::NAN,
+                    flipped: false,
                 });
             }
             if !l.contains(v) {
@@ -267,22 +321,26 @@ impl Robot {
                     min: f64::NAN,
                     max: f64::NAN,
                     excess: f64::NAN,
+                    flipped: false,
                 });
             }
         }
         let mut found = Vec::new();
         let mut closest: Option<Unreachable> = None;
-        let mut note = |u: Unreachable| {
+        let mut note_on = |flip: bool, u: Unreachable| {
+            let u = Unreachable { flipped: flip, ..u };
             if closest.as_ref().is_none_or(|c| u.severity() < c.severity()) {
                 closest = Some(u);
             }
         };
         for flip in [false, true] {
             let (psi, beta) = if flip {
-                (pose.yaw_rad + PI, -pose.tilt_rad)
+                // 0 − β: a zero tilt flipped stays +0.0.
+                (pose.yaw_rad + PI, 0.0 - pose.tilt_rad)
             } else {
                 (pose.yaw_rad, pose.tilt_rad)
             };
+            let mut note = |u: Unreachable| note_on(flip, u);
             if !self.limits.tilt_rad.contains(beta) {
                 note(Unreachable::of("tilt_rad", &self.limits.tilt_rad, beta));
                 continue;
@@ -294,7 +352,18 @@ impl Robot {
             let (s, c) = psi.sin_cos();
             let w = [pose.x_m - off[0] * c, pose.y_m - off[0] * s];
             let vertical = self.end_effector.tip_height_top_m + off[1] - pose.z_m;
-            for (theta1, ext) in self.arm_ik(w) {
+            let arm = self.arm_ik(w);
+            if arm.is_empty() {
+                // |W| < a2: the yaw axis would have to be nearer the base
+                // axis than the arm's offset allows; R would be about |W|,
+                // far below its minimum.
+                note(Unreachable::of(
+                    "extension_m",
+                    &self.limits.extension_m,
+                    w[0].hypot(w[1]),
+                ));
+            }
+            for (theta1, ext) in arm {
                 let mut j = Joints {
                     base_rot_rad: theta1,
                     extension_m: ext,
@@ -331,12 +400,10 @@ impl Robot {
             }
         }
         if found.is_empty() {
-            return Err(closest.unwrap_or(Unreachable {
-                joint: "extension_m".into(),
-                value: f64::NAN,
-                min: self.limits.extension_m.min,
-                max: self.limits.extension_m.max,
-                excess: f64::NAN,
+            // Every branch above either finds joints or notes why not, so
+            // `closest` is set; the fallback only keeps this panic-free.
+            return Err(closest.unwrap_or_else(|| {
+                Unreachable::of("tilt_rad", &self.limits.tilt_rad, pose.tilt_rad)
             }));
         }
         found.sort_by(|a, b| {
@@ -352,15 +419,19 @@ impl Robot {
     /// of 000 app. B eq. 2.40 are R = ±√(|W|² − a2²)). θ1 is taken in the
     /// turn that holds the base window when one does.
     fn arm_ik(&self, w: [f64; 2]) -> Vec<(f64, f64)> {
-        let a2 = self.arm.a2_m;
-        let rr = w[0] * w[0] + w[1] * w[1] - a2 * a2;
-        if rr < 0.0 {
+        let a2 = self.arm.a2_m.abs();
+        // √(|W|² − a2²) as √(|W| − a2)·√(|W| + a2): squaring a tip 1e300 m
+        // away would overflow to an infinite R.
+        let d = w[0].hypot(w[1]);
+        if d < a2 {
             return vec![];
         }
+        let r = (d - a2).sqrt() * (d + a2).sqrt();
+        let a2 = self.arm.a2_m;
         let arg = w[1].atan2(w[0]);
         let bl = &self.limits.base_rot_rad;
         let mut out = Vec::with_capacity(2);
-        for ext in [rr.sqrt(), -rr.sqrt()] {
+        for ext in [r, -r] {
             let mut t = wrap_pi(arg + a2.atan2(ext));
             let mid = 0.5 * (bl.min + bl.max);
             t += TAU * ((mid - t) / TAU).round();
@@ -516,6 +587,7 @@ impl Robot {
                 } else {
                     nut_m - max
                 },
+                flipped: false,
             }
         })
     }
@@ -665,6 +737,40 @@ mod tests {
             ..pose
         };
         assert_eq!(r.ik(&nan).unwrap_err().joint, "x_m");
+    }
+
+    #[test]
+    fn numbers_for_people() {
+        assert_eq!(show_number(-0.0, 4), "0.0000");
+        assert_eq!(show_number(-1e-17, 6), "0.000000");
+        assert_eq!(show_number(-0.5, 2), "-0.50");
+        assert_eq!(show_number(1e300, 4), "1.0000e300");
+        assert_eq!(decimals_for(0.6417, 4), 4);
+        assert_eq!(decimals_for(1.745e-9, 4), 10);
+        assert_eq!(decimals_for(1e-300, 4), 15);
+        assert_eq!(decimals_for(0.0, 2), 2);
+    }
+
+    #[test]
+    fn tip_on_the_base_axis_names_extension_and_its_excess() {
+        let r = robot();
+        // Within a2 = 0.01 m of the axis no (θ1, R) exists at all
+        // (|W|² = R² + a2²): R would be about |W|.
+        for (x, y) in [(0.0, 0.0), (0.0, 0.005), (-0.003, 0.004)] {
+            let pose = NozzlePose {
+                x_m: x,
+                y_m: y,
+                z_m: 0.2,
+                yaw_rad: 0.0,
+                tilt_rad: 0.0,
+            };
+            let e = r.ik(&pose).unwrap_err();
+            let w = f64::hypot(x, y);
+            assert_eq!(e.joint, "extension_m");
+            assert!((e.value - w).abs() < 1e-12, "{e:?}");
+            assert!((e.excess - (1.55 - w)).abs() < 1e-12, "{e:?}");
+            assert!(e.to_string().contains("would be"), "{e}");
+        }
     }
 
     #[test]

@@ -276,6 +276,19 @@ impl Robot {
         )
     }
 
+    /// The description as TOML for `basr robot --toml`: the embedded file as
+    /// shipped, with every value's source, when this is the default robot
+    /// (same canonical hash, however the file it came from was spelled);
+    /// else [`Robot::to_toml_string`]. Either way the text reads back to this
+    /// robot and prints again byte for byte.
+    pub fn to_toml_text(&self) -> String {
+        if self.sha256() == Robot::basr().sha256() {
+            BASR_TOML.to_string()
+        } else {
+            self.to_toml_string()
+        }
+    }
+
     /// SHA-256 of the description's canonical form (see `crate::job::canonical_json`).
     pub fn sha256(&self) -> String {
         let v = serde_json::to_value(self).expect("robot serialises");
@@ -341,6 +354,29 @@ mod tests {
         assert_eq!(back, r);
         assert_eq!(back.sha256(), r.sha256());
         assert_eq!(back.to_toml_string(), text);
+    }
+
+    #[test]
+    fn toml_text_is_a_fixed_point() {
+        // The default, however its file was spelled, prints as shipped.
+        let r = Robot::basr();
+        assert_eq!(r.to_toml_text(), BASR_TOML);
+        let respelled = Robot::from_toml_str(&r.to_toml_string(), "x").unwrap();
+        assert_eq!(respelled.to_toml_text(), BASR_TOML);
+        // Any other description: print(read(print(x))) == print(x), for
+        // values toml spells in unusual ways (exponents, -0.0, optional keys).
+        let mut c = Robot::basr();
+        c.name = "custom \"arm\"".into();
+        c.end_effector.mass_kg = 0.1 + 0.2;
+        c.dynamics.leakage_m3_per_s_pa = 1.234e-17;
+        c.hydraulics.supply_pa = 2.5e300;
+        c.arm.a2_m = -0.0;
+        c.paint.height_law_c0_m = Some(0.02);
+        c.paint.height_law_c1 = Some(0.7);
+        let once = c.to_toml_text();
+        let back = Robot::from_toml_str(&once, "custom").unwrap();
+        assert_eq!(back.sha256(), c.sha256());
+        assert_eq!(back.to_toml_text(), once);
     }
 
     #[test]
