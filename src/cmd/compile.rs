@@ -278,7 +278,7 @@ fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
             tilted[1],
             job.layout.tilt_method,
             worst
-                .map(|w| format!(" (widest: stroke {} of letter {})", w.stroke, w.char))
+                .map(|w| format!(" (least even: stroke {}, letter {})", w.stroke, w.char))
                 .unwrap_or_default()
         );
     }
