@@ -183,7 +183,9 @@ impl Marking {
         let lines: Vec<String> = message
             .split([' ', '\n'])
             .filter(|w| !w.is_empty())
-            .map(str::to_string)
+            // Lower case is painted as upper case, so the job says what is
+            // painted: `compile stop` and `compile STOP` give one job.
+            .map(|w| w.to_ascii_uppercase())
             .collect();
         let h = o.letter_height_m.unwrap_or(DEFAULT_LETTER_HEIGHT_M);
         let m = Marking {
@@ -234,7 +236,11 @@ impl Marking {
             .letter_height_m
             .or(h_file)
             .unwrap_or(DEFAULT_LETTER_HEIGHT_M);
-        let lines: Vec<String> = t.lines.iter().map(|l| l.trim().to_string()).collect();
+        let lines: Vec<String> = t
+            .lines
+            .iter()
+            .map(|l| l.trim().to_ascii_uppercase())
+            .collect();
         for (i, l) in lines.iter().enumerate() {
             if l.contains(' ') {
                 return Err(err(format!(

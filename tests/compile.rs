@@ -424,3 +424,12 @@ fn job_reports_u_per_stroke_and_quadrilateral_beats_the_seed_on_b() {
     // The stem is straight: even with or without tilt.
     assert!((quad[0].0[0] - 0.5).abs() < 1e-9 && (quad[0].1[1] - 0.5).abs() < 1e-9);
 }
+
+#[test]
+fn lower_case_gives_the_upper_case_job() {
+    let lower = compile_in(&["stop"]);
+    let upper = compile_in(&["STOP"]);
+    assert_eq!(files(lower.path()), vec!["STOP.job.json"]);
+    let read = |d: &tempfile::TempDir| std::fs::read(d.path().join("STOP.job.json")).unwrap();
+    assert!(read(&lower) == read(&upper), "one job for stop and STOP");
+}
