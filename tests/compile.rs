@@ -316,49 +316,51 @@ fn bad_input_exits_2_and_leaves_nothing() {
     );
 }
 
-#[test]
-fn check_reports_a_sample_over_a_limit() {
+/// Compile STOP, `edit` the job, reseal it (the hashes hold, only the
+/// content is wrong) and run `basr check` on it.
+fn check_edited(edit: impl FnOnce(&mut Job)) -> assert_cmd::assert::Assert {
     let dir = compile_in(&["STOP"]);
     let mut job = read_job(&dir.path().join("STOP.job.json"));
-    let i = job.samples.len() / 2;
-    job.samples.extension_m[i] += 0.2; // a jump no arm makes in 32 ms
+    edit(&mut job);
     job.seal();
     job.write(&dir.path().join("bad.json")).unwrap();
     basr()
         .current_dir(dir.path())
         .args(["check", "bad.json"])
         .assert()
-        .code(1)
-        .stderr(predicate::str::contains("extension_m moves at"))
-        .stderr(predicate::str::contains("nozzle columns"));
+}
+
+#[test]
+fn check_reports_a_sample_over_a_limit() {
+    check_edited(|job| {
+        let i = job.samples.len() / 2;
+        job.samples.extension_m[i] += 0.2; // a jump no arm makes in 32 ms
+    })
+    .code(1)
+    .stderr(predicate::str::contains("extension_m moves at"))
+    .stderr(predicate::str::contains("nozzle columns"));
 }
 
 #[test]
 fn check_reports_derived_columns_and_totals_that_disagree() {
-    let dir = compile_in(&["STOP"]);
-    let mut job = read_job(&dir.path().join("STOP.job.json"));
-    let i = job.samples.len() / 3;
-    job.samples.enc_base[i] += 50;
-    job.samples.speed_mps[i + 1] = 0.5;
-    job.samples.cylinder_m[i + 2] += 1e-3;
-    job.summary.paint_time_s = 1.0;
-    job.summary.strokes = 999;
-    job.paint.k_m2ps = 123.0;
-    job.robot.end_effector.mass_kg = -35.0;
-    job.seal(); // the hashes hold: only the content is wrong
-    job.write(&dir.path().join("bad.json")).unwrap();
-    basr()
-        .current_dir(dir.path())
-        .args(["check", "bad.json"])
-        .assert()
-        .code(1)
-        .stderr(predicate::str::contains("encoder counts"))
-        .stderr(predicate::str::contains("speed_mps is 0.5"))
-        .stderr(predicate::str::contains("cylinder_m"))
-        .stderr(predicate::str::contains("summary.paint_time_s is 1"))
-        .stderr(predicate::str::contains("summary.strokes is 999"))
-        .stderr(predicate::str::contains("paint.k_m2ps is 123"))
-        .stderr(predicate::str::contains("robot.end_effector.mass_kg"));
+    check_edited(|job| {
+        let i = job.samples.len() / 3;
+        job.samples.enc_base[i] += 50;
+        job.samples.speed_mps[i + 1] = 0.5;
+        job.samples.cylinder_m[i + 2] += 1e-3;
+        job.summary.paint_time_s = 1.0;
+        job.summary.strokes = 999;
+        job.paint.k_m2ps = 123.0;
+        job.robot.end_effector.mass_kg = -35.0;
+    })
+    .code(1)
+    .stderr(predicate::str::contains("encoder counts"))
+    .stderr(predicate::str::contains("speed_mps is 0.5"))
+    .stderr(predicate::str::contains("cylinder_m"))
+    .stderr(predicate::str::contains("summary.paint_time_s is 1"))
+    .stderr(predicate::str::contains("summary.strokes is 999"))
+    .stderr(predicate::str::contains("paint.k_m2ps is 123"))
+    .stderr(predicate::str::contains("robot.end_effector.mass_kg"));
 }
 
 #[test]
