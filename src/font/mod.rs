@@ -113,13 +113,13 @@ pub struct Font {
 /// Why a font could not be loaded.
 #[derive(Debug, thiserror::Error)]
 pub enum FontError {
-    /// The file could not be read.
-    #[error("cannot read font file {path}: {source}")]
-    Io {
-        path: String,
-        #[source]
-        source: std::io::Error,
-    },
+    /// The file could not be read as text (missing, unreadable, not UTF-8),
+    /// said by the shared reader [`crate::io::read_text`]: the file, the OS
+    /// reason or the offset of the first bad byte, and what to do. The whole
+    /// chain is the message and there is no separate source, so `{:#}` in
+    /// the CLI prints the OS reason once.
+    #[error("{0:#}")]
+    Read(anyhow::Error),
     /// The file was read but is not a valid font; every problem is listed,
     /// each naming file:line:col, the glyph and stroke.
     #[error("invalid font {origin}:\n  {}", problems.join("\n  "))]
@@ -146,13 +146,10 @@ impl Font {
         EMBEDDED_SOURCE
     }
 
-    /// Read and validate a font file.
+    /// Read and validate a font file (`-` reads standard input).
     pub fn load(path: impl AsRef<Path>) -> Result<Font, FontError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| FontError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let text = crate::io::read_text(path).map_err(FontError::Read)?;
         Font::from_toml_str(&text, &path.display().to_string())
     }
 

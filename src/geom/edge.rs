@@ -103,7 +103,10 @@ impl Edge {
                 }
             }
             let len = seg.arclen(DEFAULT_ACCURACY);
-            if !len.is_finite() || len <= JOIN_TOLERANCE {
+            if !len.is_finite() {
+                return Err(GeomError::TooLong { index });
+            }
+            if len <= JOIN_TOLERANCE {
                 return Err(GeomError::Degenerate { index });
             }
             cum.push(cum[index] + len);
@@ -279,6 +282,9 @@ mod tests {
         assert!(matches!(Edge::new(vec![]), Err(GeomError::Empty)));
         let e = Edge::new(vec![Segment::line((f64::NAN, 0.0), (1.0, 0.0))]);
         assert!(matches!(e, Err(GeomError::NotFinite { index: 0 })));
+        // Finite ends whose distance overflows: not "zero length".
+        let e = Edge::new(vec![Segment::line((1.0, 0.0), (1.0, 1e300))]);
+        assert!(matches!(e, Err(GeomError::TooLong { index: 0 })));
     }
 
     #[test]
