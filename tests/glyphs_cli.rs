@@ -72,8 +72,52 @@ fn valid_small_font_lists_its_glyph() {
         .arg(&path)
         .assert()
         .success()
-        .stderr(predicate::str::contains("I  1 strokes"));
+        .stderr(predicate::str::contains(format!(
+            "font test, file {}, sha256 ",
+            path.display()
+        )))
+        .stderr(predicate::str::contains("I  1 stroke  rungs 1.00 units\n"));
     basr().arg("check").arg(&path).assert().success();
+}
+
+#[test]
+fn listing_counts_and_ranges() {
+    let out = basr().arg("glyphs").assert().success().get_output().clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(
+        err.starts_with("font basr, embedded fonts/basr.toml, sha256 "),
+        "{err}"
+    );
+    assert!(err.contains("\nI  1 stroke  rungs 1.00 units\n"), "{err}");
+    assert!(
+        err.contains("\nB  6 strokes  rungs 1.00–4.00 units\n"),
+        "{err}"
+    );
+    // No glyph is thinner than the font's 1-unit weight (the 8 was 0.67).
+    for line in err.lines().skip(1) {
+        let thinnest: f64 = line
+            .split("rungs ")
+            .nth(1)
+            .and_then(|r| r.split(['–', ' ']).next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("no rung length in {line:?}"));
+        assert!(thinnest >= 1.0, "{line}");
+    }
+}
+
+#[test]
+fn svg_alone_says_only_what_it_wrote() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("sheet.svg");
+    let out = basr()
+        .args(["glyphs", "--svg"])
+        .arg(&path)
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(err, format!("wrote {} (36 glyphs)\n", path.display()));
 }
 
 #[test]

@@ -37,7 +37,7 @@ pub const GRID_HEIGHT: f64 = 25.0;
 /// Name of the font built into the binary.
 pub const EMBEDDED_NAME: &str = "basr";
 const EMBEDDED_SOURCE: &str = include_str!("../../fonts/basr.toml");
-const EMBEDDED_ORIGIN: &str = "fonts/basr.toml (embedded)";
+const EMBEDDED_ORIGIN: &str = "fonts/basr.toml";
 
 /// One band of paint between two opposing edges (see the module docs for
 /// the convention).
@@ -105,8 +105,11 @@ pub struct Font {
     pub name: String,
     /// SHA-256 (hex) of the font file's bytes.
     pub sha256: String,
-    /// Where it came from (a path, or the embedded marker).
+    /// Where it came from: the path it was read from, or `fonts/basr.toml`
+    /// for the embedded font (see [`Font::embedded`]).
     pub origin: String,
+    /// Whether this is the font built into the binary.
+    pub embedded: bool,
     glyphs: BTreeMap<char, Glyph>,
 }
 
@@ -136,8 +139,10 @@ impl Font {
         FONT.get_or_init(|| {
             // The embedded source is fixed at build time and a test checks it
             // validates, so a failure here is a build defect, not bad input.
-            Font::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN)
-                .unwrap_or_else(|e| panic!("the embedded font is invalid: {e}"))
+            let mut font = Font::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN)
+                .unwrap_or_else(|e| panic!("the embedded font is invalid: {e}"));
+            font.embedded = true;
+            font
         })
     }
 
@@ -175,8 +180,19 @@ impl Font {
             name: built.name,
             sha256: crate::io::sha256_hex(text.as_bytes()),
             origin: origin.to_string(),
+            embedded: false,
             glyphs: built.glyphs,
         })
+    }
+
+    /// Where the font came from, for people: "embedded fonts/basr.toml" or
+    /// "file my-font.toml".
+    pub fn source_description(&self) -> String {
+        if self.embedded {
+            format!("embedded {}", self.origin)
+        } else {
+            format!("file {}", self.origin)
+        }
     }
 
     /// The glyph for `ch` (exactly as given; the font holds capitals and digits).
