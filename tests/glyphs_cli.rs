@@ -72,8 +72,52 @@ fn valid_small_font_lists_its_glyph() {
         .arg(&path)
         .assert()
         .success()
-        .stderr(predicate::str::contains("I  1 strokes"));
+        .stderr(predicate::str::contains(format!(
+            "font test, file {}, sha256 ",
+            path.display()
+        )))
+        .stderr(predicate::str::contains("I  1 stroke  rungs 1.00 units\n"));
     basr().arg("check").arg(&path).assert().success();
+}
+
+#[test]
+fn listing_counts_and_ranges() {
+    let out = basr().arg("glyphs").assert().success().get_output().clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(
+        err.starts_with("font basr, embedded fonts/basr.toml, sha256 "),
+        "{err}"
+    );
+    assert!(err.contains("\nI  1 stroke  rungs 1.00 units\n"), "{err}");
+    assert!(
+        err.contains("\nB  6 strokes  rungs 1.00–4.00 units\n"),
+        "{err}"
+    );
+    // No glyph is thinner than the font's 1-unit weight (the 8 was 0.67).
+    for line in err.lines().skip(1) {
+        let thinnest: f64 = line
+            .split("rungs ")
+            .nth(1)
+            .and_then(|r| r.split(['–', ' ']).next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("no rung length in {line:?}"));
+        assert!(thinnest >= 1.0, "{line}");
+    }
+}
+
+#[test]
+fn svg_alone_says_only_what_it_wrote() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("sheet.svg");
+    let out = basr()
+        .args(["glyphs", "--svg"])
+        .arg(&path)
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(err, format!("wrote {} (36 glyphs)\n", path.display()));
 }
 
 #[test]
@@ -153,12 +197,138 @@ fn swapped_edges_and_off_grid() {
 }
 
 #[test]
+fn serde_faults_name_the_glyph_and_stroke() {
+    // Unknown segment kind, a string for a number, a string for a boolean.
+    refused(
+        "[[glyphs.I.strokes]]\nleft = [{ bezier = [[1, 0], [1, 25]] }]\nright = [{ line = [[2, 0], [2, 25]] }]\n",
+        "bezier",
+        &["glyph 'I' stroke 1 left edge segment 1: unknown field `bezier`"],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\n\n[[glyphs.I.strokes]]\nleft = [{ line = [[1, 0], [1, 25]] }]\nright = [\n  { line = [[2, 0], [2, 20]] },\n  { line = [[2, 20], [2, \"25\"]] },\n]\n",
+        "\"25\"",
+        &["glyph 'I' stroke 2 right edge segment 2: invalid type: string \"25\""],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\nreverse = \"yes\"\n",
+        "reverse",
+        &["glyph 'I' stroke 1: invalid type: string \"yes\", expected a boolean"],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\ntransform = [{ scale = [1, 25] }, { turn = 3 }]\n",
+        "turn",
+        &["glyph 'I' stroke 1 transform step 2: unknown field `turn`"],
+    );
+}
+
+#[test]
+fn syntax_errors_are_one_line() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = font_file(&dir, "[[glyphs.I.strokes]\nprimitive = \"bar\"\n");
+    let out = basr()
+        .args(["glyphs", "--font"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    let problem = err.lines().nth(1).expect("a problem line");
+    assert!(
+        problem.contains(":7:") && problem.contains("invalid table header; expected"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 2, "{err}");
+}
+
+#[test]
+fn non_finite_and_far_off_numbers_say_so() {
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\ntransform = [{ translate = [nan, 0] }]\n",
+        "translate = [nan",
+        &["glyph 'I' stroke 1: transform step 1 has a non-finite value"],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nleft = [{ line = [[1, 0], [1, 1e300]] }]\nright = [{ line = [[2, 0], [2, 25]] }]\n",
+        "1e300",
+        &["glyph 'I' stroke 1 left edge segment 1: reaches (1, 1e300), far off the 4 × 25 grid"],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nleft = [{ line = [[1, 0], [1, inf]] }]\nright = [{ line = [[2, 0], [2, 25]] }]\n",
+        "inf]]",
+        &["glyph 'I' stroke 1 left edge: segment 1 has a non-finite coordinate"],
+    );
+    refused(
+        "[[glyphs.I.strokes]]\nprimitive = \"bar\"\ntransform = [{ scale = [1e300, 1e300] }, { scale = [1e300, 1] }]\n",
+        "transform = [",
+        &["transform step 2 overflows"],
+    );
+}
+
+/// `glyphs --font FILE` with these bytes exits 2, and its message contains
+/// `words` (the place included).
+fn refused_bytes(bytes: &[u8], words: &[&str]) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("font.toml");
+    std::fs::write(&path, bytes).expect("write font");
+    let out = basr()
+        .args(["glyphs", "--font"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(err.contains(&path.display().to_string()), "{err}");
+    for w in words {
+        assert!(err.contains(w), "expected {w:?} in:\n{err}");
+    }
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn empty_and_non_utf8_fonts_are_exit_2_naming_the_place() {
+    refused_bytes(b"", &["font.toml:1:1: the font file is empty"]);
+    refused_bytes(b"\n  \n", &["font.toml:1:1: the font file is empty"]);
+    let mut bytes = HEAD.as_bytes().to_vec();
+    bytes.extend_from_slice(b"# caf\xe9\n");
+    let offset = HEAD.len() + "# caf".len();
+    refused_bytes(
+        &bytes,
+        &[
+            "is not UTF-8 text",
+            &format!("invalid byte at offset {offset}"),
+        ],
+    );
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("font.toml");
+    std::fs::write(&path, &bytes).expect("write font");
+    let out = basr()
+        .args(["glyphs", "--font"])
+        .arg(&path)
+        .assert()
+        .code(2)
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(err.matches("not UTF-8").count(), 1, "said once: {err}");
+}
+
+#[test]
 fn missing_file_is_exit_2() {
-    basr()
+    let out = basr()
         .args(["glyphs", "--font", "/nonexistent/font.toml"])
         .assert()
         .code(2)
-        .stderr(predicate::str::contains("/nonexistent/font.toml"));
+        .stderr(predicate::str::contains("/nonexistent/font.toml"))
+        .get_output()
+        .clone();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(
+        err.matches("os error").count(),
+        1,
+        "the OS reason once: {err}"
+    );
 }
 
 #[test]

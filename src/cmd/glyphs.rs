@@ -13,9 +13,10 @@ const JSON_POINTS: usize = 64;
 
 /// List a font's glyphs; draw the alphabet sheet.
 ///
-/// Lists each glyph with its stroke counts; `--json` prints every
-/// stroke's edges sampled at equal arc length (grid units: x 0..4 right,
-/// y 0..25 up); `--svg` draws the alphabet sheet.
+/// Lists each glyph with its stroke count and rung lengths; `--json`
+/// prints every stroke's edges sampled at equal arc length (grid units:
+/// x 0..4 right, y 0..25 up); `--svg` draws the alphabet sheet and says
+/// only which file it wrote.
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  basr glyphs\n  basr glyphs --svg alphabet.svg\n  \
@@ -45,7 +46,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::write_atomic(path, doc.to_string().as_bytes())
             .with_context(|| format!("writing the alphabet sheet to {}", path.display()))?;
         if !global.quiet {
-            note!("wrote {}", path.display());
+            let n = font.glyphs().count();
+            let glyphs = if n == 1 { "glyph" } else { "glyphs" };
+            note!("wrote {} ({n} {glyphs})", path.display());
         }
     }
     if args.json {
@@ -71,34 +74,37 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "glyphs": glyphs,
         });
         basr::io::print_stdout(&(serde_json::to_string(&doc)? + "\n"))?;
-    } else if !global.quiet {
+    } else if args.svg.is_none() && !global.quiet {
         note!(
-            "font {} ({}), sha256 {}",
+            "font {}, {}, sha256 {}",
             font.name,
-            font.origin,
+            font.source_description(),
             font.sha256
         );
         for g in font.glyphs() {
-            let min_rung = g
-                .strokes
-                .iter()
-                .flat_map(|s| s.rungs(100))
-                .map(|(a, b)| (b - a).hypot())
-                .fold(f64::INFINITY, f64::min);
-            let max_rung = g
-                .strokes
-                .iter()
-                .flat_map(|s| s.rungs(100))
-                .map(|(a, b)| (b - a).hypot())
-                .fold(0.0, f64::max);
-            note!(
-                "{}  {} strokes  rungs {:.2}–{:.2} units",
-                g.ch,
-                g.strokes.len(),
-                min_rung,
-                max_rung
-            );
+            note!("{}", listing_line(g));
         }
     }
     Ok(Outcome::Success)
+}
+
+/// "B  6 strokes  rungs 1.00–4.00 units", "I  1 stroke  rungs 1.00 units".
+fn listing_line(g: &basr::font::Glyph) -> String {
+    let lengths: Vec<f64> = g
+        .strokes
+        .iter()
+        .flat_map(|s| s.rungs(100))
+        .map(|(a, b)| (b - a).hypot())
+        .collect();
+    let min = lengths.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = lengths.iter().copied().fold(0.0, f64::max);
+    let (min, max) = (format!("{min:.2}"), format!("{max:.2}"));
+    let rungs = if min == max {
+        min
+    } else {
+        format!("{min}–{max}")
+    };
+    let n = g.strokes.len();
+    let strokes = if n == 1 { "stroke" } else { "strokes" };
+    format!("{}  {n} {strokes}  rungs {rungs} units", g.ch)
 }

@@ -5,10 +5,10 @@ use std::collections::BTreeMap;
 use kurbo::{Affine, Point, Vec2};
 use toml::Spanned;
 
-use super::spec::{FontSpec, SegmentSpec, TransformSpec};
+use super::spec::{FontSpec, Outline, SegmentSpec, TransformSpec};
 use super::validate::{validate_glyph, DEFAULT_LIMITS};
 use super::{Glyph, Stroke, GRID_HEIGHT, GRID_WIDTH};
-use crate::geom::{Cardinal, Conic, Edge, Segment};
+use crate::geom::{Cardinal, Conic, Edge, GeomError, Segment};
 
 /// What building found: the glyphs that built, and every problem.
 pub struct Built {
@@ -48,6 +48,21 @@ impl Locator<'_> {
     }
 }
 
+/// A parser message on one line: its lines (e.g. "invalid table header",
+/// "expected `.`, `]]`") joined with "; ".
+fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// Coordinates beyond this (in the units a segment is written in) are a typo,
+/// not a drawing: no font needs them, and near 1e154 lengths overflow.
+const FAR_OFF: f64 = 1e6;
+
 pub fn build(text: &str, origin: &str) -> Built {
     let loc = Locator { text, origin };
     let mut out = Built {
@@ -55,13 +70,28 @@ pub fn build(text: &str, origin: &str) -> Built {
         glyphs: BTreeMap::new(),
         problems: vec![],
     };
+    if text.trim().is_empty() {
+        out.problems.push(format!(
+            "{}: the font file is empty; a font needs `name`, `grid` and glyphs \
+             (see the format notes at the top of fonts/basr.toml)",
+            loc.at(0)
+        ));
+        return out;
+    }
     let spec: FontSpec = match toml::from_str(text) {
         Ok(s) => s,
         Err(e) => {
-            let at = e.span().map_or(origin.to_string(), |s| loc.at(s.start));
+            let offset = e.span().map(|s| s.start);
+            let at = offset.map_or(origin.to_string(), |o| loc.at(o));
+            // Which glyph and stroke the span is in: serde only knows the
+            // field it was filling.
+            let within = offset
+                .and_then(|o| Outline::read(text)?.place(o))
+                .map(|w| format!("{w}: "))
+                .unwrap_or_default();
             out.problems.push(format!(
-                "{at}: {} (see the format notes at the top of fonts/basr.toml)",
-                e.message().trim_end()
+                "{at}: {within}{} (see the format notes at the top of fonts/basr.toml)",
+                one_line(e.message())
             ));
             return out;
         }
@@ -261,6 +291,19 @@ fn edge(
         );
         match segment(s.get_ref(), loc, &sctx, problems) {
             Some(v) => {
+                if let Some(p) = v
+                    .iter()
+                    .flat_map(control_points)
+                    .find(|p| p.is_finite() && (p.x.abs() > FAR_OFF || p.y.abs() > FAR_OFF))
+                {
+                    problems.push(format!(
+                        "{sctx}: reaches ({}, {}), far off the 4 × 25 grid (x 0..4, y 0..25)",
+                        short(p.x),
+                        short(p.y)
+                    ));
+                    ok = false;
+                    continue;
+                }
                 for seg in v {
                     out.push(seg);
                     starts.push(s.span().start);
@@ -276,18 +319,15 @@ fn edge(
         Ok(e) => Some(e),
         Err(e) => {
             let at = match &e {
-                crate::geom::GeomError::Gap { index, .. }
-                | crate::geom::GeomError::Degenerate { index }
-                | crate::geom::GeomError::NotFinite { index } => {
-                    starts.get(*index).map(|&o| loc.at(o))
-                }
-                crate::geom::GeomError::Empty => None,
+                GeomError::Gap { index, .. }
+                | GeomError::Degenerate { index }
+                | GeomError::NotFinite { index }
+                | GeomError::TooLong { index } => starts.get(*index).map(|&o| loc.at(o)),
+                GeomError::Empty => None,
             };
             let fix = match &e {
-                crate::geom::GeomError::Gap { .. } => {
-                    " (make each segment start where the previous one ends)"
-                }
-                crate::geom::GeomError::Degenerate { .. } => " (give the segment distinct ends)",
+                GeomError::Gap { .. } => " (make each segment start where the previous one ends)",
+                GeomError::Degenerate { .. } => " (give the segment distinct ends)",
                 _ => "",
             };
             match at {
@@ -296,6 +336,26 @@ fn edge(
             }
             None
         }
+    }
+}
+
+/// A coordinate as written, in exponent form when huge (`{}` would print
+/// all 300 digits of 1e300).
+fn short(v: f64) -> String {
+    if v.abs() < FAR_OFF {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// The points that define a segment (every curve lies in their hull, up to
+/// the cardinal's tangent points).
+fn control_points(seg: &Segment) -> Vec<Point> {
+    match seg {
+        Segment::Line(l) => vec![l.p0, l.p1],
+        Segment::Cardinal(c) => c.points().to_vec(),
+        Segment::Conic(c) => vec![c.p0, c.p1, c.p2],
     }
 }
 
@@ -395,7 +455,7 @@ fn transform(
     problems: &mut Vec<String>,
 ) -> Option<Affine> {
     let mut m = Affine::IDENTITY;
-    for step in steps {
+    for (k, step) in steps.iter().enumerate() {
         let t = step.get_ref();
         let options = [
             t.translate.map(|[dx, dy]| Affine::translate((dx, dy))),
@@ -420,11 +480,21 @@ fn transform(
             return None;
         }
         let step_m = given[0];
-        if !step_m.is_finite() || step_m.determinant().abs() < 1e-12 {
+        let why = if !step_m.is_finite() {
+            Some("has a non-finite value (nan or inf); write a finite number")
+        } else if step_m.determinant().abs() < 1e-12 {
+            Some("collapses the plane (a zero scale?)")
+        } else if !(step_m * m).is_finite() {
+            Some("overflows: with the steps before it, the placement is not finite")
+        } else {
+            None
+        };
+        if let Some(why) = why {
             problems.push(format!(
-                "{}: {}: this transform step collapses the plane (zero scale?)",
+                "{}: {}: transform step {} {why}",
                 loc.at(step.span().start),
-                loc.what(ctx)
+                loc.what(ctx),
+                k + 1
             ));
             return None;
         }

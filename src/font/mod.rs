@@ -37,7 +37,7 @@ pub const GRID_HEIGHT: f64 = 25.0;
 /// Name of the font built into the binary.
 pub const EMBEDDED_NAME: &str = "basr";
 const EMBEDDED_SOURCE: &str = include_str!("../../fonts/basr.toml");
-const EMBEDDED_ORIGIN: &str = "fonts/basr.toml (embedded)";
+const EMBEDDED_ORIGIN: &str = "fonts/basr.toml";
 
 /// One band of paint between two opposing edges (see the module docs for
 /// the convention).
@@ -105,21 +105,24 @@ pub struct Font {
     pub name: String,
     /// SHA-256 (hex) of the font file's bytes.
     pub sha256: String,
-    /// Where it came from (a path, or the embedded marker).
+    /// Where it came from: the path it was read from, or `fonts/basr.toml`
+    /// for the embedded font (see [`Font::embedded`]).
     pub origin: String,
+    /// Whether this is the font built into the binary.
+    pub embedded: bool,
     glyphs: BTreeMap<char, Glyph>,
 }
 
 /// Why a font could not be loaded.
 #[derive(Debug, thiserror::Error)]
 pub enum FontError {
-    /// The file could not be read.
-    #[error("cannot read font file {path}: {source}")]
-    Io {
-        path: String,
-        #[source]
-        source: std::io::Error,
-    },
+    /// The file could not be read as text (missing, unreadable, not UTF-8),
+    /// said by the shared reader [`crate::io::read_text`]: the file, the OS
+    /// reason or the offset of the first bad byte, and what to do. The whole
+    /// chain is the message and there is no separate source, so `{:#}` in
+    /// the CLI prints the OS reason once.
+    #[error("{0:#}")]
+    Read(anyhow::Error),
     /// The file was read but is not a valid font; every problem is listed,
     /// each naming file:line:col, the glyph and stroke.
     #[error("invalid font {origin}:\n  {}", problems.join("\n  "))]
@@ -136,8 +139,10 @@ impl Font {
         FONT.get_or_init(|| {
             // The embedded source is fixed at build time and a test checks it
             // validates, so a failure here is a build defect, not bad input.
-            Font::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN)
-                .unwrap_or_else(|e| panic!("the embedded font is invalid: {e}"))
+            let mut font = Font::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN)
+                .unwrap_or_else(|e| panic!("the embedded font is invalid: {e}"));
+            font.embedded = true;
+            font
         })
     }
 
@@ -146,13 +151,10 @@ impl Font {
         EMBEDDED_SOURCE
     }
 
-    /// Read and validate a font file.
+    /// Read and validate a font file (`-` reads standard input).
     pub fn load(path: impl AsRef<Path>) -> Result<Font, FontError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| FontError::Io {
-            path: path.display().to_string(),
-            source,
-        })?;
+        let text = crate::io::read_text(path).map_err(FontError::Read)?;
         Font::from_toml_str(&text, &path.display().to_string())
     }
 
@@ -178,8 +180,19 @@ impl Font {
             name: built.name,
             sha256: crate::io::sha256_hex(text.as_bytes()),
             origin: origin.to_string(),
+            embedded: false,
             glyphs: built.glyphs,
         })
+    }
+
+    /// Where the font came from, for people: "embedded fonts/basr.toml" or
+    /// "file my-font.toml".
+    pub fn source_description(&self) -> String {
+        if self.embedded {
+            format!("embedded {}", self.origin)
+        } else {
+            format!("file {}", self.origin)
+        }
     }
 
     /// The glyph for `ch` (exactly as given; the font holds capitals and digits).

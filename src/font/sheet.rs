@@ -12,6 +12,11 @@ const SCALE: f64 = 10.0;
 /// Glyphs per row.
 const PER_ROW: usize = 9;
 
+/// Stroke-order labels: font size, and the box one digit takes (pixels).
+const LABEL_SIZE: f64 = 8.0;
+const LABEL_DIGIT_W: f64 = 4.6;
+const LABEL_H: f64 = 9.0;
+
 /// Stroke fill colours, cycled by stroke index so neighbours differ.
 const COLOURS: [&str; 6] = [
     "#f2c14e", "#7fb3d5", "#a3d9a5", "#f5a3a3", "#c9a3e6", "#f7cf9e",
@@ -67,6 +72,8 @@ pub fn alphabet_sheet(font: &Font) -> Document {
                 .set("stroke", "#cccccc")
                 .set("stroke-width", 0.5),
         );
+        // Stroke-order labels already placed: centre and half width (px).
+        let mut labels: Vec<(f64, f64, f64)> = Vec::new();
         for (k, s) in glyph.strokes.iter().enumerate() {
             let outline = s.outline(80);
             let mut d = String::new();
@@ -100,13 +107,28 @@ pub fn alphabet_sheet(font: &Font) -> Document {
                         .set("stroke-width", 0.4),
                 );
             }
-            let (a, b) = s.rungs(1)[0];
-            let (x, y) = map(a.midpoint(b));
+            // At the stroke's start, or as near it along the stroke as
+            // keeps clear of the labels before (strokes that start where
+            // another starts, as X's centre and arm, would print "25").
+            let text = format!("{}", k + 1);
+            let half_w = 0.5 * LABEL_DIGIT_W * text.len() as f64 + 1.0;
+            let clear = |&(x, y): &(f64, f64)| {
+                labels
+                    .iter()
+                    .all(|&(lx, ly, lw)| (x - lx).abs() >= half_w + lw || (y - ly).abs() >= LABEL_H)
+            };
+            let along: Vec<(f64, f64)> = s
+                .rungs(4 * SHEET_RUNGS)
+                .into_iter()
+                .map(|(a, b)| map(a.midpoint(b)))
+                .collect();
+            let (x, y) = along.iter().copied().find(clear).unwrap_or(along[0]);
+            labels.push((x, y, half_w));
             g = g.add(
-                Text::new(format!("{}", k + 1))
+                Text::new(text)
                     .set("x", fmt(x))
                     .set("y", fmt(y + 3.0))
-                    .set("font-size", 8)
+                    .set("font-size", LABEL_SIZE)
                     .set("text-anchor", "middle")
                     .set("fill", "#b00000"),
             );

@@ -141,3 +141,162 @@ pub struct TransformSpec {
     #[serde(default)]
     pub shear_x: Option<f64>,
 }
+
+/// The same file read loosely, only to learn where each glyph's strokes,
+/// edges and segments are: when the schema above refuses the file (an
+/// unknown segment kind, a string for a number), this says which glyph and
+/// stroke the offending span lies in. Unknown keys and leaf values are
+/// ignored; a list that is not a list counts as empty.
+#[derive(Debug, Default, Deserialize)]
+pub struct Outline {
+    #[serde(default)]
+    primitives: BTreeMap<String, Spanned<OutlineStroke>>,
+    #[serde(default)]
+    glyphs: BTreeMap<String, OutlineGlyph>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+struct OutlineGlyph {
+    #[serde(default)]
+    strokes: Items<OutlineStroke>,
+    #[serde(default)]
+    copy: Option<Spanned<serde::de::IgnoredAny>>,
+    #[serde(default)]
+    transform: Items<serde::de::IgnoredAny>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+struct OutlineStroke {
+    #[serde(default)]
+    left: Items<OutlineSegment>,
+    #[serde(default)]
+    right: Items<OutlineSegment>,
+    #[serde(default)]
+    transform: Items<serde::de::IgnoredAny>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+struct OutlineSegment {
+    #[serde(default)]
+    transform: Items<serde::de::IgnoredAny>,
+}
+
+/// A list of spanned items, or (for any other value) no items.
+#[derive(Debug)]
+struct Items<T>(Vec<Spanned<T>>);
+
+impl<T> Default for Items<T> {
+    fn default() -> Self {
+        Items(Vec::new())
+    }
+}
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for Items<T> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V<T>(std::marker::PhantomData<T>);
+        impl<'de, T: Deserialize<'de>> serde::de::Visitor<'de> for V<T> {
+            type Value = Items<T>;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("anything")
+            }
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: A,
+            ) -> Result<Items<T>, A::Error> {
+                let mut out = Vec::new();
+                while let Some(item) = seq.next_element()? {
+                    out.push(item);
+                }
+                Ok(Items(out))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<Items<T>, A::Error> {
+                while map
+                    .next_entry::<serde::de::IgnoredAny, serde::de::IgnoredAny>()?
+                    .is_some()
+                {}
+                Ok(Items::default())
+            }
+            fn visit_bool<E>(self, _: bool) -> Result<Items<T>, E> {
+                Ok(Items::default())
+            }
+            fn visit_i64<E>(self, _: i64) -> Result<Items<T>, E> {
+                Ok(Items::default())
+            }
+            fn visit_u64<E>(self, _: u64) -> Result<Items<T>, E> {
+                Ok(Items::default())
+            }
+            fn visit_f64<E>(self, _: f64) -> Result<Items<T>, E> {
+                Ok(Items::default())
+            }
+            fn visit_str<E>(self, _: &str) -> Result<Items<T>, E> {
+                Ok(Items::default())
+            }
+        }
+        d.deserialize_any(V(std::marker::PhantomData))
+    }
+}
+
+fn contains<T>(s: &Spanned<T>, offset: usize) -> bool {
+    s.span().contains(&offset)
+}
+
+impl OutlineStroke {
+    /// Where in this stroke (or primitive) `offset` lies: "" or
+    /// " left edge segment 2", " transform step 1", ...
+    fn place(&self, offset: usize) -> String {
+        for (side, segs) in [("left", &self.left), ("right", &self.right)] {
+            for (i, seg) in segs.0.iter().enumerate() {
+                if contains(seg, offset) {
+                    let step = step_of(&seg.get_ref().transform, offset)
+                        .map(|k| format!(" transform step {k}"))
+                        .unwrap_or_default();
+                    return format!(" {side} edge segment {}{step}", i + 1);
+                }
+            }
+        }
+        step_of(&self.transform, offset)
+            .map(|k| format!(" transform step {k}"))
+            .unwrap_or_default()
+    }
+}
+
+fn step_of<T>(steps: &Items<T>, offset: usize) -> Option<usize> {
+    steps
+        .0
+        .iter()
+        .position(|s| contains(s, offset))
+        .map(|i| i + 1)
+}
+
+impl Outline {
+    /// Read `text` loosely; `None` if even that fails (a syntax error).
+    pub fn read(text: &str) -> Option<Outline> {
+        toml::from_str(text).ok()
+    }
+
+    /// The glyph, stroke, edge and segment whose source span holds byte
+    /// `offset`, as "glyph 'I' stroke 1 left edge segment 2" (or
+    /// "primitive `bowl` ..."), if any.
+    pub fn place(&self, offset: usize) -> Option<String> {
+        for (key, g) in &self.glyphs {
+            for (i, s) in g.strokes.0.iter().enumerate() {
+                if contains(s, offset) {
+                    let at = s.get_ref().place(offset);
+                    return Some(format!("glyph '{key}' stroke {}{at}", i + 1));
+                }
+            }
+            if let Some(k) = step_of(&g.transform, offset) {
+                return Some(format!("glyph '{key}' transform step {k}"));
+            }
+            if g.copy.as_ref().is_some_and(|c| contains(c, offset)) {
+                return Some(format!("glyph '{key}'"));
+            }
+        }
+        self.primitives.iter().find_map(|(name, p)| {
+            contains(p, offset).then(|| format!("primitive `{name}`{}", p.get_ref().place(offset)))
+        })
+    }
+}

@@ -103,15 +103,21 @@ pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
     }
     // On the grid.
     let m = lim.grid_margin;
-    if let Some(p) = l
-        .iter()
-        .chain(r.iter())
-        .find(|p| p.x < -m || p.x > GRID_WIDTH + m || p.y < -m || p.y > GRID_HEIGHT + m)
-    {
-        out.push(format!(
-            "{ctx}: reaches ({:.2}, {:.2}), off the 4 × 25 grid (allowed margin {m})",
-            p.x, p.y
-        ));
+    if let Some(p) = l.iter().chain(r.iter()).find(|p| {
+        !p.is_finite() || p.x < -m || p.x > GRID_WIDTH + m || p.y < -m || p.y > GRID_HEIGHT + m
+    }) {
+        if p.is_finite() {
+            out.push(format!(
+                "{ctx}: reaches ({:.2}, {:.2}), off the 4 × 25 grid (allowed margin {m})",
+                p.x, p.y
+            ));
+        } else {
+            out.push(format!(
+                "{ctx}: its placed edges are not finite ({}, {}): a transform overflowed; \
+                 keep the numbers near the 4 × 25 grid",
+                p.x, p.y
+            ));
+        }
     }
     // Left on the left: the outline (right forward, left back) turns CCW.
     if out.is_empty() && signed_area(&outline_of(&l, &r)) <= 0.0 {

@@ -188,6 +188,29 @@ mod tests {
             prop_assert!((c.eval_matrix(t) - want).hypot() < 1e-9);
         }
 
+        /// `deriv` is the derivative of `eval`: a central difference at a
+        /// random t agrees, whole spline or a kept range of it.
+        #[test]
+        fn derivative_matches_a_finite_difference(
+            xs in prop::array::uniform4(-10.0f64..10.0),
+            ys in prop::array::uniform4(-10.0f64..10.0),
+            a in 0.1f64..2.0,
+            t in 0.001f64..0.999,
+            range in (0.0f64..0.4, 0.6f64..1.0),
+        ) {
+            let pts = [0, 1, 2, 3].map(|i| Point::new(xs[i], ys[i]));
+            for c in [Cardinal::new(pts, a), Cardinal::with_range(pts, a, range)] {
+                let h = 1e-6;
+                let fd = (c.eval(t + h) - c.eval(t - h)) / (2.0 * h);
+                let d = c.deriv(t);
+                // Truncation h²/6 · |P‴| ~ 1e-10, rounding ~ 1e-16 · |P| / h ~ 1e-9.
+                prop_assert!(
+                    (fd - d).hypot() <= 1e-6 * (1.0 + d.hypot()),
+                    "t = {}: deriv {:?}, finite difference {:?}", t, d, fd
+                );
+            }
+        }
+
         #[test]
         fn range_and_reverse_keep_the_curve(
             xs in prop::array::uniform4(-10.0f64..10.0),

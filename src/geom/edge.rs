@@ -103,7 +103,10 @@ impl Edge {
                 }
             }
             let len = seg.arclen(DEFAULT_ACCURACY);
-            if !len.is_finite() || len <= JOIN_TOLERANCE {
+            if !len.is_finite() {
+                return Err(GeomError::TooLong { index });
+            }
+            if len <= JOIN_TOLERANCE {
                 return Err(GeomError::Degenerate { index });
             }
             cum.push(cum[index] + len);
@@ -279,6 +282,9 @@ mod tests {
         assert!(matches!(Edge::new(vec![]), Err(GeomError::Empty)));
         let e = Edge::new(vec![Segment::line((f64::NAN, 0.0), (1.0, 0.0))]);
         assert!(matches!(e, Err(GeomError::NotFinite { index: 0 })));
+        // Finite ends whose distance overflows: not "zero length".
+        let e = Edge::new(vec![Segment::line((1.0, 0.0), (1.0, 1e300))]);
+        assert!(matches!(e, Err(GeomError::TooLong { index: 0 })));
     }
 
     #[test]
@@ -310,6 +316,162 @@ mod tests {
         assert!((a - b).hypot() < 1e-8);
         let t = e.tangent_at_length(0.0);
         assert!((t - Vec2::new(1.0, 0.0)).hypot() < 1e-12);
+    }
+
+    /// Composite Simpson rule with `n` (even) intervals: an arc-length
+    /// reference that shares no code with `quad.rs` or kurbo.
+    fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+        let h = (b - a) / n as f64;
+        let inner: f64 = (1..n)
+            .map(|i| f(a + h * i as f64) * if i % 2 == 1 { 4.0 } else { 2.0 })
+            .sum();
+        (f(a) + inner + f(b)) * h / 3.0
+    }
+
+    /// Appendix A's cardinal polynomial (a = 1) and its derivative in t,
+    /// written out independently of `Cardinal`.
+    fn appendix_cardinal(p: [f64; 4], t: f64) -> (f64, f64) {
+        let v = (-t * t * t + 2.0 * t * t - t) * p[0]
+            + (t * t * t - 2.0 * t * t + 1.0) * p[1]
+            + (-t * t * t + t * t + t) * p[2]
+            + (t * t * t - t * t) * p[3];
+        let d = (-3.0 * t * t + 4.0 * t - 1.0) * p[0]
+            + (3.0 * t * t - 4.0 * t) * p[1]
+            + (-3.0 * t * t + 2.0 * t + 1.0) * p[2]
+            + (3.0 * t * t - 2.0 * t) * p[3];
+        (v, d)
+    }
+
+    /// One piece of a reference edge, described by its own formula.
+    enum RefPiece {
+        Line(Point, Point),
+        /// Centre, radii, from and to angle (radians, from < to).
+        Ellipse(Point, Vec2, f64, f64),
+        /// Appendix A's spline (a = 1), control x and control y.
+        Cardinal([f64; 4], [f64; 4]),
+    }
+
+    impl RefPiece {
+        /// Length from the piece's start to the point of it nearest `p`,
+        /// and how far `p` is from that point.
+        fn length_to(&self, p: Point) -> (f64, f64) {
+            match self {
+                RefPiece::Line(a, b) => {
+                    let ab = *b - *a;
+                    let u = ((p - *a).dot(ab) / ab.hypot2()).clamp(0.0, 1.0);
+                    (u * ab.hypot(), (*a + ab * u - p).hypot())
+                }
+                RefPiece::Ellipse(c, r, from, to) => {
+                    let phi = ((p.y - c.y) / r.y)
+                        .atan2((p.x - c.x) / r.x)
+                        .clamp(*from, *to);
+                    let speed = |f: f64| (r.x * f.sin()).hypot(r.y * f.cos());
+                    let on = Point::new(c.x + r.x * phi.cos(), c.y + r.y * phi.sin());
+                    (simpson(speed, *from, phi, 20_000), (on - p).hypot())
+                }
+                RefPiece::Cardinal(px, py) => {
+                    let at = |t: f64| {
+                        let (x, dx) = appendix_cardinal(*px, t);
+                        let (y, dy) = appendix_cardinal(*py, t);
+                        (Point::new(x, y), Vec2::new(dx, dy))
+                    };
+                    // Nearest parameter: a scan, then Newton on (P − p)·P'.
+                    let dist = |t: f64| (at(t).0 - p).hypot();
+                    let mut t = (0..=1000)
+                        .map(|i| i as f64 / 1000.0)
+                        .min_by(|a, b| dist(*a).total_cmp(&dist(*b)))
+                        .unwrap_or(0.0);
+                    let g = |t: f64| (at(t).0 - p).dot(at(t).1);
+                    for _ in 0..50 {
+                        let h = 1e-7;
+                        let slope = (g(t + h) - g(t - h)) / (2.0 * h);
+                        if slope.abs() > 0.0 {
+                            t = (t - g(t) / slope).clamp(0.0, 1.0);
+                        }
+                    }
+                    (simpson(|u| at(u).1.hypot(), 0.0, t, 20_000), dist(t))
+                }
+            }
+        }
+
+        fn length(&self) -> f64 {
+            match self {
+                RefPiece::Line(a, b) => (*b - *a).hypot(),
+                RefPiece::Ellipse(c, r, _, to) => {
+                    let end = Point::new(c.x + r.x * to.cos(), c.y + r.y * to.sin());
+                    self.length_to(end).0
+                }
+                RefPiece::Cardinal(px, py) => {
+                    let end =
+                        Point::new(appendix_cardinal(*px, 1.0).0, appendix_cardinal(*py, 1.0).0);
+                    self.length_to(end).0
+                }
+            }
+        }
+    }
+
+    /// The arc-length coordinate of `p` along the reference pieces (that of
+    /// the piece `p` lies on).
+    fn reference_coordinate(pieces: &[RefPiece], p: Point) -> f64 {
+        let mut before = 0.0;
+        let mut best = (f64::INFINITY, 0.0);
+        for piece in pieces {
+            let (s, off) = piece.length_to(p);
+            if off < best.0 - 1e-12 {
+                best = (off, before + s);
+            }
+            before += piece.length();
+        }
+        assert!(best.0 < 1e-9, "{p:?} is {:e} off the edge", best.0);
+        best.1
+    }
+
+    /// 001 §2.4: the two opposing edges of a stroke are split into n pieces
+    /// of equal arc length, accurate to 1e-6 of the edge length. Both edges
+    /// of primitive 2's shape (a straight run and an ellipse against appendix
+    /// A's spline and a straight run), measured by a reference that shares
+    /// no code with the subdivision: Simpson's rule on each curve's own
+    /// formula, and each point's place found by projecting it onto it.
+    #[test]
+    fn subdivision_is_accurate_to_1e6_of_the_edge_length() {
+        use std::f64::consts::FRAC_PI_2;
+        let (px, py) = ([0.0, 2.0, 4.0, 2.0], [6.0, -0.2, 6.0, 8.0]);
+        let (centre, radii) = (Point::new(2.0, 6.0), Vec2::new(1.0, 2.0));
+        let mut segs = vec![Segment::line((3.0, 0.0), (3.0, 6.0))];
+        segs.extend(
+            Conic::elliptical_arc(centre, radii, 0.0, FRAC_PI_2)
+                .into_iter()
+                .map(Segment::Conic),
+        );
+        let inner = Edge::new(segs).unwrap();
+        let inner_ref = [
+            RefPiece::Line(Point::new(3.0, 0.0), Point::new(3.0, 6.0)),
+            RefPiece::Ellipse(centre, radii, 0.0, FRAC_PI_2),
+        ];
+        let outer = s_outer();
+        let outer_ref = [
+            RefPiece::Cardinal(px, py),
+            RefPiece::Line(Point::new(4.0, 6.0), Point::new(4.0, 9.0)),
+        ];
+        for (edge, pieces) in [(&inner, &inner_ref[..]), (&outer, &outer_ref[..])] {
+            let total: f64 = pieces.iter().map(RefPiece::length).sum();
+            assert!(
+                (edge.length() - total).abs() <= 1e-9 * total,
+                "length {} vs reference {total}",
+                edge.length()
+            );
+            for n in [1, 7, 60, 100, 240] {
+                for (k, p) in edge.subdivide(n).into_iter().enumerate() {
+                    let s = reference_coordinate(pieces, p);
+                    let want = total * k as f64 / n as f64;
+                    assert!(
+                        (s - want).abs() <= 1e-6 * total,
+                        "n = {n}, point {k}: at {s}, want {want} (error {:e} of the length)",
+                        (s - want).abs() / total
+                    );
+                }
+            }
+        }
     }
 
     /// A dense polyline by uniform *parameter* steps (independent of the

@@ -62,6 +62,10 @@ pub enum GeomError {
     /// A segment has (nearly) zero length.
     #[error("segment {} has zero length (its points coincide)", index + 1)]
     Degenerate { index: usize },
+    /// A segment's length overflows (its points are finite but so far apart
+    /// that the length is not a number).
+    #[error("segment {} is too long to measure (its points are far apart, beyond 1e150)", index + 1)]
+    TooLong { index: usize },
     /// Two consecutive segments do not meet.
     #[error(
         "segment {} starts at ({:.6}, {:.6}) but the previous one ends at ({:.6}, {:.6}) \
