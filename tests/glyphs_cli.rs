@@ -292,12 +292,13 @@ fn empty_and_non_utf8_fonts_are_exit_2_naming_the_place() {
     refused_bytes(b"\n  \n", &["font.toml:1:1: the font file is empty"]);
     let mut bytes = HEAD.as_bytes().to_vec();
     bytes.extend_from_slice(b"# caf\xe9\n");
-    let offset = HEAD.len() + "# caf".len();
+    // The invalid byte is on the line after HEAD, after "# caf".
+    let line = HEAD.lines().count() + 1;
     refused_bytes(
         &bytes,
         &[
-            "is not UTF-8 text",
-            &format!("invalid byte at offset {offset}"),
+            &format!("font.toml:{line}:6: not UTF-8 text (invalid byte 0xe9)"),
+            "save the file as UTF-8",
         ],
     );
     let dir = tempfile::tempdir().expect("tempdir");
