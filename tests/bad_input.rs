@@ -679,3 +679,27 @@ fn truncated_setpoint_csv_is_reported_by_check() {
     assert!(stderr.contains("--csv FILE"), "{stderr}");
     s.assert_only_inputs();
 }
+
+/// An output named like an input would destroy it: refused before any
+/// work, and the input is left as it was.
+#[test]
+fn an_output_over_an_input_is_refused() {
+    let mut s = Scratch::new();
+    let font = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/fonts/basr.toml")).unwrap();
+    s.input("f.toml", &font);
+    s.refuses(
+        &["glyphs", "--font", "f.toml", "--svg", "./f.toml"],
+        &[
+            "same file",
+            "would destroy the input",
+            "different path for --svg",
+        ],
+    );
+    assert!(std::fs::read(s.path("f.toml")).unwrap() == font);
+    s.input("r.toml", basr_toml().as_bytes());
+    s.refuses(
+        &["workspace", "--robot", "r.toml", "--svg", "r.toml"],
+        &["same file", "would destroy the input"],
+    );
+    assert_eq!(read_back(&s.path("r.toml")), basr_toml());
+}

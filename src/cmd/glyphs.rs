@@ -40,6 +40,10 @@ fn pts(v: Vec<kurbo::Point>) -> Vec<[f64; 2]> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    if let Some(svg) = &args.svg {
+        let font = std::path::Path::new(&args.font);
+        super::refuse_clashes(&[("--svg", svg)], &[("the font file (--font)", font)])?;
+    }
     let font = Font::from_name_or_path(&args.font)?;
     if let Some(path) = &args.svg {
         let doc = basr::font::alphabet_sheet(&font);

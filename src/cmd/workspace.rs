@@ -52,6 +52,9 @@ fn wrap_deg(d: f64) -> f64 {
 const BOUNDARY_STEP_RAD: f64 = 0.1 * std::f64::consts::PI / 180.0;
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    if let (Some(svg), Some(robot)) = (&args.svg, &args.robot) {
+        super::refuse_clashes(&[("--svg", svg)], &[("the robot file (--robot)", robot)])?;
+    }
     for (flag, v) in [("--yaw-deg", args.yaw_deg), ("--tilt-deg", args.tilt_deg)] {
         anyhow::ensure!(
             v.is_finite(),
