@@ -11,12 +11,11 @@ use super::{Global, Outcome};
 ///
 /// Fonts (.toml), robot descriptions (.toml), marking files (.toml), jobs
 /// (.json) and the setpoint CSVs `compile --csv` writes; the kind is
-/// recognised from the content.
-///
-/// Example: `basr check STOP.job.json fonts/basr.toml`;
-/// `basr robot --toml | basr check -` reads standard input.
+/// recognised from the content. `-` reads standard input.
 #[derive(clap::Args)]
-#[command(after_help = "Example:\n  basr check STOP.job.json\n  basr robot --toml | basr check -")]
+#[command(
+    after_help = "Examples:\n  basr check STOP.job.json STOP.csv     # a job and its setpoint CSV\n  basr check fonts/basr.toml markings/*.toml\n  basr robot --toml | basr check -\n\nExit codes: 0 all valid, 1 problems found (all listed), 2 a file could not be read\n(the others are still checked)."
+)]
 pub struct Args {
     /// Files to check (`-` for standard input).
     #[arg(required = true)]
