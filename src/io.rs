@@ -147,6 +147,24 @@ pub fn write_atomic_with(
     result.map_err(err)
 }
 
+/// Run `write`, which writes a set of outputs through [`write_atomic`] or
+/// [`write_atomic_with`]; if it fails, remove the outputs it had finished,
+/// so a failed run leaves none of its set behind (SPEC §1: a failed command
+/// leaves no output file). The files come from the list the Ctrl-C handler
+/// removes, so a command need not keep its own.
+pub fn all_or_none<T, E>(write: impl FnOnce() -> Result<T, E>) -> Result<T, E> {
+    let before = outputs().finished.len();
+    let result = write();
+    if result.is_err() {
+        let mut out = outputs();
+        let from = before.min(out.finished.len());
+        for p in out.finished.drain(from..) {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+    result
+}
+
 /// Write machine output (`--json`, `robot --toml`, completions) to standard
 /// output. A reader that stops early (`basr glyphs --json | head`) closes the
 /// pipe; that is not an error: the rest of the output is dropped and the
@@ -251,6 +269,26 @@ mod tests {
         let r = write_atomic_with(&p, |_| Err(std::io::Error::other("boom")));
         assert!(r.is_err());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn all_or_none_removes_the_outputs_of_a_failed_set_only() {
+        let dir = tempfile::tempdir().unwrap();
+        let kept = dir.path().join("kept.txt");
+        write_atomic(&kept, b"before").unwrap();
+        let (a, b) = (
+            dir.path().join("a.txt"),
+            dir.path().join("no-dir").join("b.txt"),
+        );
+        let r = all_or_none(|| {
+            write_atomic(&a, b"first")?;
+            write_atomic(&b, b"second")
+        });
+        assert!(r.is_err());
+        assert!(!a.exists(), "the finished part of the set is removed");
+        assert!(kept.exists(), "outputs of earlier, successful sets stay");
+        let ok: Result<(), WriteError> = all_or_none(|| write_atomic(&a, b"again"));
+        assert!(ok.is_ok() && a.exists());
     }
 
     #[cfg(unix)]

@@ -166,6 +166,30 @@ fn failed_output_leaves_no_file() {
 }
 
 #[test]
+fn a_failed_svg_removes_the_trace_written_before_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    let csv = dir.path().join("tr.csv");
+    basr()
+        .current_dir(dir.path())
+        .arg("simulate")
+        .arg(&job)
+        .arg("--trace")
+        .arg(&csv)
+        .arg("--svg")
+        .arg(dir.path().join("no-such-folder").join("x.svg"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("x.svg"));
+    let mut left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["letter.job.json"], "no trace, no temporary file");
+}
+
+#[test]
 fn robot_with_impossible_dynamics_exits_2_naming_the_field() {
     let dir = tempfile::tempdir().unwrap();
     let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());

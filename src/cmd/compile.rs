@@ -176,26 +176,17 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
     // Write the extras first, the job last; on any failure remove what this
     // run wrote so no partial set of files is left behind.
-    let mut written: Vec<PathBuf> = vec![];
-    let result = (|| -> anyhow::Result<()> {
+    basr::io::all_or_none(|| -> anyhow::Result<()> {
         if let Some(csv) = &args.csv {
             basr::job::csv::write(&job.samples, csv)?;
-            written.push(csv.clone());
         }
         if let Some(adept) = &args.adept {
             basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
-            written.push(adept.clone());
         }
         // WriteError names the path and the OS reason.
         job.write(&out)?;
         Ok(())
-    })();
-    if let Err(e) = result {
-        for p in &written {
-            let _ = std::fs::remove_file(p);
-        }
-        return Err(e);
-    }
+    })?;
     let s = &job.summary;
     if args.json {
         let v = serde_json::json!({

@@ -131,18 +131,22 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     bar.finish_and_clear();
     let report = &outcome.report;
 
-    if let Some(p) = &args.trace {
-        basr::io::write_atomic_with(p, |w| {
-            let mut out = csv::Writer::from_writer(w);
-            for row in &outcome.trace {
-                out.serialize(row).map_err(std::io::Error::other)?;
-            }
-            out.flush()
-        })?;
-    }
-    if let Some(p) = &args.svg {
-        basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
-    }
+    // Both outputs or neither: a failed SVG removes the trace written before it.
+    basr::io::all_or_none(|| -> anyhow::Result<()> {
+        if let Some(p) = &args.trace {
+            basr::io::write_atomic_with(p, |w| {
+                let mut out = csv::Writer::from_writer(w);
+                for row in &outcome.trace {
+                    out.serialize(row).map_err(std::io::Error::other)?;
+                }
+                out.flush()
+            })?;
+        }
+        if let Some(p) = &args.svg {
+            basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
+        }
+        Ok(())
+    })?;
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
     } else if !global.quiet {
