@@ -72,6 +72,54 @@ fn a_step_in_the_setpoints_fails_and_is_located() {
 }
 
 #[test]
+fn setpoints_at_a_limit_are_not_failed_by_the_interpolation_between_them() {
+    // Every extension setpoint is within reach, the first ones exactly at its
+    // lower limit; the reference between rows must not dip below it, and the
+    // setpoint limit is judged on the rows themselves.
+    let dir = tempfile::tempdir().unwrap();
+    let job = synthetic::retracted_then_extending_job();
+    let r_min = job.robot.limits.extension_m.min;
+    assert!(job.samples.extension_m.iter().all(|&r| r >= r_min - 1e-12));
+    let p = write_job(&dir, "retracted.job.json", &job);
+    let csv = dir.path().join("tr.csv");
+    let out = basr()
+        .arg("simulate")
+        .arg(&p)
+        .arg("--json")
+        .arg("--trace")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let kinds: Vec<&str> = v["limits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["kind"].as_str().unwrap())
+        .collect();
+    assert!(
+        !kinds.contains(&"setpoint_extension"),
+        "{kinds:?}: {}",
+        v["reasons"]
+    );
+    let mut rd = csv::Reader::from_path(&csv).unwrap();
+    let col = rd
+        .headers()
+        .unwrap()
+        .iter()
+        .position(|h| h == "extension_desired_m")
+        .unwrap();
+    let lowest = rd
+        .records()
+        .map(|r| r.unwrap()[col].parse::<f64>().unwrap())
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest >= r_min - 1e-9,
+        "reference dipped to {lowest} below {r_min}"
+    );
+}
+
+#[test]
 fn hand_edited_job_exits_2() {
     let dir = tempfile::tempdir().unwrap();
     let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
