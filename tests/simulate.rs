@@ -69,6 +69,19 @@ fn a_step_in_the_setpoints_fails_and_is_located() {
     // the step is halfway through stroke 0
     assert_eq!(v["worst"]["stroke"], 0);
     assert!(v["max_error_m"].as_f64().unwrap() > 0.01);
+    // and the worst moment is the arm catching up with it: within a fraction
+    // of a second after the first stepped row (the reference starts to move
+    // towards it one row, 32 ms, earlier)
+    let (plain, stepped) = (synthetic::letter_job(), synthetic::step_job());
+    let first = (0..plain.samples.len())
+        .find(|&i| plain.samples.y_m[i] != stepped.samples.y_m[i])
+        .unwrap();
+    let t_step = stepped.samples.t_s[first];
+    let t_worst = v["worst"]["t_s"].as_f64().unwrap();
+    assert!(
+        t_worst >= t_step - stepped.control_period_s && t_worst <= t_step + 0.3,
+        "worst at {t_worst} s, step at {t_step} s"
+    );
 }
 
 #[test]
