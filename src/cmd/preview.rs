@@ -212,8 +212,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
 
 /// The film from the simulated arm: each 5 ms trace tick gives the actual
 /// nozzle position on the road; height, fan direction and tilt are the
-/// planned ones corrected by the simulated joints' deviations.
+/// planned ones (the job's rows, interpolated linearly as the preview of a
+/// compiled job interpolates between them) corrected by the simulated
+/// joints' deviations. U is measured on tiles at the job's own setpoint
+/// times (the actual pose interpolated between ticks), so it compares with
+/// the compiled job's U; tiles between 5 ms ticks, 0.8 mm apart, were
+/// twisted end to end by servo jitter and spanned U 0.00–1.00 on STOP.
 fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
+    use basr::paint::spray::{equivalent_fan, Pose};
     use basr::sim;
     let model = sim::SimModel::from_robot(&job.robot)
         .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
@@ -224,33 +230,106 @@ fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
         substeps: None,
     };
     let outcome = sim::simulate(job, &model, &sim_opts, &mut |_, _| {})?;
+    let trace = &outcome.trace;
     let s = &job.samples;
-    let last = s.len().saturating_sub(1);
+    let n = s.len();
+    anyhow::ensure!(n > 0 && !trace.is_empty(), "the job has no setpoints");
+    let dt = job.control_period_s;
+    let lerp = |a: f64, b: f64, f: f64| a + f * (b - a);
+    // The planned (z, ψ, β) at time t, linear between rows.
+    let planned = |t: f64| -> (f64, f64, f64) {
+        let u = (t / dt).max(0.0);
+        let i = (u.floor() as usize).min(n - 1);
+        let j = (i + 1).min(n - 1);
+        let f = (u - i as f64).clamp(0.0, 1.0);
+        let (yaw_j, tilt_j) = equivalent_fan(s.yaw_rad[i], s.yaw_rad[j], s.tilt_rad[j]);
+        (
+            lerp(s.z_m[i], s.z_m[j], f),
+            lerp(s.yaw_rad[i], yaw_j, f),
+            lerp(s.tilt_rad[i], tilt_j, f),
+        )
+    };
+    // What the simulated joints add at a tick: the actual nozzle point, and
+    // the deviations of height, fan direction and tilt from the planned.
     let tilt_of = |nut: f64| job.robot.tilt_from_nut(nut).ok();
-    let mut poses = Vec::with_capacity(outcome.trace.len());
-    let mut strokes = Vec::with_capacity(outcome.trace.len());
-    for r in &outcome.trace {
-        let i = ((r.t_s / job.control_period_s).floor().max(0.0) as usize).min(last);
-        let d = s
-            .row(i)
-            .ok_or_else(|| anyhow::anyhow!("the job has no setpoints"))?;
-        let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
-            (Some(a), Some(b)) => a - b,
-            _ => 0.0,
+    let actual: Vec<[f64; 5]> = trace
+        .iter()
+        .map(|r| {
+            let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
+                (Some(a), Some(b)) => a - b,
+                _ => 0.0,
+            };
+            [
+                r.x_m,
+                r.y_m,
+                // Vertical joint is positive down (SPEC §3).
+                -(r.vertical_m - r.vertical_desired_m),
+                (r.ee_yaw_rad - r.ee_yaw_desired_rad) + (r.base_rot_rad - r.base_rot_desired_rad),
+                tilt_error,
+            ]
+        })
+        .collect();
+    let pose = |t: f64, a: &[f64; 5], plan: (f64, f64, f64), gun: bool| Pose {
+        t_s: t,
+        x_m: a[0],
+        y_m: a[1],
+        z_m: plan.0 + a[2],
+        yaw_rad: plan.1 + a[3],
+        tilt_rad: plan.2 + a[4],
+        gun,
+    };
+    let poses: Vec<Pose> = trace
+        .iter()
+        .zip(&actual)
+        .map(|(r, a)| pose(r.t_s, a, planned(r.t_s), r.paint == 1))
+        .collect();
+    // Tiles: one pose per job row, the actual interpolated between ticks.
+    let last = trace.len() - 1;
+    let rows: Vec<Pose> = (0..n)
+        .map(|i| {
+            let t = s.t_s[i];
+            let k = trace
+                .partition_point(|r| r.t_s <= t)
+                .saturating_sub(1)
+                .min(last);
+            let k1 = (k + 1).min(last);
+            let span = trace[k1].t_s - trace[k].t_s;
+            let f = if span > 0.0 {
+                ((t - trace[k].t_s) / span).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let a: [f64; 5] = std::array::from_fn(|c| lerp(actual[k][c], actual[k1][c], f));
+            let plan = (s.z_m[i], s.yaw_rad[i], s.tilt_rad[i]);
+            pose(t, &a, plan, s.paint[i] != 0)
+        })
+        .collect();
+    // ...thinned to the sheet's depth of nozzle travel (36 mm at the default
+    // σ = 6 mm), at least a raster cell. The film at a point is laid by
+    // every pose whose sheet passes over it, so it cannot show what happens
+    // within less travel than that; the arm's wobble does (its 9 Hz linkage
+    // mode, 001 table 3.2, has an 18 mm wavelength at 0.16 m/s and turns the
+    // nozzle's direction by ±20° within a 5 mm row), and tiles of one row
+    // measured it: U 0.03–0.97 on STOP. For a constant curvature U does not
+    // depend on a tile's length, so the longer tiles keep the compiled job's
+    // U. A new stroke or gun state always starts a tile.
+    let tile_travel_m = opts.resolution_m.max(2.0 * opts.depth.reach_m());
+    let mut tiles: Vec<Pose> = Vec::with_capacity(n);
+    let mut tile_strokes: Vec<i64> = Vec::with_capacity(n);
+    for (i, p) in rows.iter().enumerate() {
+        let keep = match (tiles.last(), tile_strokes.last()) {
+            (Some(q), Some(&st)) => {
+                st != s.stroke[i]
+                    || q.gun != p.gun
+                    || i + 1 == n
+                    || (p.x_m - q.x_m).hypot(p.y_m - q.y_m) >= tile_travel_m
+            }
+            _ => true,
         };
-        poses.push(basr::paint::spray::Pose {
-            t_s: r.t_s,
-            x_m: r.x_m,
-            y_m: r.y_m,
-            // Vertical joint is positive down (SPEC §3).
-            z_m: d.z_m - (r.vertical_m - r.vertical_desired_m),
-            yaw_rad: d.yaw_rad
-                + (r.ee_yaw_rad - r.ee_yaw_desired_rad)
-                + (r.base_rot_rad - r.base_rot_desired_rad),
-            tilt_rad: d.tilt_rad + tilt_error,
-            gun: r.paint == 1,
-        });
-        strokes.push(r.stroke);
+        if keep {
+            tiles.push(*p);
+            tile_strokes.push(s.stroke[i]);
+        }
     }
     let outlines: Vec<_> = job
         .layout
@@ -258,8 +337,13 @@ fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
         .iter()
         .map(basr::paint::metrics::GlyphOutline::from_placed)
         .collect();
-    Ok(preview::preview_poses(
-        &poses, &strokes, &outlines, &job.paint, opts,
+    Ok(preview::preview_tiled(
+        &poses,
+        &tiles,
+        &tile_strokes,
+        &outlines,
+        &job.paint,
+        opts,
     )?)
 }
 

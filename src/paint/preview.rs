@@ -103,10 +103,27 @@ pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
     preview_poses(&poses, &job.samples.stroke, &outlines, &job.paint, opts)
 }
 
-/// Simulate and measure the film of any pose sequence (e.g. the simulator's
-/// trace) with `stroke_of[i]` the stroke index of pose i (−1 none).
+/// Simulate and measure the film of any pose sequence with `stroke_of[i]`
+/// the stroke index of pose i (−1 none); the tiles of U are its consecutive
+/// poses.
 pub fn preview_poses(
     poses: &[Pose],
+    stroke_of: &[i64],
+    outlines: &[GlyphOutline],
+    paint: &crate::job::Paint,
+    opts: &Options,
+) -> Result<Preview, PaintError> {
+    preview_tiled(poses, poses, stroke_of, outlines, paint, opts)
+}
+
+/// The film of `poses`, with U measured on the tiles between consecutive
+/// `tiles` (`stroke_of[i]` the stroke of `tiles[i]`). The simulator's trace
+/// deposits from every 5 ms tick, but its tiles are taken at the job's own
+/// setpoint times: a tile 0.8 mm long is twisted end to end by the servos'
+/// jitter, and its U says nothing about the paint's distribution.
+pub fn preview_tiled(
+    poses: &[Pose],
+    tiles: &[Pose],
     stroke_of: &[i64],
     outlines: &[GlyphOutline],
     paint: &crate::job::Paint,
@@ -123,7 +140,7 @@ pub fn preview_poses(
         opts.resolution_m,
         letters,
     )?;
-    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, poses, stroke_of)?;
+    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
     Ok(Preview {
         film,
         metrics,

@@ -240,10 +240,7 @@ fn footprint_bounds(fp: &Footprint) -> Bounds {
 }
 
 fn depth_reach(model: &SprayModel) -> f64 {
-    match model.depth {
-        super::spray::Depth::Gaussian { sigma_m } => 3.0 * sigma_m,
-        super::spray::Depth::TopHat { width_m } => width_m / 2.0,
-    }
+    model.depth.reach_m()
 }
 
 /// Road-frame extent of everything `poses` paint (empty when the gun is

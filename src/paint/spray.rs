@@ -223,6 +223,15 @@ impl Depth {
         }
     }
 
+    /// How far the sheet reaches either side of its centre line (m): 3σ
+    /// (99.7 % of a Gaussian) or half the top hat.
+    pub fn reach_m(&self) -> f64 {
+        match *self {
+            Depth::Gaussian { sigma_m } => 3.0 * sigma_m,
+            Depth::TopHat { width_m } => width_m / 2.0,
+        }
+    }
+
     /// Offsets across the sheet (m) and their weights (summing to 1), spaced
     /// at most `spacing_m` apart.
     pub fn nodes(&self, spacing_m: f64) -> Vec<(f64, f64)> {
