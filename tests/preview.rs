@@ -187,6 +187,7 @@ fn svg_renders_with_resvg_and_the_letter_is_coloured() {
     let panels = [Panel {
         job: &job,
         preview: &p,
+        replanned: None,
     }];
     let svg = preview::render_svg(&panels, "test");
     let frame = preview::panel_frames(&panels)[0];

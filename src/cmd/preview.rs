@@ -65,9 +65,17 @@ pub struct Args {
     pub fan_depth: String,
 
     /// Re-plan the job's message under each listed tilt method
-    /// (none, trapezoid, quadrilateral) and draw them side by side.
+    /// (none, trapezoid, quadrilateral) and draw them side by side. The
+    /// re-planned jobs use the job's robot description, font, letter
+    /// height, lane width and period; options the job does not record
+    /// (rung spacing, line gap, gun lead/lag) take compile's defaults.
     #[arg(long, value_name = "METHODS", value_delimiter = ',')]
     pub compare: Vec<String>,
+
+    /// With --compare: the font file the job was compiled with, when it is
+    /// not the embedded font (its sha256 must match the job's).
+    #[arg(long, value_name = "F")]
+    pub font: Option<String>,
 
     /// Preview the film the arm would actually lay: run the job through the
     /// closed-loop simulator (`basr simulate`, default sjct controller) and
@@ -98,13 +106,57 @@ fn parse_tilt(s: &str) -> anyhow::Result<Tilt> {
     }
 }
 
-/// The job re-planned with another tilt method, keeping its message, letter
-/// height and lane width.
-fn replan(job: &Job, tilt: Tilt) -> anyhow::Result<Job> {
+/// What `--compare` carries from the job into the re-planned ones, and
+/// what it cannot: the job does not record these compile options, so the
+/// re-planned jobs use compile's defaults for them.
+const REPLANNED_FROM: &str = "the job's message, robot description, font, letter height, \
+     lane width and setpoint period";
+const NOT_RECORDED: &str = "rung spacing, line gap, gun lead/lag, reach margin and a marking \
+     file's anchor (the job does not record them): compile's defaults";
+
+/// The font to re-plan `job` with: the embedded one if the job was compiled
+/// with it, else `--font`, which must be the job's font.
+fn replan_font(job: &Job, origin: &str, font: Option<&str>) -> anyhow::Result<Option<String>> {
+    use basr::font::Font;
+    let want = &job.font;
+    match font {
+        None if want.sha256 == Font::embedded().sha256 => Ok(None),
+        None => anyhow::bail!(
+            "{origin}: --compare re-plans the job, which was compiled with the font {:?} \
+             (sha256 {}), not the embedded font; pass that font file with --font FILE",
+            want.name,
+            want.sha256
+        ),
+        Some(f) => {
+            let given = Font::from_name_or_path(f).map_err(|e| anyhow::anyhow!("--font: {e}"))?;
+            anyhow::ensure!(
+                given.sha256 == want.sha256,
+                "{origin}: --font {f} (sha256 {}) is not the font the job was compiled with \
+                 ({:?}, sha256 {}); pass that font file, or leave --font out for the embedded font",
+                given.sha256,
+                want.name,
+                want.sha256
+            );
+            Ok(Some(f.to_string()))
+        }
+    }
+}
+
+/// The job re-planned with another tilt method, with its own robot
+/// description, font, message, letter height, lane width and period.
+fn replan(job: &Job, tilt: Tilt, font: Option<String>) -> anyhow::Result<Job> {
+    use basr::robot::Robot;
+    // The job's description passed its hash check; read it back through the
+    // validator so a sealed job with a broken robot is refused, not planned.
+    let robot = Robot::from_toml_str(&job.robot.to_toml_string(), "the job's robot description")
+        .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
     let mut req = CompileRequest::message(&job.message.replace('\n', " "));
     req.source = Source::Message(job.message.replace('\n', " "));
     req.overrides.letter_height_m = Some(job.layout.letter_height_m);
     req.overrides.lane_width_m = Some(job.layout.lane_width_m);
+    req.robot_description = Some(robot);
+    req.font = font;
+    req.period_s = job.control_period_s;
     req.tilt = tilt;
     compile_job(&req).with_context(|| {
         format!(
@@ -128,24 +180,39 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         depth: Depth::parse(&args.fan_depth)?,
     };
     let job = Job::read(&args.job)?;
-    let jobs: Vec<Job> = if args.compare.is_empty() {
-        vec![job]
+    let origin = args.job.display().to_string();
+    // (job, re-planned from the one given)
+    let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {
+        vec![(job, false)]
     } else {
+        let tilts: Vec<Tilt> = args
+            .compare
+            .iter()
+            .map(|m| parse_tilt(m))
+            .collect::<anyhow::Result<_>>()?;
+        let font = if tilts.iter().any(|t| t.name() != job.layout.tilt_method) {
+            replan_font(&job, &origin, args.font.as_deref())?
+        } else {
+            None
+        };
         let mut v = Vec::new();
-        for m in &args.compare {
-            let tilt = parse_tilt(m)?;
+        for tilt in tilts {
             if job.layout.tilt_method == tilt.name() {
-                v.push(job.clone());
+                v.push((job.clone(), false));
             } else {
-                v.push(replan(&job, tilt)?);
+                v.push((replan(&job, tilt, font.clone())?, true));
             }
         }
         v
     };
-    let origin = args.job.display().to_string();
+    let replanned_lines = [
+        ("re-planned from".to_string(), REPLANNED_FROM.to_string()),
+        ("not carried".to_string(), NOT_RECORDED.to_string()),
+    ];
+    let replanned_note = format!("re-planned from {REPLANNED_FROM}; not carried: {NOT_RECORDED}");
     let previews: Vec<Preview> = jobs
         .iter()
-        .map(|j| {
+        .map(|(j, _)| {
             if args.from_sim {
                 preview_simulated(j, &opts)
             } else {
@@ -157,24 +224,29 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let panels: Vec<Panel> = jobs
         .iter()
         .zip(&previews)
-        .map(|(job, preview)| Panel { job, preview })
+        .map(|((job, re), preview)| Panel {
+            job,
+            preview,
+            replanned: re.then_some(&replanned_lines[..]),
+        })
         .collect();
     let out = args
         .output
         .clone()
         .unwrap_or_else(|| default_output(&args.job));
-    let title = format!("basr preview: {}", jobs[0].message.replace('\n', " / "));
+    let title = format!("basr preview: {}", jobs[0].0.message.replace('\n', " / "));
     let svg = preview::render_svg(&panels, &title);
     basr::io::write_atomic(&out, svg.as_bytes())?;
 
     if !global.quiet {
-        for (j, p) in jobs.iter().zip(&previews) {
+        for ((j, re), p) in jobs.iter().zip(&previews) {
             let m = &p.metrics;
             let f = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{:.3}", v));
             note!(
-                "{} [tilt {}]: coverage {}, cv {}, overspray {}, mean film {} µm (target {:.0}), U {}–{}",
+                "{} [tilt {}{}]: coverage {}, cv {}, overspray {}, mean film {} µm (target {:.0}), U {}–{}",
                 origin,
                 j.layout.tilt_method,
+                if *re { ", re-planned" } else { "" },
                 f(m.coverage),
                 f(m.cv),
                 f(m.overspray),
@@ -184,6 +256,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 f(m.u_max),
             );
         }
+        if jobs.iter().any(|(_, re)| *re) {
+            note!("note: {replanned_note}");
+        }
         note!("wrote {}", out.display());
     }
     if args.json {
@@ -191,12 +266,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let reports: Vec<JsonReport> = jobs
             .iter()
             .zip(&previews)
-            .map(|(j, p)| JsonReport {
+            .map(|((j, re), p)| JsonReport {
                 job: &origin,
                 message: &j.message,
                 tilt_method: &j.layout.tilt_method,
                 profile: &p.profile,
                 svg: Some(&svg_name),
+                replanned: re.then_some(replanned_note.as_str()),
                 metrics: &p.metrics,
             })
             .collect();

@@ -154,6 +154,9 @@ pub fn preview_tiled(
 pub struct Panel<'a> {
     pub job: &'a Job,
     pub preview: &'a Preview,
+    /// For a job re-planned from another (`--compare`): what it was
+    /// re-planned from, as header lines (key, value).
+    pub replanned: Option<&'a [(String, String)]>,
 }
 
 fn pct(v: Option<f64>) -> String {
@@ -295,6 +298,9 @@ fn page(panels: &[Panel]) -> Page {
                 p.preview.metrics.resolution_m * 1e3
             ),
         ));
+        if let Some(lines) = panels.iter().find_map(|p| p.replanned) {
+            header.extend(lines.iter().cloned());
+        }
         if panels.len() == 1 {
             header.extend(metric_lines(&p.preview.metrics));
         }
@@ -345,7 +351,15 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
             doc_g = doc_g.add(plot::title_block(
                 frame.left_px,
                 margin + pg.head_h,
-                &format!("tilt: {}", p.job.layout.tilt_method),
+                &format!(
+                    "tilt: {}{}",
+                    p.job.layout.tilt_method,
+                    if p.replanned.is_some() {
+                        " (re-planned)"
+                    } else {
+                        ""
+                    }
+                ),
                 &metric_lines(&p.preview.metrics),
             ));
         }
@@ -582,6 +596,10 @@ pub struct JsonReport<'a> {
     pub tilt_method: &'a str,
     pub profile: &'a str,
     pub svg: Option<&'a str>,
+    /// For a job re-planned by `--compare`: from what, and what the job
+    /// does not record (so compile's defaults were used).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replanned: Option<&'a str>,
     #[serde(flatten)]
     pub metrics: &'a Metrics,
 }
