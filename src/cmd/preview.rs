@@ -84,6 +84,17 @@ pub struct Args {
     pub from_sim: bool,
 }
 
+/// Finest raster cell, mm. A sixth of the fan sheet's default σ = 6 mm and
+/// a tenth of the 90→10 % edge widths measured (9–10 mm on STOP): finer
+/// shows nothing new; STOP took 23 s at 1 mm and 3.5 min (560 MB) at 0.5 mm.
+const MIN_RESOLUTION_MM: f64 = 1.0;
+/// Coarsest raster cell, mm: a fifth of the narrowest stroke of an 8 ft
+/// letter (one grid unit, 2.44 m / 25 = 97.6 mm; SPEC §4 layout). Coarser,
+/// few cells lie inside a stroke with all their neighbours: STOP's cv 0.070
+/// at 5 mm read 0.017 at 25 mm and overspray 0.026 → 0.077, and at 10⁹ mm
+/// the metrics were empty.
+const MAX_RESOLUTION_MM: f64 = 20.0;
+
 /// `STOP.job.json` → `STOP.svg` in the current folder.
 fn default_output(job: &Path) -> PathBuf {
     let name = job
@@ -168,12 +179,27 @@ fn replan(job: &Job, tilt: Tilt, font: Option<String>) -> anyhow::Result<Job> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
-    if !(args.resolution_mm.is_finite() && args.resolution_mm > 0.0) {
+    let r = args.resolution_mm;
+    if !(r.is_finite() && r > 0.0) {
         anyhow::bail!(
-            "--resolution-mm {}: give a cell size in millimetres above zero, e.g. 5",
-            args.resolution_mm
+            "--resolution-mm {r}: give a cell size in millimetres above zero, \
+             from {MIN_RESOLUTION_MM} to {MAX_RESOLUTION_MM} (default 5)"
         );
     }
+    anyhow::ensure!(
+        r >= MIN_RESOLUTION_MM,
+        "--resolution-mm {r} is finer than the {MIN_RESOLUTION_MM} mm minimum: the film's \
+         detail is the fan sheet's (σ 6 mm) and its edges' (≈ 10 mm), and finer cells only \
+         cost time and memory (STOP at 0.5 mm: 3.5 min, 560 MB); give {MIN_RESOLUTION_MM} \
+         to {MAX_RESOLUTION_MM}"
+    );
+    anyhow::ensure!(
+        r <= MAX_RESOLUTION_MM,
+        "--resolution-mm {r} is coarser than the {MAX_RESOLUTION_MM} mm maximum: cells wider \
+         than a fifth of a one-unit stroke (98 mm at 8 ft) leave too few cells inside the \
+         letters for coverage, cv and overspray to describe the film; give \
+         {MIN_RESOLUTION_MM} to {MAX_RESOLUTION_MM}"
+    );
     let opts = Options {
         resolution_m: args.resolution_mm / 1000.0,
         profile: Profile::parse(&args.profile)?,

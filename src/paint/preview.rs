@@ -290,12 +290,12 @@ fn page(panels: &[Panel]) -> Page {
         header.push((
             "spray".into(),
             format!(
-                "fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {:.1} mm",
+                "fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {} mm",
                 p.job.paint.fan_angle_rad.to_degrees(),
                 p.preview.profile,
                 p.job.paint.flow_m3ps * 60e3,
                 p.job.paint.transfer_efficiency,
-                p.preview.metrics.resolution_m * 1e3
+                super::raster::mm_text(p.preview.metrics.resolution_m)
             ),
         ));
         if let Some(lines) = panels.iter().find_map(|p| p.replanned) {
