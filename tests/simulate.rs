@@ -210,6 +210,31 @@ fn trace_and_svg_are_written() {
     let s = std::fs::read_to_string(&svg).unwrap();
     let tree = resvg::usvg::Tree::from_str(&s, &Default::default()).unwrap();
     assert!(tree.size().width() > 100.0);
+    // Axes with units on both plots, the worst point marked on both, and the
+    // desired path drawn before (under) the actual one, so both show.
+    for label in [
+        "x (m)",
+        "y (m)",
+        "time (s)",
+        "nozzle error (mm)",
+        "tolerance 6.35 mm",
+    ] {
+        assert!(s.contains(label), "no {label:?}");
+    }
+    assert!(
+        s.matches("<circle").count() >= 3,
+        "worst marked on both plots and in the legend"
+    );
+    assert_eq!(
+        s.matches("worst while painting: ").count(),
+        2,
+        "in the legend and on the error plot"
+    );
+    let (desired, actual) = (s.find("#1f77b4").unwrap(), s.find("#d62728").unwrap());
+    assert!(
+        desired < actual,
+        "the desired path must not be drawn over by the actual"
+    );
 }
 
 #[test]

@@ -124,6 +124,17 @@ fn a_job_compiled_far_beyond_the_arm_fails_and_says_where() {
         reason.contains("stroke") && reason.contains("t = "),
         "{reason}"
     );
+    // Limits say their unit, and an air move by name (not "stroke -1").
+    let limits = v["limits"].as_array().unwrap();
+    assert!(!limits.is_empty());
+    for l in limits {
+        let m = l["message"].as_str().unwrap();
+        assert!(
+            m.contains(" MPa") || m.contains(" mm") || m.contains(" rad"),
+            "{m}"
+        );
+        assert!(!m.contains("stroke -1"), "{m}");
+    }
 
     // The same job against the embedded robot is refused: it was sealed for
     // the fast description.

@@ -19,7 +19,9 @@ pub use report::{Report, TraceRow};
 use crate::job::Job;
 use crate::robot::Joints;
 use plant::{Inputs, State};
-use report::{AxisErrors, LimitViolation, PeakPressures, Place, Saturation, StrokeError, Waviness};
+use report::{
+    AxisErrors, LimitViolation, PeakPressures, Place, Saturation, StrokeError, Unit, Waviness,
+};
 
 /// Errors from setting up a simulation (bad input: exit 2).
 #[derive(Debug, thiserror::Error)]
@@ -247,10 +249,11 @@ struct LimitTrack {
     worst: f64,
     ticks: u64,
     what: &'static str,
+    unit: Unit,
 }
 
 impl LimitTrack {
-    fn new(kind: &'static str, what: &'static str, fails: bool) -> LimitTrack {
+    fn new(kind: &'static str, what: &'static str, unit: Unit, fails: bool) -> LimitTrack {
         LimitTrack {
             kind,
             fails,
@@ -259,6 +262,7 @@ impl LimitTrack {
             worst: 0.0,
             ticks: 0,
             what,
+            unit,
         }
     }
     /// Record `value` past `limit` by `excess` > 0 at `place`.
@@ -278,14 +282,11 @@ impl LimitTrack {
     fn finish(self, period: f64) -> Option<LimitViolation> {
         let first = self.first?;
         let message = format!(
-            "{} (reached {:.4} against {:.4}) first at t = {:.3} s, stroke {}, road ({:.3}, {:.3}) m, for {:.3} s",
+            "{} (reached {} against {}) first at {}, for {:.3} s",
             self.what,
-            self.worst,
-            self.limit,
-            first.t_s,
-            first.stroke,
-            first.x_m,
-            first.y_m,
+            self.unit.show(self.worst),
+            self.unit.show(self.limit),
+            first.describe(),
             self.ticks as f64 * period
         );
         Some(LimitViolation {
@@ -408,32 +409,43 @@ pub fn simulate(
     let mut lim_window = LimitTrack::new(
         "base_rot_window",
         "base rotation left its safety window",
+        Unit::Angle,
         true,
     );
     let mut lim_stroke = LimitTrack::new(
         "cylinder_stroke",
         "extension cylinder hit its end of stroke",
+        Unit::Length,
         true,
     );
     let mut lim_set_rot = LimitTrack::new(
         "setpoint_base_rot",
         "setpoint base rotation is outside the safety window",
+        Unit::Angle,
         true,
     );
     let mut lim_set_ext = LimitTrack::new(
         "setpoint_extension",
         "setpoint extension is outside the arm's reach",
+        Unit::Length,
         true,
     );
-    let mut lim_tilt = LimitTrack::new("tilt_travel", "tilt nut setpoint past its travel", true);
+    let mut lim_tilt = LimitTrack::new(
+        "tilt_travel",
+        "tilt nut setpoint past its travel",
+        Unit::Length,
+        true,
+    );
     let mut lim_vert = LimitTrack::new(
         "vertical_travel",
         "vertical joint setpoint past its stroke",
+        Unit::Length,
         true,
     );
     let mut lim_relief = LimitTrack::new(
         "relief_valve",
         "a relief valve opened (force demand above what the supply can give)",
+        Unit::Pressure,
         false,
     );
     // painting segments for waviness: (segment id, ex, ey)
@@ -684,13 +696,10 @@ pub fn simulate(
     if verdict_stats.max > opts.tolerance_m {
         let w = &verdict_stats.worst;
         reasons.push(format!(
-            "nozzle error {:.3} mm exceeds the tolerance {:.3} mm at t = {:.3} s, stroke {}, road ({:.3}, {:.3}) m",
+            "nozzle error {:.3} mm exceeds the tolerance {:.3} mm at {}",
             verdict_stats.max * 1e3,
             opts.tolerance_m * 1e3,
-            w.t_s,
-            w.stroke,
-            w.x_m,
-            w.y_m
+            w.describe()
         ));
     }
     let limits: Vec<LimitViolation> = [
