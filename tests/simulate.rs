@@ -133,6 +133,29 @@ fn setpoints_at_a_limit_are_not_failed_by_the_interpolation_between_them() {
 }
 
 #[test]
+fn an_empty_or_cut_job_is_named_once_and_as_what_it_is() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty.job.json");
+    std::fs::write(&empty, "").unwrap();
+    let cut = dir.path().join("cut.job.json");
+    std::fs::write(&cut, "{\"format\": \"basr-job\", \"samp").unwrap();
+    for (job, says) in [(&empty, "is empty"), (&cut, "truncated")] {
+        let out = basr().arg("simulate").arg(job).output().unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{err}");
+        assert!(
+            !err.contains("is empty") || !err.contains("truncated"),
+            "{err}"
+        );
+        assert!(
+            err.matches("EOF while parsing").count() <= 1,
+            "said twice: {err}"
+        );
+    }
+}
+
+#[test]
 fn hand_edited_job_exits_2() {
     let dir = tempfile::tempdir().unwrap();
     let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
