@@ -1,41 +1,36 @@
-//! Simulator speed: simulated seconds per wall-clock second on one core.
+//! Simulator speed: the closed-loop simulation of STOP (compiled here, in
+//! process, with `basr compile STOP`'s defaults) under each controller.
 //!
-//! Criterion's throughput is set to the job's duration in milliseconds, so
-//! "elem/s" reads as simulated milliseconds per wall-clock second (divide by
-//! 1000 for the speed-up factor). Uses STOP when `STOP.job.json` exists in
-//! the working folder (compile it first), else the synthetic letter job.
+//! Criterion's throughput is the job's duration in whole simulated seconds,
+//! so "elem/s" reads as simulated seconds per wall-clock second: how many
+//! times faster than real time the simulator runs. A compile or simulate
+//! error stops the bench with its message: a benchmark of a failed run
+//! would time nothing.
 
-use basr::sim::{self, synthetic, ControllerKind, SimModel};
+use basr::plan::compile::{compile_job, CompileRequest};
+use basr::sim::{self, ControllerKind, SimModel};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
-fn job() -> (String, basr::job::Job) {
-    match basr::job::Job::read(std::path::Path::new("STOP.job.json")) {
-        Ok(j) => ("STOP".into(), j),
-        Err(_) => ("synthetic letter".into(), synthetic::letter_job()),
-    }
-}
-
 fn bench(c: &mut Criterion) {
-    let (name, job) = job();
-    let model = SimModel::basr();
-    let duration_ms =
-        (job.samples.len().saturating_sub(1) as f64 * job.control_period_s * 1000.0) as u64;
-    let mut g = c.benchmark_group(format!("simulate {name}"));
+    let job = compile_job(&CompileRequest::message("STOP"))
+        .unwrap_or_else(|e| panic!("compile STOP failed, nothing to simulate: {e}"));
+    let model = SimModel::from_robot(&job.robot)
+        .unwrap_or_else(|e| panic!("STOP's robot cannot be simulated: {e}"));
+    let duration_s = job.samples.len().saturating_sub(1) as f64 * job.control_period_s;
+    let mut g = c.benchmark_group(format!("simulate STOP ({duration_s:.1} s)"));
     g.sample_size(10);
-    g.throughput(Throughput::Elements(duration_ms));
+    // Whole seconds: criterion counts integer elements (188.8 s → 189, 0.1 %).
+    g.throughput(Throughput::Elements(duration_s.round() as u64));
     for k in ControllerKind::ALL {
+        let opts = sim::Options {
+            controller: k,
+            ..Default::default()
+        };
         g.bench_function(k.name(), |b| {
             b.iter(|| {
-                let o = sim::simulate(
-                    &job,
-                    &model,
-                    &sim::Options {
-                        controller: k,
-                        ..Default::default()
-                    },
-                    &mut |_, _| {},
-                );
-                criterion::black_box(o.map(|o| o.report.max_error_m).unwrap_or(f64::NAN))
+                let o = sim::simulate(&job, &model, &opts, &mut |_, _| {})
+                    .unwrap_or_else(|e| panic!("simulate STOP with {}: {e}", k.name()));
+                criterion::black_box(o.report.max_error_m)
             })
         });
     }

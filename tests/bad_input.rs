@@ -702,4 +702,26 @@ fn an_output_over_an_input_is_refused() {
         &["same file", "would destroy the input"],
     );
     assert_eq!(read_back(&s.path("r.toml")), basr_toml());
+    let job = write_job(&mut s, "j.job.json", |_| {});
+    let sealed = read_back(&job);
+    s.refuses(
+        &["preview", "j.job.json", "-o", "j.job.json"],
+        &["same file", "would destroy the input", "-o"],
+    );
+    s.refuses(
+        &["simulate", "j.job.json", "--svg", "./j.job.json"],
+        &["same file", "would destroy the input", "--svg"],
+    );
+    s.refuses(
+        &[
+            "simulate",
+            "j.job.json",
+            "--trace",
+            "t.csv",
+            "--svg",
+            "t.csv",
+        ],
+        &["same file", "each would be written over the other"],
+    );
+    assert_eq!(read_back(&job), sealed);
 }

@@ -187,6 +187,7 @@ fn svg_renders_with_resvg_and_the_letter_is_coloured() {
     let panels = [Panel {
         job: &job,
         preview: &p,
+        replanned: None,
     }];
     let svg = preview::render_svg(&panels, "test");
     let frame = preview::panel_frames(&panels)[0];
@@ -264,6 +265,40 @@ fn damaged_jobs_exit_2_and_leave_no_svg() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(needle) && err.contains(name), "{name}: {err}");
         assert!(!svg.exists(), "{name}: svg left behind");
+    }
+}
+
+#[test]
+fn cell_sizes_and_fan_depths_out_of_range_exit_2_saying_the_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(dir.path(), "I.json", &straight_job(0.2, 0.5));
+    for (args, says) in [
+        (["--resolution-mm", "1e9"], "20 mm maximum"),
+        (["--resolution-mm", "20.5"], "20 mm maximum"),
+        (["--resolution-mm", "0.01"], "1 mm minimum"),
+        (["--resolution-mm", "-2"], "above zero"),
+        (["--fan-depth", "tophat:1e9"], "reaches at most 200 mm"),
+        (["--fan-depth", "gauss:70"], "210 mm either side"),
+    ] {
+        let out = Command::cargo_bin("basr")
+            .unwrap()
+            .current_dir(dir.path())
+            .arg("preview")
+            .arg(&job)
+            .args(["-o", "x.svg"])
+            .args(args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(!err.contains("coarser --resolution-mm"), "{args:?}: {err}");
+        assert!(!dir.path().join("x.svg").exists());
+    }
+    // The ends of the range are accepted.
+    for r in ["1", "20"] {
+        let v = preview_json(&job, &dir.path().join("x.svg"), &["--resolution-mm", r]);
+        assert!(v["coverage"].as_f64().is_some(), "{r}: {v}");
     }
 }
 

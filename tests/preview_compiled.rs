@@ -114,6 +114,122 @@ fn compare_replans_each_tilt_method() {
     assert_eq!(svg.matches("tilt: ").count(), 2);
 }
 
+/// Compile `message` with extra options into `dir/out`.
+fn compile_with(dir: &Path, message: &str, extra: &[&str], out: &str) -> std::path::PathBuf {
+    let path = dir.join(out);
+    Command::cargo_bin("basr")
+        .unwrap()
+        .current_dir(dir)
+        .args(["compile", message, "--quiet", "-o"])
+        .arg(&path)
+        .args(extra)
+        .assert()
+        .success();
+    path
+}
+
+/// The metrics of a report, without the fields that name files or say how
+/// the job was made.
+fn metrics_only(mut v: Value) -> Value {
+    for k in ["job", "svg", "replanned"] {
+        v.as_object_mut().unwrap().remove(k);
+    }
+    v
+}
+
+#[test]
+fn compare_replans_with_the_jobs_own_robot_and_period() {
+    let dir = tempfile::tempdir().unwrap();
+    // A robot with 1.5x the paint flow: it paints faster, so its jobs differ
+    // from the embedded robot's.
+    let text =
+        basr::robot::BASR_TOML.replace("flow_m3ps = 6.666666666666667e-6", "flow_m3ps = 1.0e-5");
+    assert_ne!(text, basr::robot::BASR_TOML);
+    std::fs::write(dir.path().join("r.toml"), text).unwrap();
+    let own = ["--robot", "r.toml", "--period-s", "0.04"];
+    let job = compile_with(dir.path(), "O", &own, "o.json");
+    let m = preview(&job, &["--compare", "trapezoid"]);
+    assert!(
+        m["replanned"].as_str().unwrap().contains("rung spacing"),
+        "{m}"
+    );
+
+    let mut direct_args = own.to_vec();
+    direct_args.extend(["--tilt", "trapezoid"]);
+    let direct = preview(&compile_with(dir.path(), "O", &direct_args, "t.json"), &[]);
+    assert_eq!(metrics_only(m.clone()), metrics_only(direct));
+    let default_robot = preview(
+        &compile_with(dir.path(), "O", &["--tilt", "trapezoid"], "d.json"),
+        &[],
+    );
+    assert_ne!(m["gun_on_s"], default_robot["gun_on_s"]);
+    let svg = std::fs::read_to_string(job.with_extension("svg")).unwrap();
+    assert!(svg.contains("re-planned from") && svg.contains("rung spacing"));
+}
+
+#[test]
+fn compare_refuses_a_job_of_another_font_without_that_font() {
+    let dir = tempfile::tempdir().unwrap();
+    // The embedded font's text with a comment: the same glyphs, another file.
+    let copy = format!("{}\n# a copy\n", basr::font::Font::embedded_source());
+    std::fs::write(dir.path().join("copy.toml"), copy).unwrap();
+    let job = compile_with(dir.path(), "O", &["--font", "copy.toml"], "o.json");
+    let run = |extra: &[&str]| {
+        Command::cargo_bin("basr")
+            .unwrap()
+            .current_dir(dir.path())
+            .arg("preview")
+            .arg(&job)
+            .args(["-o", "c.svg", "--compare", "none"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("not the embedded font") && err.contains("--font"),
+        "{err}"
+    );
+    assert!(!dir.path().join("c.svg").exists());
+
+    let other = dir.path().join("other.toml");
+    std::fs::write(
+        &other,
+        format!("{}\n# another\n", basr::font::Font::embedded_source()),
+    )
+    .unwrap();
+    let out = run(&["--font", "other.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("is not the font the job was compiled with"),
+        "{err}"
+    );
+
+    let out = run(&["--font", "copy.toml"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // The job's own tilt needs no re-planning, so no font either.
+    let out = Command::cargo_bin("basr")
+        .unwrap()
+        .current_dir(dir.path())
+        .arg("preview")
+        .arg(&job)
+        .args(["-o", "c.svg", "--compare", "quadrilateral"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 #[test]
 fn damaged_compiled_job_exits_2() {
     let dir = tempfile::tempdir().unwrap();

@@ -48,6 +48,38 @@ fn from_sim_previews_the_film_the_arm_lays() {
 }
 
 #[test]
+fn from_sim_u_stays_near_the_compiled_jobs() {
+    // The arm tracks STOP within millimetres, so the tile ratio of the film
+    // it lays is close to the planned one (0.466–0.534); tiles between 5 ms
+    // trace ticks spanned 0.00–1.00.
+    let dir = tempfile::tempdir().unwrap();
+    let out = basr(dir.path(), &["compile", "STOP", "-q"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let u = |extra: &[&str]| -> (f64, f64) {
+        let mut args = vec!["preview", "STOP.job.json", "--json", "-o", "p.svg"];
+        args.extend_from_slice(extra);
+        let out = basr(dir.path(), &args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        (v["u_min"].as_f64().unwrap(), v["u_max"].as_f64().unwrap())
+    };
+    let planned = u(&[]);
+    let simulated = u(&["--from-sim"]);
+    assert!(
+        (planned.0 - simulated.0).abs() <= 0.1 && (planned.1 - simulated.1).abs() <= 0.1,
+        "U {planned:?} planned, {simulated:?} from the simulated arm"
+    );
+}
+
+#[test]
 fn from_sim_and_compare_do_not_combine() {
     let dir = tempfile::tempdir().unwrap();
     let out = basr(

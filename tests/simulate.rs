@@ -69,6 +69,90 @@ fn a_step_in_the_setpoints_fails_and_is_located() {
     // the step is halfway through stroke 0
     assert_eq!(v["worst"]["stroke"], 0);
     assert!(v["max_error_m"].as_f64().unwrap() > 0.01);
+    // and the worst moment is the arm catching up with it: within a fraction
+    // of a second after the first stepped row (the reference starts to move
+    // towards it one row, 32 ms, earlier)
+    let (plain, stepped) = (synthetic::letter_job(), synthetic::step_job());
+    let first = (0..plain.samples.len())
+        .find(|&i| plain.samples.y_m[i] != stepped.samples.y_m[i])
+        .unwrap();
+    let t_step = stepped.samples.t_s[first];
+    let t_worst = v["worst"]["t_s"].as_f64().unwrap();
+    assert!(
+        t_worst >= t_step - stepped.control_period_s && t_worst <= t_step + 0.3,
+        "worst at {t_worst} s, step at {t_step} s"
+    );
+}
+
+#[test]
+fn setpoints_at_a_limit_are_not_failed_by_the_interpolation_between_them() {
+    // Every extension setpoint is within reach, the first ones exactly at its
+    // lower limit; the reference between rows must not dip below it, and the
+    // setpoint limit is judged on the rows themselves.
+    let dir = tempfile::tempdir().unwrap();
+    let job = synthetic::retracted_then_extending_job();
+    let r_min = job.robot.limits.extension_m.min;
+    assert!(job.samples.extension_m.iter().all(|&r| r >= r_min - 1e-12));
+    let p = write_job(&dir, "retracted.job.json", &job);
+    let csv = dir.path().join("tr.csv");
+    let out = basr()
+        .arg("simulate")
+        .arg(&p)
+        .arg("--json")
+        .arg("--trace")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let kinds: Vec<&str> = v["limits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["kind"].as_str().unwrap())
+        .collect();
+    assert!(
+        !kinds.contains(&"setpoint_extension"),
+        "{kinds:?}: {}",
+        v["reasons"]
+    );
+    let mut rd = csv::Reader::from_path(&csv).unwrap();
+    let col = rd
+        .headers()
+        .unwrap()
+        .iter()
+        .position(|h| h == "extension_desired_m")
+        .unwrap();
+    let lowest = rd
+        .records()
+        .map(|r| r.unwrap()[col].parse::<f64>().unwrap())
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        lowest >= r_min - 1e-9,
+        "reference dipped to {lowest} below {r_min}"
+    );
+}
+
+#[test]
+fn an_empty_or_cut_job_is_named_once_and_as_what_it_is() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty.job.json");
+    std::fs::write(&empty, "").unwrap();
+    let cut = dir.path().join("cut.job.json");
+    std::fs::write(&cut, "{\"format\": \"basr-job\", \"samp").unwrap();
+    for (job, says) in [(&empty, "is empty"), (&cut, "truncated")] {
+        let out = basr().arg("simulate").arg(job).output().unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{err}");
+        assert!(
+            !err.contains("is empty") || !err.contains("truncated"),
+            "{err}"
+        );
+        assert!(
+            err.matches("EOF while parsing").count() <= 1,
+            "said twice: {err}"
+        );
+    }
 }
 
 #[test]
@@ -149,6 +233,31 @@ fn trace_and_svg_are_written() {
     let s = std::fs::read_to_string(&svg).unwrap();
     let tree = resvg::usvg::Tree::from_str(&s, &Default::default()).unwrap();
     assert!(tree.size().width() > 100.0);
+    // Axes with units on both plots, the worst point marked on both, and the
+    // desired path drawn before (under) the actual one, so both show.
+    for label in [
+        "x (m)",
+        "y (m)",
+        "time (s)",
+        "nozzle error (mm)",
+        "tolerance 6.35 mm",
+    ] {
+        assert!(s.contains(label), "no {label:?}");
+    }
+    assert!(
+        s.matches("<circle").count() >= 3,
+        "worst marked on both plots and in the legend"
+    );
+    assert_eq!(
+        s.matches("worst while painting: ").count(),
+        2,
+        "in the legend and on the error plot"
+    );
+    let (desired, actual) = (s.find("#1f77b4").unwrap(), s.find("#d62728").unwrap());
+    assert!(
+        desired < actual,
+        "the desired path must not be drawn over by the actual"
+    );
 }
 
 #[test]
@@ -163,6 +272,30 @@ fn failed_output_leaves_no_file() {
         .assert()
         .code(2);
     assert!(!csv.exists());
+}
+
+#[test]
+fn a_failed_svg_removes_the_trace_written_before_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = write_job(&dir, "letter.job.json", &synthetic::letter_job());
+    let csv = dir.path().join("tr.csv");
+    basr()
+        .current_dir(dir.path())
+        .arg("simulate")
+        .arg(&job)
+        .arg("--trace")
+        .arg(&csv)
+        .arg("--svg")
+        .arg(dir.path().join("no-such-folder").join("x.svg"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("x.svg"));
+    let mut left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["letter.job.json"], "no trace, no temporary file");
 }
 
 #[test]

@@ -65,9 +65,17 @@ pub struct Args {
     pub fan_depth: String,
 
     /// Re-plan the job's message under each listed tilt method
-    /// (none, trapezoid, quadrilateral) and draw them side by side.
+    /// (none, trapezoid, quadrilateral) and draw them side by side. The
+    /// re-planned jobs use the job's robot description, font, letter
+    /// height, lane width and period; options the job does not record
+    /// (rung spacing, line gap, gun lead/lag) take compile's defaults.
     #[arg(long, value_name = "METHODS", value_delimiter = ',')]
     pub compare: Vec<String>,
+
+    /// With --compare: the font file the job was compiled with, when it is
+    /// not the embedded font (its sha256 must match the job's).
+    #[arg(long, value_name = "F")]
+    pub font: Option<String>,
 
     /// Preview the film the arm would actually lay: run the job through the
     /// closed-loop simulator (`basr simulate`, default sjct controller) and
@@ -75,6 +83,17 @@ pub struct Args {
     #[arg(long, conflicts_with = "compare")]
     pub from_sim: bool,
 }
+
+/// Finest raster cell, mm. A sixth of the fan sheet's default σ = 6 mm and
+/// a tenth of the 90→10 % edge widths measured (9–10 mm on STOP): finer
+/// shows nothing new; STOP took 23 s at 1 mm and 3.5 min (560 MB) at 0.5 mm.
+const MIN_RESOLUTION_MM: f64 = 1.0;
+/// Coarsest raster cell, mm: a fifth of the narrowest stroke of an 8 ft
+/// letter (one grid unit, 2.44 m / 25 = 97.6 mm; SPEC §4 layout). Coarser,
+/// few cells lie inside a stroke with all their neighbours: STOP's cv 0.070
+/// at 5 mm read 0.017 at 25 mm and overspray 0.026 → 0.077, and at 10⁹ mm
+/// the metrics were empty.
+const MAX_RESOLUTION_MM: f64 = 20.0;
 
 /// `STOP.job.json` → `STOP.svg` in the current folder.
 fn default_output(job: &Path) -> PathBuf {
@@ -98,13 +117,57 @@ fn parse_tilt(s: &str) -> anyhow::Result<Tilt> {
     }
 }
 
-/// The job re-planned with another tilt method, keeping its message, letter
-/// height and lane width.
-fn replan(job: &Job, tilt: Tilt) -> anyhow::Result<Job> {
+/// What `--compare` carries from the job into the re-planned ones, and
+/// what it cannot: the job does not record these compile options, so the
+/// re-planned jobs use compile's defaults for them.
+const REPLANNED_FROM: &str = "the job's message, robot description, font, letter height, \
+     lane width and setpoint period";
+const NOT_RECORDED: &str = "rung spacing, line gap, gun lead/lag, reach margin and a marking \
+     file's anchor (the job does not record them): compile's defaults";
+
+/// The font to re-plan `job` with: the embedded one if the job was compiled
+/// with it, else `--font`, which must be the job's font.
+fn replan_font(job: &Job, origin: &str, font: Option<&str>) -> anyhow::Result<Option<String>> {
+    use basr::font::Font;
+    let want = &job.font;
+    match font {
+        None if want.sha256 == Font::embedded().sha256 => Ok(None),
+        None => anyhow::bail!(
+            "{origin}: --compare re-plans the job, which was compiled with the font {:?} \
+             (sha256 {}), not the embedded font; pass that font file with --font FILE",
+            want.name,
+            want.sha256
+        ),
+        Some(f) => {
+            let given = Font::from_name_or_path(f).map_err(|e| anyhow::anyhow!("--font: {e}"))?;
+            anyhow::ensure!(
+                given.sha256 == want.sha256,
+                "{origin}: --font {f} (sha256 {}) is not the font the job was compiled with \
+                 ({:?}, sha256 {}); pass that font file, or leave --font out for the embedded font",
+                given.sha256,
+                want.name,
+                want.sha256
+            );
+            Ok(Some(f.to_string()))
+        }
+    }
+}
+
+/// The job re-planned with another tilt method, with its own robot
+/// description, font, message, letter height, lane width and period.
+fn replan(job: &Job, tilt: Tilt, font: Option<String>) -> anyhow::Result<Job> {
+    use basr::robot::Robot;
+    // The job's description passed its hash check; read it back through the
+    // validator so a sealed job with a broken robot is refused, not planned.
+    let robot = Robot::from_toml_str(&job.robot.to_toml_string(), "the job's robot description")
+        .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
     let mut req = CompileRequest::message(&job.message.replace('\n', " "));
     req.source = Source::Message(job.message.replace('\n', " "));
     req.overrides.letter_height_m = Some(job.layout.letter_height_m);
     req.overrides.lane_width_m = Some(job.layout.lane_width_m);
+    req.robot_description = Some(robot);
+    req.font = font;
+    req.period_s = job.control_period_s;
     req.tilt = tilt;
     compile_job(&req).with_context(|| {
         format!(
@@ -116,36 +179,75 @@ fn replan(job: &Job, tilt: Tilt) -> anyhow::Result<Job> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
-    if !(args.resolution_mm.is_finite() && args.resolution_mm > 0.0) {
+    let r = args.resolution_mm;
+    if !(r.is_finite() && r > 0.0) {
         anyhow::bail!(
-            "--resolution-mm {}: give a cell size in millimetres above zero, e.g. 5",
-            args.resolution_mm
+            "--resolution-mm {r}: give a cell size in millimetres above zero, \
+             from {MIN_RESOLUTION_MM} to {MAX_RESOLUTION_MM} (default 5)"
         );
     }
+    anyhow::ensure!(
+        r >= MIN_RESOLUTION_MM,
+        "--resolution-mm {r} is finer than the {MIN_RESOLUTION_MM} mm minimum: the film's \
+         detail is the fan sheet's (σ 6 mm) and its edges' (≈ 10 mm), and finer cells only \
+         cost time and memory (STOP at 0.5 mm: 3.5 min, 560 MB); give {MIN_RESOLUTION_MM} \
+         to {MAX_RESOLUTION_MM}"
+    );
+    anyhow::ensure!(
+        r <= MAX_RESOLUTION_MM,
+        "--resolution-mm {r} is coarser than the {MAX_RESOLUTION_MM} mm maximum: cells wider \
+         than a fifth of a one-unit stroke (98 mm at 8 ft) leave too few cells inside the \
+         letters for coverage, cv and overspray to describe the film; give \
+         {MIN_RESOLUTION_MM} to {MAX_RESOLUTION_MM}"
+    );
     let opts = Options {
         resolution_m: args.resolution_mm / 1000.0,
         profile: Profile::parse(&args.profile)?,
         depth: Depth::parse(&args.fan_depth)?,
     };
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| default_output(&args.job));
+    let mut inputs: Vec<(&str, &std::path::Path)> = vec![("the job", &args.job)];
+    if let Some(f) = &args.font {
+        inputs.push(("the font file (--font)", std::path::Path::new(f)));
+    }
+    super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
     let job = Job::read(&args.job)?;
-    let jobs: Vec<Job> = if args.compare.is_empty() {
-        vec![job]
+    let origin = args.job.display().to_string();
+    // (job, re-planned from the one given)
+    let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {
+        vec![(job, false)]
     } else {
+        let tilts: Vec<Tilt> = args
+            .compare
+            .iter()
+            .map(|m| parse_tilt(m))
+            .collect::<anyhow::Result<_>>()?;
+        let font = if tilts.iter().any(|t| t.name() != job.layout.tilt_method) {
+            replan_font(&job, &origin, args.font.as_deref())?
+        } else {
+            None
+        };
         let mut v = Vec::new();
-        for m in &args.compare {
-            let tilt = parse_tilt(m)?;
+        for tilt in tilts {
             if job.layout.tilt_method == tilt.name() {
-                v.push(job.clone());
+                v.push((job.clone(), false));
             } else {
-                v.push(replan(&job, tilt)?);
+                v.push((replan(&job, tilt, font.clone())?, true));
             }
         }
         v
     };
-    let origin = args.job.display().to_string();
+    let replanned_lines = [
+        ("re-planned from".to_string(), REPLANNED_FROM.to_string()),
+        ("not carried".to_string(), NOT_RECORDED.to_string()),
+    ];
+    let replanned_note = format!("re-planned from {REPLANNED_FROM}; not carried: {NOT_RECORDED}");
     let previews: Vec<Preview> = jobs
         .iter()
-        .map(|j| {
+        .map(|(j, _)| {
             if args.from_sim {
                 preview_simulated(j, &opts)
             } else {
@@ -157,24 +259,25 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let panels: Vec<Panel> = jobs
         .iter()
         .zip(&previews)
-        .map(|(job, preview)| Panel { job, preview })
+        .map(|((job, re), preview)| Panel {
+            job,
+            preview,
+            replanned: re.then_some(&replanned_lines[..]),
+        })
         .collect();
-    let out = args
-        .output
-        .clone()
-        .unwrap_or_else(|| default_output(&args.job));
-    let title = format!("basr preview: {}", jobs[0].message.replace('\n', " / "));
+    let title = format!("basr preview: {}", jobs[0].0.message.replace('\n', " / "));
     let svg = preview::render_svg(&panels, &title);
     basr::io::write_atomic(&out, svg.as_bytes())?;
 
     if !global.quiet {
-        for (j, p) in jobs.iter().zip(&previews) {
+        for ((j, re), p) in jobs.iter().zip(&previews) {
             let m = &p.metrics;
             let f = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{:.3}", v));
             note!(
-                "{} [tilt {}]: coverage {}, cv {}, overspray {}, mean film {} µm (target {:.0}), U {}–{}",
+                "{} [tilt {}{}]: coverage {}, cv {}, overspray {}, mean film {} µm (target {:.0}), U {}–{}",
                 origin,
                 j.layout.tilt_method,
+                if *re { ", re-planned" } else { "" },
                 f(m.coverage),
                 f(m.cv),
                 f(m.overspray),
@@ -184,6 +287,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 f(m.u_max),
             );
         }
+        if jobs.iter().any(|(_, re)| *re) {
+            note!("note: {replanned_note}");
+        }
         note!("wrote {}", out.display());
     }
     if args.json {
@@ -191,12 +297,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let reports: Vec<JsonReport> = jobs
             .iter()
             .zip(&previews)
-            .map(|(j, p)| JsonReport {
+            .map(|((j, re), p)| JsonReport {
                 job: &origin,
                 message: &j.message,
                 tilt_method: &j.layout.tilt_method,
                 profile: &p.profile,
                 svg: Some(&svg_name),
+                replanned: re.then_some(replanned_note.as_str()),
                 metrics: &p.metrics,
             })
             .collect();
@@ -212,8 +319,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
 
 /// The film from the simulated arm: each 5 ms trace tick gives the actual
 /// nozzle position on the road; height, fan direction and tilt are the
-/// planned ones corrected by the simulated joints' deviations.
+/// planned ones (the job's rows, interpolated linearly as the preview of a
+/// compiled job interpolates between them) corrected by the simulated
+/// joints' deviations. U is measured on tiles at the job's own setpoint
+/// times (the actual pose interpolated between ticks), so it compares with
+/// the compiled job's U; tiles between 5 ms ticks, 0.8 mm apart, were
+/// twisted end to end by servo jitter and spanned U 0.00–1.00 on STOP.
 fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
+    use basr::paint::spray::{equivalent_fan, Pose};
     use basr::sim;
     let model = sim::SimModel::from_robot(&job.robot)
         .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
@@ -224,33 +337,106 @@ fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
         substeps: None,
     };
     let outcome = sim::simulate(job, &model, &sim_opts, &mut |_, _| {})?;
+    let trace = &outcome.trace;
     let s = &job.samples;
-    let last = s.len().saturating_sub(1);
+    let n = s.len();
+    anyhow::ensure!(n > 0 && !trace.is_empty(), "the job has no setpoints");
+    let dt = job.control_period_s;
+    let lerp = |a: f64, b: f64, f: f64| a + f * (b - a);
+    // The planned (z, ψ, β) at time t, linear between rows.
+    let planned = |t: f64| -> (f64, f64, f64) {
+        let u = (t / dt).max(0.0);
+        let i = (u.floor() as usize).min(n - 1);
+        let j = (i + 1).min(n - 1);
+        let f = (u - i as f64).clamp(0.0, 1.0);
+        let (yaw_j, tilt_j) = equivalent_fan(s.yaw_rad[i], s.yaw_rad[j], s.tilt_rad[j]);
+        (
+            lerp(s.z_m[i], s.z_m[j], f),
+            lerp(s.yaw_rad[i], yaw_j, f),
+            lerp(s.tilt_rad[i], tilt_j, f),
+        )
+    };
+    // What the simulated joints add at a tick: the actual nozzle point, and
+    // the deviations of height, fan direction and tilt from the planned.
     let tilt_of = |nut: f64| job.robot.tilt_from_nut(nut).ok();
-    let mut poses = Vec::with_capacity(outcome.trace.len());
-    let mut strokes = Vec::with_capacity(outcome.trace.len());
-    for r in &outcome.trace {
-        let i = ((r.t_s / job.control_period_s).floor().max(0.0) as usize).min(last);
-        let d = s
-            .row(i)
-            .ok_or_else(|| anyhow::anyhow!("the job has no setpoints"))?;
-        let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
-            (Some(a), Some(b)) => a - b,
-            _ => 0.0,
+    let actual: Vec<[f64; 5]> = trace
+        .iter()
+        .map(|r| {
+            let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
+                (Some(a), Some(b)) => a - b,
+                _ => 0.0,
+            };
+            [
+                r.x_m,
+                r.y_m,
+                // Vertical joint is positive down (SPEC §3).
+                -(r.vertical_m - r.vertical_desired_m),
+                (r.ee_yaw_rad - r.ee_yaw_desired_rad) + (r.base_rot_rad - r.base_rot_desired_rad),
+                tilt_error,
+            ]
+        })
+        .collect();
+    let pose = |t: f64, a: &[f64; 5], plan: (f64, f64, f64), gun: bool| Pose {
+        t_s: t,
+        x_m: a[0],
+        y_m: a[1],
+        z_m: plan.0 + a[2],
+        yaw_rad: plan.1 + a[3],
+        tilt_rad: plan.2 + a[4],
+        gun,
+    };
+    let poses: Vec<Pose> = trace
+        .iter()
+        .zip(&actual)
+        .map(|(r, a)| pose(r.t_s, a, planned(r.t_s), r.paint == 1))
+        .collect();
+    // Tiles: one pose per job row, the actual interpolated between ticks.
+    let last = trace.len() - 1;
+    let rows: Vec<Pose> = (0..n)
+        .map(|i| {
+            let t = s.t_s[i];
+            let k = trace
+                .partition_point(|r| r.t_s <= t)
+                .saturating_sub(1)
+                .min(last);
+            let k1 = (k + 1).min(last);
+            let span = trace[k1].t_s - trace[k].t_s;
+            let f = if span > 0.0 {
+                ((t - trace[k].t_s) / span).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let a: [f64; 5] = std::array::from_fn(|c| lerp(actual[k][c], actual[k1][c], f));
+            let plan = (s.z_m[i], s.yaw_rad[i], s.tilt_rad[i]);
+            pose(t, &a, plan, s.paint[i] != 0)
+        })
+        .collect();
+    // ...thinned to the sheet's depth of nozzle travel (36 mm at the default
+    // σ = 6 mm), at least a raster cell. The film at a point is laid by
+    // every pose whose sheet passes over it, so it cannot show what happens
+    // within less travel than that; the arm's wobble does (its 9 Hz linkage
+    // mode, 001 table 3.2, has an 18 mm wavelength at 0.16 m/s and turns the
+    // nozzle's direction by ±20° within a 5 mm row), and tiles of one row
+    // measured it: U 0.03–0.97 on STOP. For a constant curvature U does not
+    // depend on a tile's length, so the longer tiles keep the compiled job's
+    // U. A new stroke or gun state always starts a tile.
+    let tile_travel_m = opts.resolution_m.max(2.0 * opts.depth.reach_m());
+    let mut tiles: Vec<Pose> = Vec::with_capacity(n);
+    let mut tile_strokes: Vec<i64> = Vec::with_capacity(n);
+    for (i, p) in rows.iter().enumerate() {
+        let keep = match (tiles.last(), tile_strokes.last()) {
+            (Some(q), Some(&st)) => {
+                st != s.stroke[i]
+                    || q.gun != p.gun
+                    || i + 1 == n
+                    || (p.x_m - q.x_m).hypot(p.y_m - q.y_m) >= tile_travel_m
+            }
+            _ => true,
         };
-        poses.push(basr::paint::spray::Pose {
-            t_s: r.t_s,
-            x_m: r.x_m,
-            y_m: r.y_m,
-            // Vertical joint is positive down (SPEC §3).
-            z_m: d.z_m - (r.vertical_m - r.vertical_desired_m),
-            yaw_rad: d.yaw_rad
-                + (r.ee_yaw_rad - r.ee_yaw_desired_rad)
-                + (r.base_rot_rad - r.base_rot_desired_rad),
-            tilt_rad: d.tilt_rad + tilt_error,
-            gun: r.paint == 1,
-        });
-        strokes.push(r.stroke);
+        if keep {
+            tiles.push(*p);
+            tile_strokes.push(s.stroke[i]);
+        }
     }
     let outlines: Vec<_> = job
         .layout
@@ -258,8 +444,13 @@ fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
         .iter()
         .map(basr::paint::metrics::GlyphOutline::from_placed)
         .collect();
-    Ok(preview::preview_poses(
-        &poses, &strokes, &outlines, &job.paint, opts,
+    Ok(preview::preview_tiled(
+        &poses,
+        &tiles,
+        &tile_strokes,
+        &outlines,
+        &job.paint,
+        opts,
     )?)
 }
 

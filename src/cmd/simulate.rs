@@ -85,6 +85,18 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             args.tolerance_mm
         );
     }
+    let mut outputs: Vec<(&str, &std::path::Path)> = vec![];
+    if let Some(p) = &args.trace {
+        outputs.push(("--trace", p));
+    }
+    if let Some(p) = &args.svg {
+        outputs.push(("--svg", p));
+    }
+    let mut inputs: Vec<(&str, &std::path::Path)> = vec![("the job", &args.job)];
+    if let Some(p) = &args.robot {
+        inputs.push(("the robot file (--robot)", p));
+    }
+    super::refuse_clashes(&outputs, &inputs)?;
     let job = basr::job::Job::read(&args.job)?;
     let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
@@ -131,6 +143,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     bar.finish_and_clear();
     let report = &outcome.report;
 
+    // Both outputs or neither: main renames them into place together, or
+    // drops both when the SVG (or anything else) fails.
     if let Some(p) = &args.trace {
         basr::io::write_atomic_with(p, |w| {
             let mut out = csv::Writer::from_writer(w);

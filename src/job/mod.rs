@@ -26,12 +26,15 @@ pub const VERSION: u32 = 1;
 /// Errors from reading or verifying a job.
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
-    #[error("{path}: not valid JSON ({source}); the file is truncated or was edited by hand: compile it again")]
+    // The parser's detail is in the message, not a `#[source]`: main prints
+    // the source chain after the message, which repeated it.
+    #[error("{path}: not valid JSON ({detail}); the file is truncated or was edited by hand: compile it again")]
     Syntax {
         path: String,
-        #[source]
-        source: serde_json::Error,
+        detail: serde_json::Error,
     },
+    #[error("{path} is empty: it holds no job; compile it again")]
+    Empty { path: String },
     #[error("{path}: not a basr job (format is {found}, expected \"basr-job\"); give a job written by `basr compile`")]
     Format { path: String, found: String },
     #[error("{path}: job version {found} is not known to this basr (it reads version {VERSION}); use the basr that wrote it or compile it again")]
@@ -48,11 +51,10 @@ pub enum JobError {
         stated: String,
         actual: String,
     },
-    #[error("{path}: job structure invalid: {source}")]
+    #[error("{path}: job structure invalid: {detail}")]
     Structure {
         path: String,
-        #[source]
-        source: serde_json::Error,
+        detail: serde_json::Error,
     },
     #[error("{path}: job invalid: {what}")]
     Invalid { path: String, what: String },
@@ -354,8 +356,11 @@ impl Job {
     /// Parse and verify a job from text; `path` is used in messages only.
     pub fn from_str_verified(text: &str, path: &str) -> Result<Job, JobError> {
         let p = || path.to_string();
+        if text.trim().is_empty() {
+            return Err(JobError::Empty { path: p() });
+        }
         let v: serde_json::Value =
-            serde_json::from_str(text).map_err(|source| JobError::Syntax { path: p(), source })?;
+            serde_json::from_str(text).map_err(|detail| JobError::Syntax { path: p(), detail })?;
         let format = v.get("format").map(|f| f.to_string()).unwrap_or_default();
         if v.get("format").and_then(|f| f.as_str()) != Some(FORMAT) {
             return Err(JobError::Format {
@@ -397,7 +402,7 @@ impl Job {
             });
         }
         let job: Job = serde_json::from_value(v)
-            .map_err(|source| JobError::Structure { path: p(), source })?;
+            .map_err(|detail| JobError::Structure { path: p(), detail })?;
         let robot_actual = job.robot.sha256();
         if robot_actual != job.robot_sha256 {
             return Err(JobError::RobotHash {
@@ -502,6 +507,13 @@ mod tests {
         let text = String::from_utf8(job.to_bytes()).unwrap();
         let err = Job::from_str_verified(&text[..text.len() / 2], "t").unwrap_err();
         assert!(matches!(err, JobError::Syntax { .. }));
+        // Said once: the parser's detail is not also the error's source.
+        let chain = format!("{:#}", anyhow::Error::from(err));
+        assert_eq!(chain.matches("EOF while parsing").count(), 1, "{chain}");
+        for empty in ["", " \n"] {
+            let err = Job::from_str_verified(empty, "t").unwrap_err();
+            assert!(err.to_string().contains("t is empty"), "{err}");
+        }
         let v2 = text.replacen("\"version\": 1", "\"version\": 2", 1);
         let err = Job::from_str_verified(&v2, "t").unwrap_err();
         assert!(matches!(err, JobError::Version { .. }), "{err}");

@@ -103,10 +103,27 @@ pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
     preview_poses(&poses, &job.samples.stroke, &outlines, &job.paint, opts)
 }
 
-/// Simulate and measure the film of any pose sequence (e.g. the simulator's
-/// trace) with `stroke_of[i]` the stroke index of pose i (−1 none).
+/// Simulate and measure the film of any pose sequence with `stroke_of[i]`
+/// the stroke index of pose i (−1 none); the tiles of U are its consecutive
+/// poses.
 pub fn preview_poses(
     poses: &[Pose],
+    stroke_of: &[i64],
+    outlines: &[GlyphOutline],
+    paint: &crate::job::Paint,
+    opts: &Options,
+) -> Result<Preview, PaintError> {
+    preview_tiled(poses, poses, stroke_of, outlines, paint, opts)
+}
+
+/// The film of `poses`, with U measured on the tiles between consecutive
+/// `tiles` (`stroke_of[i]` the stroke of `tiles[i]`). The simulator's trace
+/// deposits from every 5 ms tick, but its tiles are taken at the job's own
+/// setpoint times: a tile 0.8 mm long is twisted end to end by the servos'
+/// jitter, and its U says nothing about the paint's distribution.
+pub fn preview_tiled(
+    poses: &[Pose],
+    tiles: &[Pose],
     stroke_of: &[i64],
     outlines: &[GlyphOutline],
     paint: &crate::job::Paint,
@@ -123,7 +140,7 @@ pub fn preview_poses(
         opts.resolution_m,
         letters,
     )?;
-    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, poses, stroke_of)?;
+    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
     Ok(Preview {
         film,
         metrics,
@@ -137,6 +154,9 @@ pub fn preview_poses(
 pub struct Panel<'a> {
     pub job: &'a Job,
     pub preview: &'a Preview,
+    /// For a job re-planned from another (`--compare`): what it was
+    /// re-planned from, as header lines (key, value).
+    pub replanned: Option<&'a [(String, String)]>,
 }
 
 fn pct(v: Option<f64>) -> String {
@@ -270,14 +290,17 @@ fn page(panels: &[Panel]) -> Page {
         header.push((
             "spray".into(),
             format!(
-                "fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {:.1} mm",
+                "fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {} mm",
                 p.job.paint.fan_angle_rad.to_degrees(),
                 p.preview.profile,
                 p.job.paint.flow_m3ps * 60e3,
                 p.job.paint.transfer_efficiency,
-                p.preview.metrics.resolution_m * 1e3
+                super::raster::mm_text(p.preview.metrics.resolution_m)
             ),
         ));
+        if let Some(lines) = panels.iter().find_map(|p| p.replanned) {
+            header.extend(lines.iter().cloned());
+        }
         if panels.len() == 1 {
             header.extend(metric_lines(&p.preview.metrics));
         }
@@ -328,7 +351,15 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
             doc_g = doc_g.add(plot::title_block(
                 frame.left_px,
                 margin + pg.head_h,
-                &format!("tilt: {}", p.job.layout.tilt_method),
+                &format!(
+                    "tilt: {}{}",
+                    p.job.layout.tilt_method,
+                    if p.replanned.is_some() {
+                        " (re-planned)"
+                    } else {
+                        ""
+                    }
+                ),
                 &metric_lines(&p.preview.metrics),
             ));
         }
@@ -565,6 +596,10 @@ pub struct JsonReport<'a> {
     pub tilt_method: &'a str,
     pub profile: &'a str,
     pub svg: Option<&'a str>,
+    /// For a job re-planned by `--compare`: from what, and what the job
+    /// does not record (so compile's defaults were used).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replanned: Option<&'a str>,
     #[serde(flatten)]
     pub metrics: &'a Metrics,
 }

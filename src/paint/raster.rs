@@ -86,6 +86,22 @@ pub struct Grid {
     pub data: Vec<f64>,
 }
 
+/// A length in millimetres with four significant digits, trailing zeros
+/// dropped (`5`, `2.5`, `0.0125`): a cell of 0.01 mm is not "0.0 mm".
+pub fn mm_text(m: f64) -> String {
+    let mm = m * 1000.0;
+    if !(mm.is_finite() && mm > 0.0) {
+        return format!("{mm}");
+    }
+    let decimals = (3 - mm.log10().floor() as i64).clamp(0, 12) as usize;
+    let s = format!("{mm:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
 impl Grid {
     /// An empty grid covering `b` with cells of `cell_m`, aligned to
     /// multiples of `cell_m` so that grids of one resolution line up.
@@ -104,11 +120,11 @@ impl Grid {
         let ny = ((b.max[1] / cell_m).ceil() - j0).max(1.0);
         if nx * ny > MAX_CELLS as f64 {
             return Err(PaintError::Model(format!(
-                "a {:.2} m × {:.2} m raster at {:.1} mm needs {:.0} cells (limit {MAX_CELLS}); \
+                "a {:.2} m × {:.2} m raster at {} mm needs {:.0} cells (limit {MAX_CELLS}); \
                  use a coarser --resolution-mm",
                 b.width(),
                 b.height(),
-                cell_m * 1000.0,
+                mm_text(cell_m),
                 nx * ny
             )));
         }
@@ -240,10 +256,7 @@ fn footprint_bounds(fp: &Footprint) -> Bounds {
 }
 
 fn depth_reach(model: &SprayModel) -> f64 {
-    match model.depth {
-        super::spray::Depth::Gaussian { sigma_m } => 3.0 * sigma_m,
-        super::spray::Depth::TopHat { width_m } => width_m / 2.0,
-    }
+    model.depth.reach_m()
 }
 
 /// Road-frame extent of everything `poses` paint (empty when the gun is
@@ -435,6 +448,15 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn millimetres_are_printed_with_their_digits() {
+        assert_eq!(mm_text(0.005), "5");
+        assert_eq!(mm_text(0.0025), "2.5");
+        assert_eq!(mm_text(1e-5), "0.01");
+        assert_eq!(mm_text(1.25e-5), "0.0125");
+        assert_eq!(mm_text(1e3), "1000000");
+    }
     use crate::paint::spray::{Depth, Profile};
 
     const ALPHA: f64 = 63.5 * std::f64::consts::PI / 180.0; // SPEC §4

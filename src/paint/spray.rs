@@ -23,6 +23,12 @@ pub const MAX_RAY_ANGLE_RAD: f64 = 85.0 * std::f64::consts::PI / 180.0;
 // assumed: flat-fan sheets are roughly 1–2 cm thick where they meet the road
 // at 0.1–0.35 m stand-off; σ = 6 mm gives a 90 %→10 % cap edge of ≈ 15 mm.
 pub const DEFAULT_DEPTH_SIGMA_M: f64 = 0.006;
+/// Farthest the sheet may reach along the travel, either side (3σ or half
+/// the top hat), m. assumed: a flat fan's sheet is a centimetre or two deep
+/// (see `DEFAULT_DEPTH_SIGMA_M`); one
+/// reaching farther than half the longest rung the default font paints
+/// (0.41 m at 8 ft, SPEC §4) is no flat fan, and only grows the raster.
+pub const MAX_DEPTH_REACH_M: f64 = 0.2;
 
 /// Intervals of the numeric CDF table used by the measured-style profiles.
 const CDF_TABLE_INTERVALS: usize = 4096;
@@ -212,14 +218,35 @@ impl Depth {
             .ok()
             .filter(|v: &f64| v.is_finite() && *v >= 0.0)
             .ok_or_else(|| bad("the size must be a number of millimetres ≥ 0"))?;
-        match kind.trim() {
-            "gauss" => Ok(Depth::Gaussian {
+        let depth = match kind.trim() {
+            "gauss" => Depth::Gaussian {
                 sigma_m: mm / 1000.0,
-            }),
-            "tophat" => Ok(Depth::TopHat {
+            },
+            "tophat" => Depth::TopHat {
                 width_m: mm / 1000.0,
-            }),
-            _ => Err(bad("expected gauss:MM or tophat:MM")),
+            },
+            _ => return Err(bad("expected gauss:MM or tophat:MM")),
+        };
+        if depth.reach_m() > MAX_DEPTH_REACH_M {
+            return Err(bad(&format!(
+                "the sheet would reach {} mm either side of the fan; a flat fan's sheet \
+                 reaches at most {:.0} mm (tophat:{:.0}, gauss:{:.1} at most; default gauss:{})",
+                super::raster::mm_text(depth.reach_m()),
+                MAX_DEPTH_REACH_M * 1000.0,
+                2.0 * MAX_DEPTH_REACH_M * 1000.0,
+                MAX_DEPTH_REACH_M / 3.0 * 1000.0,
+                DEFAULT_DEPTH_SIGMA_M * 1000.0,
+            )));
+        }
+        Ok(depth)
+    }
+
+    /// How far the sheet reaches either side of its centre line (m): 3σ
+    /// (99.7 % of a Gaussian) or half the top hat.
+    pub fn reach_m(&self) -> f64 {
+        match *self {
+            Depth::Gaussian { sigma_m } => 3.0 * sigma_m,
+            Depth::TopHat { width_m } => width_m / 2.0,
         }
     }
 
@@ -629,6 +656,9 @@ mod tests {
         assert!(Profile::parse("cone").is_err());
         assert!(Depth::parse("gauss").is_err());
         assert!(Depth::parse("tophat:-1").is_err());
+        let vast = Depth::parse("tophat:1e9").unwrap_err().to_string();
+        assert!(vast.contains("500000000 mm either side") && !vast.contains("resolution"));
+        assert!(Depth::parse("gauss:66.6").is_ok() && Depth::parse("gauss:67").is_err());
         assert_eq!(
             Depth::parse("tophat:20").unwrap(),
             Depth::TopHat { width_m: 0.02 }

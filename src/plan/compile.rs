@@ -64,6 +64,9 @@ pub struct CompileRequest {
     pub font: Option<String>,
     /// Robot description file; `None` = the embedded BASR.
     pub robot: Option<PathBuf>,
+    /// A robot description already in hand (a job's own, when preview
+    /// re-plans it); used instead of `robot` when set.
+    pub robot_description: Option<Robot>,
     pub tilt: Tilt,
     /// Largest distance between consecutive rungs (m).
     pub rung_spacing_m: f64,
@@ -87,6 +90,7 @@ impl CompileRequest {
             overrides: Overrides::default(),
             font: None,
             robot: None,
+            robot_description: None,
             tilt: Tilt::default(),
             rung_spacing_m: DEFAULT_RUNG_SPACING_M,
             period_s: DEFAULT_PERIOD_S,
@@ -168,8 +172,11 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
         Source::Message(m) => Marking::from_message(m, &req.overrides)?,
         Source::Marking { text, origin } => Marking::from_toml(text, origin, &req.overrides)?,
     };
-    let robot = Robot::load_or_default(req.robot.as_deref())
-        .map_err(|e| CompileError::Robot(e.to_string()))?;
+    let robot = match &req.robot_description {
+        Some(r) => r.clone(),
+        None => Robot::load_or_default(req.robot.as_deref())
+            .map_err(|e| CompileError::Robot(e.to_string()))?,
+    };
     let owned_font;
     let font: &Font = match &req.font {
         None => Font::embedded(),

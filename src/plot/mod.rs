@@ -300,7 +300,13 @@ pub fn axes(frame: &Frame, tick_m: f64) -> Group {
             .add(text(x0 - 6.0, py + 3.5, &num(v), 10.0, "end"));
     }
     g.add(text((x0 + x1) / 2.0, y1 + 28.0, "x (m)", 10.0, "middle"))
-        .add(text(x0 - 30.0, (y0 + y1) / 2.0, "y (m)", 10.0, "middle"))
+        // Turned, so it clears tick labels as wide as "-1.5".
+        .add(
+            text(x0 - 34.0, (y0 + y1) / 2.0, "y (m)", 10.0, "middle").set(
+                "transform",
+                format!("rotate(-90 {} {})", num(x0 - 34.0), num((y0 + y1) / 2.0)),
+            ),
+        )
 }
 
 /// A title line followed by `key: value` lines, from (`x`, `y`) down.

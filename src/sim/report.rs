@@ -16,6 +16,51 @@ pub struct Place {
     pub y_m: f64,
 }
 
+impl Place {
+    /// `t = 12.345 s, stroke 3, road (0.120, 1.832) m`, or `air move` for
+    /// the stroke outside strokes.
+    pub fn describe(&self) -> String {
+        format!(
+            "t = {:.3} s, {}, road ({:.3}, {:.3}) m",
+            self.t_s,
+            self.stroke_name(),
+            self.x_m,
+            self.y_m
+        )
+    }
+
+    /// `stroke 3`, or `air move`.
+    pub fn stroke_name(&self) -> String {
+        if self.stroke < 0 {
+            "air move".into()
+        } else {
+            format!("stroke {}", self.stroke)
+        }
+    }
+}
+
+/// The unit a limit's values are printed in (they are stored in SI).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Unit {
+    /// An angle: rad and degrees.
+    Angle,
+    /// A length: mm.
+    Length,
+    /// A pressure: MPa.
+    Pressure,
+}
+
+impl Unit {
+    /// `value` (SI) with its unit.
+    pub fn show(self, value: f64) -> String {
+        match self {
+            Unit::Angle => format!("{value:.4} rad ({:.2}°)", value.to_degrees()),
+            Unit::Length => format!("{:.2} mm", value * 1e3),
+            Unit::Pressure => format!("{:.2} MPa", value / 1e6),
+        }
+    }
+}
+
 /// Error statistics of one stroke.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StrokeError {
@@ -121,10 +166,7 @@ impl Report {
             mm(self.rms_error_m),
             mm(self.tolerance_m)
         );
-        s += &format!(
-            "  worst at t = {:.3} s, stroke {}, road ({:.3}, {:.3}) m\n",
-            self.worst.t_s, self.worst.stroke, self.worst.x_m, self.worst.y_m
-        );
+        s += &format!("  worst at {}\n", self.worst.describe());
         s += &format!(
             "  whole job: max {:.3} mm, RMS {:.3} mm; waviness above {:.2} Hz: max {:.3} mm, RMS {:.3} mm\n",
             mm(self.max_error_all_m),
@@ -239,6 +281,24 @@ pub fn highpass_zero_phase(x: &mut [f64], cutoff_hz: f64, dt: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn places_and_limits_say_their_units_and_air_moves() {
+        let p = Place {
+            t_s: 1.5,
+            stroke: -1,
+            station: 0,
+            x_m: 0.1,
+            y_m: 2.0,
+        };
+        assert_eq!(p.describe(), "t = 1.500 s, air move, road (0.100, 2.000) m");
+        assert_eq!(Unit::Pressure.show(23_741_043.383), "23.74 MPa");
+        assert_eq!(Unit::Length.show(1.5487), "1548.70 mm");
+        assert_eq!(
+            Unit::Angle.show(std::f64::consts::FRAC_PI_4),
+            "0.7854 rad (45.00°)"
+        );
+    }
 
     #[test]
     fn highpass_keeps_fast_ripple_and_removes_slow_drift() {

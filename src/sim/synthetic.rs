@@ -90,10 +90,6 @@ pub fn ik(p: [f64; 2], a2: f64) -> (f64, f64) {
 /// at start and end. Setpoints every `period` s.
 pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
     let robot = Robot::basr();
-    let a2 = robot.arm.a2_m;
-    let k = robot.arm.pantograph_ratio;
-    let r0 = robot.arm.retracted_extension_m;
-    let nut0 = robot.end_effector.fourbar.nut_m(0.0).unwrap_or(0.0);
     let station = Station {
         x_m: 0.0,
         y_m: 6.0,
@@ -148,11 +144,8 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
 
     let total: f64 = segs.iter().map(|s| s.0).sum();
     let n = (total / period).ceil() as usize + 1;
-    let mut samples = Samples::default();
     let (mut seg, mut seg_t0) = (0usize, 0.0);
-    let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
-    let mut prev: Option<[f64; 2]> = None;
-    let mut paint_time = 0.0;
+    let mut rows = Vec::with_capacity(n);
     for i in 0..n {
         let t = i as f64 * period;
         while seg + 1 < segs.len() && t > seg_t0 + segs[seg].0 {
@@ -160,7 +153,32 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
             seg += 1;
         }
         let (_, f, paint, stroke) = &segs[seg];
-        let p = f(t - seg_t0);
+        rows.push((f(t - seg_t0), *paint, *stroke));
+    }
+    sealed(robot, station, &rows, strokes.len(), period)
+}
+
+/// A sealed job whose nozzle visits the base-frame points `rows` (point,
+/// gun on, stroke index), one per `period`, from `station`.
+fn sealed(
+    robot: Robot,
+    station: Station,
+    rows: &[([f64; 2], bool, i64)],
+    strokes: usize,
+    period: f64,
+) -> Job {
+    let a2 = robot.arm.a2_m;
+    let k = robot.arm.pantograph_ratio;
+    let r0 = robot.arm.retracted_extension_m;
+    let nut0 = robot.end_effector.fourbar.nut_m(0.0).unwrap_or(0.0);
+    let n = rows.len();
+    let mut samples = Samples::default();
+    let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
+    let mut prev: Option<[f64; 2]> = None;
+    let mut paint_time = 0.0;
+    for (i, (p, paint, stroke)) in rows.iter().enumerate() {
+        let t = i as f64 * period;
+        let p = *p;
         let (th, r) = ik(p, a2);
         let v = prev.map_or([0.0, 0.0], |q| {
             [(p[0] - q[0]) / period, (p[1] - q[1]) / period]
@@ -225,7 +243,7 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
             duration_s: (n - 1) as f64 * period,
             paint_time_s: paint_time,
             air_time_s: (n - 1) as f64 * period - paint_time,
-            strokes: strokes.len(),
+            strokes,
             paint_volume_m3: 0.0,
             warnings: vec![],
             balance: vec![],
@@ -276,6 +294,36 @@ pub fn step_job() -> Job {
     }
     j.seal();
     j
+}
+
+/// The arm held fully retracted (every extension setpoint exactly at the
+/// reach's lower limit) for 0.5 s, then extended by 0.5 m at the robot's
+/// full extension speed and held (a setpoint series that a curve through
+/// the rows overshoots below the limit at the corner).
+pub fn retracted_then_extending_job() -> Job {
+    let robot = Robot::basr();
+    let period = robot.control.period_s;
+    let a2 = robot.arm.a2_m;
+    let r_min = robot.limits.extension_m.min;
+    let speed = robot.limits.extension_m.max_vel;
+    let theta = std::f64::consts::FRAC_PI_2; // the arm's symmetry axis (SPEC §2)
+    let (sn, cs) = theta.sin_cos();
+    let hold = (0.5 / period).round() as usize;
+    let moving = (0.5 / speed / period).round() as usize;
+    let rows: Vec<([f64; 2], bool, i64)> = (0..2 * hold + moving)
+        .map(|i| {
+            let k = i.saturating_sub(hold).min(moving);
+            let r = r_min + speed * period * k as f64;
+            // W = R·(cos θ1, sin θ1) + a2·(sin θ1, −cos θ1) (SPEC §2)
+            ([r * cs + a2 * sn, r * sn - a2 * cs], false, -1)
+        })
+        .collect();
+    let station = Station {
+        x_m: 0.0,
+        y_m: 6.0,
+        heading_rad: -std::f64::consts::FRAC_PI_2,
+    };
+    sealed(robot, station, &rows, 0, period)
 }
 
 #[cfg(test)]

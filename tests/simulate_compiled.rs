@@ -1,0 +1,148 @@
+//! `basr simulate` on jobs that `basr compile` wrote, end to end through the
+//! binary: STOP as compiled by default passes; STOP compiled for a robot
+//! whose speed and acceleration limits are raised far beyond what the arm
+//! can do fails and says where.
+
+use std::path::Path;
+
+use assert_cmd::Command;
+
+fn basr(dir: &Path, args: &[&str]) -> std::process::Output {
+    Command::cargo_bin("basr")
+        .unwrap()
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn ok(out: &std::process::Output) {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn compiled_stop_passes_against_a_quarter_inch() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(&basr(dir.path(), &["compile", "STOP", "-q"]));
+    let out = basr(dir.path(), &["simulate", "STOP.job.json", "--json"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict"], "pass", "{}", v["reasons"]);
+    let max = v["max_error_m"].as_f64().unwrap();
+    // SPEC §4: 1/4 in
+    assert!(max > 0.0 && max < 0.00635, "max error {max} m");
+    assert!(v["limits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(|l| l["fails"] == false));
+}
+
+/// `basr robot --toml` with every joint's `max_vel` and `max_acc` × `factor`.
+fn robot_with_limits_times(dir: &Path, factor: f64) -> String {
+    let out = basr(dir, &["robot", "--toml"]);
+    ok(&out);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut section = String::new();
+    let mut changed = 0;
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if l.starts_with('[') {
+                section = l.to_string();
+            }
+            let key = l.split('=').next().unwrap_or("").trim();
+            if section.starts_with("[limits.") && (key == "max_vel" || key == "max_acc") {
+                let v: f64 = l.split('=').nth(1).unwrap().trim().parse().unwrap();
+                changed += 1;
+                format!("{key} = {:?}", v * factor)
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    assert_eq!(changed, 10, "five joints, two limits each");
+    lines.join("\n") + "\n"
+}
+
+#[test]
+fn a_job_compiled_far_beyond_the_arm_fails_and_says_where() {
+    let dir = tempfile::tempdir().unwrap();
+    let fast = robot_with_limits_times(dir.path(), 100.0);
+    std::fs::write(dir.path().join("fast.toml"), fast).unwrap();
+    ok(&basr(
+        dir.path(),
+        &[
+            "compile",
+            "STOP",
+            "--robot",
+            "fast.toml",
+            "-o",
+            "fast.job.json",
+            "-q",
+        ],
+    ));
+
+    let out = basr(
+        dir.path(),
+        &[
+            "simulate",
+            "fast.job.json",
+            "--robot",
+            "fast.toml",
+            "--json",
+        ],
+    );
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict"], "fail");
+    assert!(v["max_error_m"].as_f64().unwrap() > 0.00635);
+    // where: a painted stroke and a time inside the job
+    let worst = &v["worst"];
+    assert!(worst["stroke"].as_i64().unwrap() >= 0, "{worst}");
+    let t = worst["t_s"].as_f64().unwrap();
+    assert!(
+        t >= 0.0 && t <= v["duration_s"].as_f64().unwrap(),
+        "{worst}"
+    );
+    let reason = v["reasons"][0].as_str().unwrap();
+    assert!(
+        reason.contains("stroke") && reason.contains("t = "),
+        "{reason}"
+    );
+    // Limits say their unit, and an air move by name (not "stroke -1").
+    let limits = v["limits"].as_array().unwrap();
+    assert!(!limits.is_empty());
+    for l in limits {
+        let m = l["message"].as_str().unwrap();
+        assert!(
+            m.contains(" MPa") || m.contains(" mm") || m.contains(" rad"),
+            "{m}"
+        );
+        assert!(!m.contains("stroke -1"), "{m}");
+    }
+
+    // The same job against the embedded robot is refused: it was sealed for
+    // the fast description.
+    let out = basr(dir.path(), &["simulate", "fast.job.json"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("another robot") && err.contains("--robot"),
+        "{err}"
+    );
+}
