@@ -54,6 +54,11 @@ fn kind_of(text: &str) -> Option<Kind> {
 
 /// Problems in one file's text (empty when valid).
 fn problems(text: &str, origin: &str) -> Vec<String> {
+    if text.trim().is_empty() {
+        return vec![format!(
+            "{origin}: the file is empty: give a job, setpoint CSV, font, robot or marking file"
+        )];
+    }
     match kind_of(text) {
         Some(Kind::Job) => match basr::job::Job::from_str_verified(text, origin) {
             Ok(job) => basr::job::verify::problems(&job, origin),
