@@ -20,16 +20,20 @@ fuzz_target!(|data: &[u8]| {
         .collect();
     let unit = |b: u8| f64::from(b) / 255.0;
     let mut req = CompileRequest::message(&message);
-    req.overrides.letter_height_m = Some(0.3 + 4.7 * unit(opts[0])); // 1 to 16 ft
-    req.overrides.lane_width_m = Some(2.0 + 8.0 * unit(opts[1]));
+    // The command line's ranges (`basr compile --help`): letter height
+    // 0.3–10 m (layout::LETTER_HEIGHT_RANGE_M), lane width above 0 and at
+    // most 30 m (MAX_LANE_WIDTH_M), rung spacing 1–100 mm, period
+    // 0.005–0.1 s, gun lead and lag 0–1 s; both ends of each are drawn.
+    req.overrides.letter_height_m = Some(0.3 + 9.7 * unit(opts[0]));
+    req.overrides.lane_width_m = Some(30.0 * (f64::from(opts[1]) + 1.0) / 256.0);
     req.tilt = match opts[2] % 3 {
         0 => Tilt::None,
         1 => Tilt::Trapezoid,
         _ => Tilt::Quadrilateral,
     };
-    req.rung_spacing_m = 1e-3 * (1.0 + 99.0 * unit(opts[3])); // the CLI's 1 mm floor
-    req.period_s = 0.005 + 0.2 * unit(opts[4]); // the CLI's 5 ms floor
-    req.gun_lead_s = 0.5 * unit(opts[5]);
-    req.gun_lag_s = 0.5 * unit(opts[6]);
+    req.rung_spacing_m = 1e-3 * (1.0 + 99.0 * unit(opts[3]));
+    req.period_s = 0.005 + 0.095 * unit(opts[4]);
+    req.gun_lead_s = unit(opts[5]);
+    req.gun_lag_s = unit(opts[6]);
     let _ = compile_job(&req);
 });
