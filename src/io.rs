@@ -328,6 +328,18 @@ pub fn read_text(path: &Path) -> anyhow::Result<String> {
     })
 }
 
+/// A parser's message on one line: toml spreads some over several
+/// ("invalid array\nexpected `]`"); their lines are joined with "; ".
+/// Shared by every reader of TOML (fonts, robots, markings).
+pub fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
 /// 1-based (line, column) of byte offset `offset` in `text`, columns counted
 /// in characters; offsets past the end or inside a character never panic.
 /// Shared by every reader that turns a parser's byte span into `file:line:col`.

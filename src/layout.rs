@@ -379,7 +379,7 @@ impl Marking {
 /// A toml error as `line L, column C: what` (toml's own text already names
 /// the line and column; keep it on one line).
 fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let what = e.message().trim().replace('\n', "; ");
+    let what = crate::io::one_line(e.message());
     match e.span() {
         Some(span) => {
             let (line, col) = crate::io::line_col(text, span.start);

@@ -48,17 +48,6 @@ impl Locator<'_> {
     }
 }
 
-/// A parser message on one line: its lines (e.g. "invalid table header",
-/// "expected `.`, `]]`") joined with "; ".
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
 /// Coordinates beyond this (in the units a segment is written in) are a typo,
 /// not a drawing: no font needs them, and near 1e154 lengths overflow.
 const FAR_OFF: f64 = 1e6;
@@ -91,7 +80,7 @@ pub fn build(text: &str, origin: &str) -> Built {
                 .unwrap_or_default();
             out.problems.push(format!(
                 "{at}: {within}{} (see the format notes at the top of fonts/basr.toml)",
-                one_line(e.message())
+                crate::io::one_line(e.message())
             ));
             return out;
         }

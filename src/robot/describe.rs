@@ -112,17 +112,6 @@ fn table_at_line(text: &str, line_no: usize) -> String {
     current
 }
 
-/// A parser's message on one line: toml's span further messages over
-/// several ("invalid array\nexpected `]`").
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
 /// serde's "missing field `k`" names the key alone; give its dotted name
 /// from the table the error points at, and what to do.
 fn dotted_missing(
@@ -197,7 +186,7 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
                 .unwrap_or_default();
             return Err(invalid(vec![format!(
                 "{loc}: TOML syntax error{field}: {}; fix the syntax (see https://toml.io)",
-                one_line(e.message())
+                crate::io::one_line(e.message())
             )]));
         }
     };
@@ -214,7 +203,7 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
         Ok(r) => r,
         Err(e) => {
             let (loc, field) = span_location(text, origin, e.span());
-            let message = one_line(e.message());
+            let message = crate::io::one_line(e.message());
             if let Some(missing) = dotted_missing(&message, text, e.span()) {
                 return Err(invalid(vec![format!("{loc}: {missing}")]));
             }

@@ -151,6 +151,18 @@ fn decimals_for(excess: f64, min: usize) -> usize {
 }
 
 impl Unreachable {
+    /// A pose field (`yaw_rad`, …) that is not a finite number.
+    pub(crate) fn not_finite(field: &str, value: f64) -> Unreachable {
+        Unreachable {
+            joint: field.into(),
+            value,
+            min: f64::NAN,
+            max: f64::NAN,
+            excess: f64::NAN,
+            flipped: false,
+        }
+    }
+
     fn describe(&self) -> String {
         if !self.value.is_finite() {
             return format!(
@@ -315,14 +327,7 @@ impl Robot {
             ("tilt_rad", pose.tilt_rad),
         ] {
             if !v.is_finite() {
-                return Err(Unreachable {
-                    joint: name.into(),
-                    value: v,
-                    min: f64::NAN,
-                    max: f64::NAN,
-                    excess: f64::NAN,
-                    flipped: false,
-                });
+                return Err(Unreachable::not_finite(name, v));
             }
         }
         let mut found = Vec::new();

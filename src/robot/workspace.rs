@@ -192,14 +192,7 @@ impl Robot {
     pub fn region_for(&self, yaw_rad: f64, tilt_rad: f64) -> Result<Region, Unreachable> {
         for (name, v) in [("yaw_rad", yaw_rad), ("tilt_rad", tilt_rad)] {
             if !v.is_finite() {
-                return Err(Unreachable {
-                    joint: name.into(),
-                    value: v,
-                    min: f64::NAN,
-                    max: f64::NAN,
-                    excess: f64::NAN,
-                    flipped: false,
-                });
+                return Err(Unreachable::not_finite(name, v));
             }
         }
         let tl = &self.limits.tilt_rad;
