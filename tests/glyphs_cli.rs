@@ -17,6 +17,18 @@ fn basr() -> Command {
     Command::cargo_bin("basr").expect("binary built")
 }
 
+/// `basr glyphs --font PATH`: asserts exit 2, returns stderr.
+fn glyphs_refuses(path: &std::path::Path) -> String {
+    let out = basr()
+        .args(["glyphs", "--font"])
+        .arg(path)
+        .assert()
+        .code(2)
+        .get_output()
+        .clone();
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
 fn font_file(dir: &tempfile::TempDir, body: &str) -> PathBuf {
     let path = dir.path().join("font.toml");
     std::fs::write(&path, format!("{HEAD}{body}")).expect("write font");
@@ -39,14 +51,7 @@ fn refused(body: &str, place: &str, words: &[&str]) {
     let path = font_file(&dir, body);
     let line = line_of(&path, place);
     let at = format!("{}:{line}:", path.display());
-    let out = basr()
-        .args(["glyphs", "--font"])
-        .arg(&path)
-        .assert()
-        .code(2)
-        .get_output()
-        .clone();
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    let err = glyphs_refuses(&path);
     assert!(err.contains(&at), "expected {at} in:\n{err}");
     for w in words {
         assert!(err.contains(w), "expected {w:?} in:\n{err}");
@@ -225,14 +230,7 @@ fn serde_faults_name_the_glyph_and_stroke() {
 fn syntax_errors_are_one_line() {
     let dir = tempfile::tempdir().expect("tempdir");
     let path = font_file(&dir, "[[glyphs.I.strokes]\nprimitive = \"bar\"\n");
-    let out = basr()
-        .args(["glyphs", "--font"])
-        .arg(&path)
-        .assert()
-        .code(2)
-        .get_output()
-        .clone();
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    let err = glyphs_refuses(&path);
     let problem = err.lines().nth(1).expect("a problem line");
     assert!(
         problem.contains(":7:") && problem.contains("invalid table header; expected"),
@@ -271,14 +269,7 @@ fn refused_bytes(bytes: &[u8], words: &[&str]) {
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("font.toml");
     std::fs::write(&path, bytes).expect("write font");
-    let out = basr()
-        .args(["glyphs", "--font"])
-        .arg(&path)
-        .assert()
-        .code(2)
-        .get_output()
-        .clone();
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    let err = glyphs_refuses(&path);
     assert!(err.contains(&path.display().to_string()), "{err}");
     for w in words {
         assert!(err.contains(w), "expected {w:?} in:\n{err}");
@@ -304,14 +295,7 @@ fn empty_and_non_utf8_fonts_are_exit_2_naming_the_place() {
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("font.toml");
     std::fs::write(&path, &bytes).expect("write font");
-    let out = basr()
-        .args(["glyphs", "--font"])
-        .arg(&path)
-        .assert()
-        .code(2)
-        .get_output()
-        .clone();
-    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    let err = glyphs_refuses(&path);
     assert_eq!(err.matches("not UTF-8").count(), 1, "said once: {err}");
 }
 
