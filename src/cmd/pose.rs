@@ -77,6 +77,19 @@ fn wrap_deg(d: f64) -> f64 {
     unsigned_zero(if w > 180.0 { w - 360.0 } else { w })
 }
 
+/// The pose as given, `x … m{sep}y … m{sep}height … m{sep}yaw …°{sep}tilt …°`,
+/// for the error and the human report alike.
+fn pose_text(pose: &NozzlePose, yaw_deg: f64, tilt_deg: f64, sep: &str) -> String {
+    [
+        format!("x {} m", show_number(pose.x_m, 4)),
+        format!("y {} m", show_number(pose.y_m, 4)),
+        format!("height {} m", show_number(pose.z_m, 4)),
+        format!("yaw {}°", show_number(yaw_deg, 2)),
+        format!("tilt {}°", show_number(tilt_deg, 2)),
+    ]
+    .join(sep)
+}
+
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for (what, v, unit) in [
         ("X", Some(args.x), "metres"),
@@ -106,12 +119,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     };
     let all = robot.ik(&pose).with_context(|| {
         format!(
-            "pose x {} m, y {} m, height {} m, yaw {}°, tilt {}° cannot be reached",
-            show_number(pose.x_m, 4),
-            show_number(pose.y_m, 4),
-            show_number(pose.z_m, 4),
-            show_number(yaw_deg, 2),
-            show_number(tilt_deg, 2)
+            "pose {} cannot be reached",
+            pose_text(&pose, yaw_deg, tilt_deg, ", ")
         )
     })?;
     // Nearest the rest position, keeping the fan as asked (its direction ψ,
@@ -160,12 +169,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     } else if !global.quiet {
         let deg = |r: f64| show_number(r.to_degrees(), 3);
         note!(
-            "pose (base frame): x {} m  y {} m  height {} m  yaw {}°  tilt {}°",
-            show_number(pose.x_m, 4),
-            show_number(pose.y_m, 4),
-            show_number(pose.z_m, 4),
-            show_number(yaw_deg, 2),
-            show_number(tilt_deg, 2)
+            "pose (base frame): {}",
+            pose_text(&pose, yaw_deg, tilt_deg, "  ")
         );
         note!(
             "joints ({} solutions; nearest the rest position shown):",
