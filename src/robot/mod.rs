@@ -127,17 +127,6 @@ impl Paint {
             _ => 0.5 * width_m / (0.5 * self.fan_angle_rad).tan(),
         }
     }
-
-    /// The job's `paint` object (SPEC §3).
-    pub fn job_paint(&self) -> crate::job::Paint {
-        crate::job::Paint {
-            fan_angle_rad: self.fan_angle_rad,
-            flow_m3ps: self.flow_m3ps,
-            transfer_efficiency: self.transfer_efficiency,
-            film_m: self.film_m,
-            k_m2ps: self.k_m2ps(),
-        }
-    }
 }
 
 /// Control timing and accuracy.
@@ -309,10 +298,10 @@ impl Robot {
         }
     }
 
-    /// SHA-256 of the description's canonical form (see `crate::job::canonical_json`).
+    /// SHA-256 of the description's canonical form (see `crate::canon::canonical_json`).
     pub fn sha256(&self) -> String {
         let v = serde_json::to_value(self).expect("robot serialises");
-        crate::io::sha256_hex(&crate::job::canonical_json(&v))
+        crate::io::sha256_hex(&crate::canon::canonical_json(&v))
     }
 
     /// What is wrong with a description already read (a job's embedded
