@@ -17,6 +17,7 @@ pub mod telescopic;
 pub mod workspace;
 
 mod describe;
+mod ranges;
 
 pub use describe::{check_source, RobotError};
 pub use dynamics::Dynamics;
@@ -376,9 +377,9 @@ mod tests {
         // values toml spells in unusual ways (exponents, -0.0, optional keys).
         let mut c = Robot::basr();
         c.name = "custom \"arm\"".into();
-        c.end_effector.mass_kg = 0.1 + 0.2;
+        c.end_effector.mass_kg = 35.0 + 0.1 + 0.2;
         c.dynamics.leakage_m3_per_s_pa = 1.234e-17;
-        c.hydraulics.supply_pa = 2.5e300;
+        c.hydraulics.supply_pa = 2.5e7 + 1.0 / 3.0; // within its range (ranges.rs)
         c.arm.a2_m = -0.0;
         c.paint.height_law_c0_m = Some(0.02);
         c.paint.height_law_c1 = Some(0.7);
