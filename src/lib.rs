@@ -6,6 +6,7 @@
 //! actuators, encoders) → `job` (the document). `paint` previews a job's
 //! film; `sim` runs it through the arm in closed loop; `plot` draws SVG.
 
+pub mod chars;
 pub mod font;
 pub mod geom;
 pub mod io;
@@ -16,3 +17,4 @@ pub mod plan;
 pub mod plot;
 pub mod robot;
 pub mod sim;
+pub mod units;
