@@ -74,7 +74,7 @@ pub fn read_job(path: &Path) -> anyhow::Result<basr::job::Job> {
             path.display()
         );
     }
-    basr::job::Job::read(path).map_err(Into::into)
+    basr::job::Job::read(path)
 }
 
 /// What a file given as a job is instead, from its name or first bytes.
