@@ -270,7 +270,7 @@ pub const FIT_CELLS: usize = 40_000_000;
 /// The finest cell, at least `wanted_m` and in steps of 0.5 mm, whose grid
 /// over `b` holds at most `budget` cells.
 pub fn fitted_cell(b: Bounds, wanted_m: f64, budget: usize) -> f64 {
-    if b.is_empty() || !(wanted_m > 0.0) {
+    if b.is_empty() || wanted_m.is_nan() || wanted_m <= 0.0 {
         return wanted_m;
     }
     // Two cells of margin as deposit adds, plus one for the alignment.
