@@ -3,12 +3,14 @@
 
 pub mod check;
 pub mod compile;
+pub mod design;
 pub mod glyphs;
 pub mod pose;
 pub mod preview;
 pub mod robot;
 pub mod simulate;
 pub mod workspace;
+pub mod workspace_kinds;
 
 use std::path::Path;
 
