@@ -3,6 +3,7 @@
 
 pub mod check;
 pub mod compile;
+pub mod design;
 pub mod glyphs;
 pub mod outputs;
 pub mod pose;
@@ -10,6 +11,7 @@ pub mod preview;
 pub mod robot;
 pub mod simulate;
 pub mod workspace;
+pub mod workspace_kinds;
 
 use std::path::Path;
 
