@@ -42,6 +42,7 @@ pub fn compile_strokes(
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
     let timed = trajectory::time_law(
         strokes,
+        &plan,
         &paths,
         &robot,
         req.period_s,

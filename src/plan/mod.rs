@@ -4,6 +4,7 @@
 //! `leads`) → `trajectory` (the `timing` time law) → `samples` → `seal`.
 //! `warnings` holds every note a stage makes and renders it.
 
+pub mod chain;
 pub mod compile;
 pub mod error;
 pub mod inputs;
