@@ -107,15 +107,21 @@ pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
         arcs: vec![],
         stops: vec![],
     };
-    let n = runs.len();
     let mut s = 0.0;
     for (ri, run) in runs.iter().enumerate() {
         let arcs = arc_lengths(&run.knots);
-        let lo = if ri == 0 { 0 } else { run.paint_first };
-        let hi = if ri + 1 == n {
-            run.knots.len() - 1
+        // Leads where the stroke needs a run-up; none where it carries on
+        // from the last one (same place, same heading: the nozzle flies
+        // straight on from paint into paint).
+        let lo = if ri > 0 && continues(&runs[ri - 1], run) {
+            run.paint_first
         } else {
+            0
+        };
+        let hi = if runs.get(ri + 1).is_some_and(|next| continues(run, next)) {
             run.paint_last
+        } else {
+            run.knots.len() - 1
         };
         if ri > 0 {
             let prev = &runs[ri - 1];
@@ -161,6 +167,26 @@ pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
         out.arcs.push(arcs);
     }
     out
+}
+
+/// Largest gap (m) and turn of the travel direction (rad) between one
+/// stroke's last rung and the next one's first for the next to carry on
+/// without leads. assumed: a quarter of the default rung spacing, and 20°.
+const CONTINUE_GAP_M: f64 = 0.005;
+const CONTINUE_TURN_RAD: f64 = 0.35;
+
+/// Whether run b starts where run a ends, heading the same way.
+fn continues(a: &Run, b: &Run) -> bool {
+    let (ka, kb) = (&a.knots, &b.knots);
+    let (pa, pb) = (a.paint_last, b.paint_first);
+    if pa == 0 || pb + 1 >= kb.len() {
+        return false;
+    }
+    let gap = (kb[pb].tip - ka[pa].tip).hypot();
+    let da = ka[pa].tip - ka[pa - 1].tip;
+    let db = kb[pb + 1].tip - kb[pb].tip;
+    let turn = (da.cross(db)).atan2(da.dot(db)).abs();
+    gap <= CONTINUE_GAP_M && turn <= CONTINUE_TURN_RAD
 }
 
 struct Blend {
