@@ -24,4 +24,5 @@ pub mod tilt;
 pub mod timing;
 pub mod tours;
 pub mod trajectory;
+pub mod verify;
 pub mod warnings;

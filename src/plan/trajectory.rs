@@ -30,17 +30,21 @@ pub fn time_law(
     plan: &StationPlan,
     paths: &JointPaths,
     robot: &Robot,
-    period_s: f64,
-    gun_lead_s: f64,
-    gun_lag_s: f64,
+    law: &TimeLaw,
 ) -> Result<TimedTrajectory, CompileError> {
+    let TimeLaw {
+        period_s,
+        gun_lead_s,
+        gun_lag_s,
+        pace,
+    } = *law;
     let stow = stow_joints(robot);
     let mut out = TimedTrajectory::default();
     let mut rows = 0usize;
     for (si, runs) in paths.stations.iter().enumerate() {
         let t0 = rows as f64 * period_s;
         let (timed, slows, stops) =
-            time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s)?;
+            time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, pace)?;
         let at = |q: &Q| {
             let p = robot.fk(&joints_of(q));
             let st = &plan.stations[si];
@@ -114,12 +118,41 @@ const JERK_PER_ACC: f64 = 10.0;
 /// The robot's joint limits for the time law. The tilt's ball nut has its
 /// own speed limit (SPEC §4: 0.11 m/s), applied as a tilt-rate limit at the
 /// steepest nut travel per radian of the tilt range.
-fn timing_limits(robot: &Robot) -> timing::JointLimits<5> {
+/// How much of the joints' limits the time law uses (each 0–1], lowered
+/// by the verification where the arm falls behind: `air` for the moves
+/// from and to the stow pose (the arm arrives at its first stroke ringing
+/// after a long fast move), `path` for the chained path through the strokes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pace {
+    pub air: f64,
+    pub path: f64,
+}
+
+impl Pace {
+    pub const FULL: Pace = Pace {
+        air: 1.0,
+        path: 1.0,
+    };
+}
+
+/// The time law's settings: the setpoint period, the gun valve's delays
+/// and the pace.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeLaw {
+    pub period_s: f64,
+    pub gun_lead_s: f64,
+    pub gun_lag_s: f64,
+    pub pace: Pace,
+}
+
+/// `pace` (0–1] scales every acceleration and jerk limit, and the speed
+/// limits by its square root.
+fn timing_limits(robot: &Robot, pace: f64) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
     for (j, (_, l)) in robot.limits.iter().enumerate() {
-        vel[j] = l.max_vel;
-        acc[j] = l.max_acc;
+        vel[j] = l.max_vel * pace.sqrt();
+        acc[j] = l.max_acc * pace;
     }
     let t = &robot.limits.tilt_rad;
     let fb = &robot.end_effector.fourbar;
@@ -190,8 +223,10 @@ fn time_station(
     period_s: f64,
     gun_lead_s: f64,
     gun_lag_s: f64,
+    pace: Pace,
 ) -> Result<StationTiming, CompileError> {
-    let limits = timing_limits(robot);
+    let limits = timing_limits(robot, pace.path);
+    let air_limits = timing_limits(robot, pace.air);
     let options = timing::PathOptions::default();
     let err = |what: String| CompileError::Timing(what);
     let home = q_of(stow);
@@ -218,11 +253,11 @@ fn time_station(
     let first = ch.points[0].q;
     let last = ch.points[ch.points.len() - 1].q;
     let pieces = vec![
-        timing::air_move(home, first, &limits, options.margin)
+        timing::air_move(home, first, &air_limits, options.margin)
             .map_err(|e| err(format!("air move to stroke {}: {e}", runs[0].stroke)))?,
         timing::time_path(&ch.points, &limits, &options)
             .map_err(|e| err(format!("station path: {e}")))?,
-        timing::air_move(last, home, &limits, options.margin)
+        timing::air_move(last, home, &air_limits, options.margin)
             .map_err(|e| err(format!("air move to the stow pose: {e}")))?,
     ];
     let path = &pieces[1];
