@@ -7,6 +7,7 @@
 //! film; `sim` runs it through the arm in closed loop; `plot` draws SVG.
 
 pub mod canon;
+pub mod chars;
 pub mod font;
 pub mod geom;
 pub mod io;
@@ -17,3 +18,4 @@ pub mod plan;
 pub mod plot;
 pub mod robot;
 pub mod sim;
+pub mod units;
