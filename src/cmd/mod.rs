@@ -7,6 +7,7 @@ pub mod glyphs;
 pub mod outputs;
 pub mod pose;
 pub mod preview;
+pub mod report;
 pub mod robot;
 pub mod simulate;
 pub mod workspace;
