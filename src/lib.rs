@@ -6,6 +6,7 @@
 //! actuators, encoders) → `job` (the document). `paint` previews a job's
 //! film; `sim` runs it through the arm in closed loop; `plot` draws SVG.
 
+pub mod canon;
 pub mod chars;
 pub mod font;
 pub mod geom;

@@ -75,6 +75,7 @@ enum Command {
     Workspace(cmd::workspace::Args),
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
+    Design(cmd::design::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Examples:
   basr completions bash > ~/.local/share/bash-completion/completions/basr
@@ -129,6 +130,7 @@ fn main() -> ExitCode {
         Command::Workspace(a) => cmd::workspace::run(a, &global),
         Command::Pose(a) => cmd::pose::run(a, &global),
         Command::Check(a) => cmd::check::run(a, &global),
+        Command::Design(a) => cmd::design::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;
             // Generated into memory: clap_complete panics on a failed write,

@@ -3,6 +3,7 @@
 
 pub mod check;
 pub mod compile;
+pub mod design;
 pub mod glyphs;
 pub mod outputs;
 pub mod pose;
@@ -11,6 +12,7 @@ pub mod report;
 pub mod robot;
 pub mod simulate;
 pub mod workspace;
+pub mod workspace_kinds;
 
 use std::path::Path;
 
