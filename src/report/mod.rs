@@ -5,7 +5,6 @@
 //! self-contained HTML page (inline CSS and SVG, nothing fetched).
 
 pub mod html;
-pub mod severity;
 pub mod tally;
 
 use crate::job::{Job, Station};
@@ -115,6 +114,30 @@ pub struct Sheet {
     pub overall: &'static str,
 }
 
+/// Time on site: the job's arm time and a truck move between stops.
+pub fn time_on_site_s(job: &Job) -> f64 {
+    let moves = job.stations.len().saturating_sub(1) as f64;
+    job.summary.duration_s + moves * TRUCK_MOVE_S
+}
+
+/// What the stations are measured from, in words.
+pub fn anchor_words(job: &Job) -> String {
+    let first_line = job.message.lines().next().unwrap_or("the marking");
+    format!("the near edge of {first_line}")
+}
+
+/// `ready`, `ready with notes` or `not ready` from the warnings'
+/// severities (and any other failed verdict).
+pub fn overall(severities: &[&str], failed: bool) -> &'static str {
+    if failed || severities.contains(&"problem") {
+        "not ready"
+    } else if severities.contains(&"notice") {
+        "ready with notes"
+    } else {
+        "ready"
+    }
+}
+
 /// Where a station's arm axis is, said from the anchor: `4.60 m past the
 /// near edge of STOP, on the lane centre`.
 pub fn place_words(s: &Station, anchor: &str) -> String {
@@ -144,8 +167,7 @@ pub fn place_words(s: &Station, anchor: &str) -> String {
 /// The stops in words: the first from the anchor, later ones as a drive
 /// forward and the place reached.
 pub fn stops(job: &Job) -> Vec<Stop> {
-    let first_line = job.message.lines().next().unwrap_or("the marking");
-    let anchor = format!("the near edge of {first_line} (the marking's anchor)");
+    let anchor = format!("{} (the marking's anchor)", anchor_words(job));
     let n = job.stations.len();
     let mut work = vec![0.0; n];
     let s = &job.samples;
@@ -229,8 +251,7 @@ fn items(job: &Job) -> Vec<String> {
 pub fn build(input: &Input) -> Sheet {
     let job = input.job;
     let stops = stops(job);
-    let moves = job.stations.len().saturating_sub(1) as f64;
-    let time_on_site_s = job.summary.duration_s + moves * TRUCK_MOVE_S;
+    let time_on_site_s = time_on_site_s(job);
     let paint_m3 = job.summary.paint_volume_m3;
     let life = (
         job.robot.paint.tip_life_min_m3,
@@ -244,19 +265,18 @@ pub fn build(input: &Input) -> Sheet {
         .warnings
         .iter()
         .map(|w| Note {
-            severity: severity::of(w),
+            severity: match w.severity.as_str() {
+                "info" => "info",
+                "problem" => "problem",
+                // Jobs written before severities existed.
+                _ => "notice",
+            },
             text: w.message.clone(),
         })
         .collect();
-    let problems = notes.iter().any(|n| n.severity == "problem");
     let sim_fails = input.sim.is_some_and(|s| s.verdict != "pass");
-    let overall = if problems || sim_fails || !input.film_verdict.pass() {
-        "not ready"
-    } else if notes.iter().any(|n| n.severity == "notice") {
-        "ready with notes"
-    } else {
-        "ready"
-    };
+    let severities: Vec<&str> = notes.iter().map(|n| n.severity).collect();
+    let overall = overall(&severities, sim_fails || !input.film_verdict.pass());
     let m = input.film;
     let pct = |v: Option<f64>| v.map_or("–".into(), |v| format!("{:.1} %", v * 100.0));
     let film_lines = vec![
