@@ -91,6 +91,11 @@ pub struct FontRef {
 pub struct Warning {
     /// Short machine-readable kind, e.g. `"slowed"`, `"height_clamped"`.
     pub kind: String,
+    /// How much it matters to the crew: `"info"` (nothing to do),
+    /// `"notice"` (paints, slightly off somewhere), `"problem"` (visibly off
+    /// target). Empty in jobs written before severities existed.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub severity: String,
     /// Stroke index, or -1 when not about one stroke.
     pub stroke: i64,
     /// Time in the job where it applies (s), when known.
