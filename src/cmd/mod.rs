@@ -5,6 +5,7 @@ pub mod check;
 pub mod compile;
 pub mod design;
 pub mod glyphs;
+pub mod outputs;
 pub mod pose;
 pub mod preview;
 pub mod robot;
@@ -75,7 +76,7 @@ pub fn read_job(path: &Path) -> anyhow::Result<basr::job::Job> {
             path.display()
         );
     }
-    Ok(basr::job::Job::read(path)?)
+    basr::job::Job::read(path)
 }
 
 /// What a file given as a job is instead, from its name or first bytes.

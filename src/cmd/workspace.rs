@@ -55,6 +55,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let (Some(svg), Some(robot)) = (&args.svg, &args.robot) {
         super::refuse_clashes(&[("--svg", svg)], &[("the robot file (--robot)", robot)])?;
     }
+    if let Some(svg) = &args.svg {
+        super::outputs::check("--svg", svg, &["svg"])?;
+    }
     for (flag, v) in [("--yaw-deg", args.yaw_deg), ("--tilt-deg", args.tilt_deg)] {
         anyhow::ensure!(
             v.is_finite(),
@@ -86,7 +89,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let doc = draw(&region, &boundaries);
         basr::io::write_atomic(path, doc.to_string().as_bytes())?;
         if !global.quiet {
-            note!("wrote {}", path.display());
+            super::outputs::after_commit(format!("wrote {}", path.display()));
         }
     }
     let inner = region.extension_m[0].hypot(region.a2_m);
