@@ -238,7 +238,7 @@ fn sealed(
             0.0
         };
     }
-    let paint = robot.paint.job_paint();
+    let paint = crate::job::Paint::of(&robot.paint);
     let paint_volume_m3 = robot.paint.flow_m3ps * paint_time;
     let mut job = Job {
         format: crate::job::FORMAT.into(),
