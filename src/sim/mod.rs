@@ -9,6 +9,7 @@ pub mod ee;
 pub mod model;
 pub mod plant;
 pub mod report;
+pub mod servo;
 pub mod svg;
 pub mod synthetic;
 
