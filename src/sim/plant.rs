@@ -271,8 +271,10 @@ pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
     ds[PA2] = a2;
     ds[PB2] = b2;
     // the accumulator: pump in, both valves' inlets out
-    let e_s = h.bulk(ps);
-    ds[PS] = (c.pump_flow(ps, h.supply_pa) - qs1 - qs2) / c.supply_capacitance(ps, e_s);
+    // (the manifold's oil at its pure-oil modulus: eq. 13 is within 5 % of
+    // it at supply pressure)
+    ds[PS] =
+        (c.pump_flow(ps, h.supply_pa) - qs1 - qs2) / c.supply_capacitance(ps, h.bulk_modulus_pa);
     // eq. 17 with K_s folded into the valve gain; the spool stops at ±1
     let spool = |y: f64, cmd: f64, tau: f64| {
         let r = (cmd.clamp(-1.0, 1.0) - y) / tau;
