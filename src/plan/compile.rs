@@ -4,14 +4,12 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::PathBuf;
 
-use kurbo::Affine;
-
-use crate::font::Font;
+use crate::font::{Font, Library};
 use crate::job::{
     self, FontRef, Job, Layout as JobLayout, PlacedGlyph, PlacedStroke, SampleRow, Samples,
     Station, StrokeBalance, Summary, Warning,
 };
-use crate::layout::{self, LayoutError, Marking, Overrides};
+use crate::layout::{self, LayoutError, Marking, Overrides, Scene};
 use crate::plan::knots::{self, HeightLaw, Knot, PaintLaw, Rung, TiltMethod};
 use crate::plan::order::{self, Ends};
 use crate::plan::stations::{self, StationError};
@@ -29,8 +27,11 @@ pub const DEFAULT_PERIOD_S: f64 = 0.032;
 pub enum Source {
     /// Words typed on the command line; each word one line.
     Message(String),
-    /// A marking file's text; `origin` names it in messages.
+    /// A marking file's text (`lines`, or a scene of `[[item]]`s); `origin`
+    /// names it in messages.
     Marking { text: String, origin: String },
+    /// One library symbol alone, centred in the lane at the anchor.
+    Symbol(String),
 }
 
 /// Tilt method (001 §2.5).
@@ -148,10 +149,10 @@ struct Item {
     knots: Vec<Knot>,
 }
 
-/// Which letter a stroke belongs to, for messages.
+/// Which letter or symbol a stroke belongs to, for messages
+/// ("letter S of line 1").
 struct StrokeInfo {
-    ch: char,
-    line: usize,
+    what: String,
 }
 
 /// An item as the arm runs it: joints at every knot, in painting order.
@@ -168,10 +169,6 @@ struct Run {
 /// Compile a message or marking into a sealed job.
 pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     check_settings(req)?;
-    let marking = match &req.source {
-        Source::Message(m) => Marking::from_message(m, &req.overrides)?,
-        Source::Marking { text, origin } => Marking::from_toml(text, origin, &req.overrides)?,
-    };
     let robot = match &req.robot_description {
         Some(r) => r.clone(),
         None => Robot::load_or_default(req.robot.as_deref())
@@ -186,8 +183,8 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             &owned_font
         }
     };
-    let placed = layout::place(&marking, |ch| font.glyph(ch).map(glyph_box))?;
-    let mut warnings: Vec<Warning> = placed
+    let laid = lay_out(req, font)?;
+    let mut warnings: Vec<Warning> = laid
         .warnings
         .iter()
         .map(|w| Warning {
@@ -212,19 +209,12 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     let mut items: Vec<Item> = vec![];
     let mut strokes: Vec<StrokeInfo> = vec![];
     let mut balance: Vec<StrokeBalance> = vec![];
-    for letter in &placed.letters {
-        let Some(glyph) = font.glyph(letter.ch) else {
-            continue; // place() has already refused letters without a glyph
-        };
-        let s = letter.scale_m;
-        let to_road = Affine::new([s, 0.0, 0.0, s, letter.origin_m[0], letter.origin_m[1]]);
+    for mark in &laid.marks {
         let mut outlines = vec![];
-        for stroke in &glyph.strokes {
-            let st = stroke.transformed(&to_road);
+        for st in &mark.strokes {
             let sid = strokes.len();
             strokes.push(StrokeInfo {
-                ch: letter.ch,
-                line: letter.line,
+                what: mark.what.clone(),
             });
             let len = st.left.length().max(st.right.length());
             let k = ((len / OUTLINE_STEP_M).ceil() as usize).max(1) + 1;
@@ -240,11 +230,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                 .map(|(left, right)| Rung { left, right })
                 .collect();
             let what = |e: knots::PlanError| {
-                CompileError::Knots(format!(
-                    "stroke {sid} (letter {} of line {}): {e}",
-                    letter.ch,
-                    letter.line + 1
-                ))
+                CompileError::Knots(format!("stroke {sid} ({}): {e}", mark.what))
             };
             let passes = knots::split_passes(&rungs, law.max_width_m(), 0.0).map_err(what)?;
             let mut clamped = 0usize;
@@ -288,8 +274,8 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             if u_untilted[0].is_finite() && u_tilted[0].is_finite() {
                 balance.push(StrokeBalance {
                     stroke: sid,
-                    char: letter.ch.to_string(),
-                    line: letter.line,
+                    char: mark.label.clone(),
+                    line: mark.line,
                     u_untilted,
                     u_tilted,
                 });
@@ -301,10 +287,9 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                     t_s: None,
                     factor: Some(passes.len() as f64),
                     message: format!(
-                        "stroke {sid} (letter {} of line {}) is wider than one pass can paint \
+                        "stroke {sid} ({}) is wider than one pass can paint \
                          ({:.3} m): painted in {} parallel passes",
-                        letter.ch,
-                        letter.line + 1,
+                        mark.what,
                         law.max_width_m(),
                         passes.len()
                     ),
@@ -317,12 +302,11 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                     t_s: None,
                     factor: Some(worst),
                     message: format!(
-                        "stroke {sid} (letter {} of line {}): {clamped} of {rung_count} rungs are \
+                        "stroke {sid} ({}): {clamped} of {rung_count} rungs are \
                          narrower than the fan paints from the nozzle's lowest height \
                          ({:.3} m); the fan there paints up to {:.1} % wider than the stroke \
                          (the speed keeps the film)",
-                        letter.ch,
-                        letter.line + 1,
+                        mark.what,
                         law.min_height_m,
                         (worst - 1.0) * 100.0
                     ),
@@ -330,8 +314,8 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             }
         }
         glyphs.push(PlacedGlyph {
-            char: letter.ch.to_string(),
-            line: letter.line,
+            char: mark.label.clone(),
+            line: mark.line,
             strokes: outlines,
         });
     }
@@ -341,10 +325,24 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     let reach_pts: Vec<Vec<[f64; 2]>> = items.iter().map(|it| thin_tips(&it.knots)).collect();
     let splan = stations::plan(
         &reach_pts,
-        marking.lane_width_m / 2.0,
+        laid.lane_width_m / 2.0,
         req.reach_margin_m,
         |x, y| region.margin(x, y),
-    )?;
+    )
+    .map_err(|e| match e {
+        // Name the letter or symbol: the planner knows only its own items.
+        StationError::Unreachable { item, .. } => {
+            let what = items
+                .get(item)
+                .and_then(|it| strokes.get(it.stroke))
+                .map_or(String::new(), |s| format!(" ({})", s.what));
+            CompileError::Unreachable(format!("{e}").replacen(
+                &format!("stroke {item} "),
+                &format!("pass {item}{what} "),
+                1,
+            ))
+        }
+    })?;
 
     // Per station: order, inverse kinematics, time law, setpoints.
     let stow = stow_joints(&robot);
@@ -397,12 +395,11 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                 let (k, e) = first_err.unwrap_or((0, unreachable_pose()));
                 let info = &strokes[items[item].stroke];
                 return Err(CompileError::Unreachable(format!(
-                    "stroke {} (letter {} of line {}) cannot be painted from station {si} at \
+                    "stroke {} ({}) cannot be painted from station {si} at \
                      ({:.3}, {:.3}) m: {e}; use a smaller --letter-height or check the robot \
                      description",
                     items[item].stroke,
-                    info.ch,
-                    info.line + 1,
+                    info.what,
                     ks[k].tip.x,
                     ks[k].tip.y
                 )));
@@ -443,12 +440,11 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                 t_s: Some(job::round_ns(t0 + sl.t_s)),
                 factor: Some(sl.factor),
                 message: format!(
-                    "stroke {} (letter {} of line {}): {} slows the nozzle below the painting \
+                    "stroke {} ({}): {} slows the nozzle below the painting \
                      speed near ({:.3}, {:.3}) m at t = {:.2} s; the film there is up to {:.2}× \
                      the target",
                     run.stroke,
-                    info.ch,
-                    info.line + 1,
+                    info.what,
                     sl.binding,
                     k.tip.x,
                     k.tip.y,
@@ -486,7 +482,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     let mut job = Job {
         format: job::FORMAT.into(),
         version: job::VERSION,
-        message: marking.message(),
+        message: laid.message.clone(),
         font: FontRef {
             name: font.name.clone(),
             sha256: font.sha256.clone(),
@@ -496,8 +492,8 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
         robot_sha256: String::new(),
         control_period_s: req.period_s,
         layout: JobLayout {
-            letter_height_m: marking.letter_height_m,
-            lane_width_m: marking.lane_width_m,
+            letter_height_m: laid.letter_height_m,
+            lane_width_m: laid.lane_width_m,
             tilt_method: req.tilt.name().into(),
             glyphs,
         },
@@ -510,25 +506,20 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     Ok(job)
 }
 
-/// A glyph's extent on the grid: the grid's width, and the lowest and
-/// highest points of its strokes' edges.
-fn glyph_box(g: &crate::font::Glyph) -> layout::GlyphBox {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for s in &g.strokes {
-        for e in [&s.left, &s.right] {
-            for p in e.sample(65) {
-                lo = lo.min(p.y);
-                hi = hi.max(p.y);
-            }
+/// The request's message, marking file or symbol laid out on the road
+/// (`layout`): the placed strokes the rest of the pipeline paints.
+fn lay_out(req: &CompileRequest, font: &Font) -> Result<layout::Laid, LayoutError> {
+    let o = &req.overrides;
+    let lib = Library::embedded();
+    match &req.source {
+        Source::Message(m) => layout::lay_marking(&Marking::from_message(m, o)?, font, o.low_speed),
+        Source::Marking { text, origin } if layout::is_scene(text) => {
+            layout::lay_scene(&Scene::from_toml(text, origin, o)?, font, lib)
         }
-    }
-    if !(lo.is_finite() && hi.is_finite()) {
-        return layout::GlyphBox::GRID;
-    }
-    layout::GlyphBox {
-        width: crate::font::GRID_WIDTH,
-        y_min: lo,
-        y_max: hi,
+        Source::Marking { text, origin } => {
+            layout::lay_marking(&Marking::from_toml(text, origin, o)?, font, o.low_speed)
+        }
+        Source::Symbol(name) => layout::lay_scene(&Scene::single_symbol(name, o)?, font, lib),
     }
 }
 
