@@ -220,7 +220,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         gun_lag_s: args.gun_lag_s,
         ..CompileRequest::message("")
     };
-    let scene_file = matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
+    let scene_file =
+        matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
     let job = compile_job(&req)?;
     // A symbol's job is named after it, a scene's after its file.
     let stem = match (&args.symbol, &args.marking) {

@@ -8,6 +8,7 @@ pub mod pose;
 pub mod preview;
 pub mod robot;
 pub mod simulate;
+pub mod symbols;
 pub mod workspace;
 
 use std::path::Path;

@@ -611,7 +611,10 @@ pub fn place(
 pub const SHIPPED_MARKINGS: &[(&str, &str)] = &[
     ("stop", include_str!("../../markings/stop.toml")),
     ("stop_ahead", include_str!("../../markings/stop_ahead.toml")),
-    ("school_xing", include_str!("../../markings/school_xing.toml")),
+    (
+        "school_xing",
+        include_str!("../../markings/school_xing.toml"),
+    ),
     ("bus_only", include_str!("../../markings/bus_only.toml")),
     ("ped_xing", include_str!("../../markings/ped_xing.toml")),
 ];

@@ -11,7 +11,10 @@ use kurbo::{Affine, Point};
 
 use super::rules::{self, RuleItem};
 use super::scene::{Item, ItemKind, Scene};
-use super::{place, GlyphBox, LayoutError, Marking, DEFAULT_LETTER_SPACING_UNITS, GRID_HEIGHT_UNITS, MIN_LINE_GAP_HEIGHTS};
+use super::{
+    place, GlyphBox, LayoutError, Marking, DEFAULT_LETTER_SPACING_UNITS, GRID_HEIGHT_UNITS,
+    MIN_LINE_GAP_HEIGHTS,
+};
 use crate::font::{overlap_area, Font, Glyph, Library, Stroke, SYMBOL_LIMITS};
 
 /// One letter or symbol on the road: its strokes in painting order.
@@ -52,7 +55,11 @@ pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, La
             label: l.ch.to_string(),
             line: l.line,
             what: format!("letter {} of line {}", l.ch, l.line + 1),
-            strokes: g.strokes.iter().map(|st| st.transformed(&to_road)).collect(),
+            strokes: g
+                .strokes
+                .iter()
+                .map(|st| st.transformed(&to_road))
+                .collect(),
         });
     }
     let words: Vec<RuleItem> = m
@@ -240,7 +247,8 @@ fn check_overlaps(marks: &[PlacedMark], s: &Scene) -> Result<(), LayoutError> {
             }
             for (sa, ba) in marks[a].strokes.iter().zip(&boxes[a]) {
                 for (sb, bb) in marks[b].strokes.iter().zip(&boxes[b]) {
-                    let meet = ba.0.x < bb.1.x && bb.0.x < ba.1.x && ba.0.y < bb.1.y && bb.0.y < ba.1.y;
+                    let meet =
+                        ba.0.x < bb.1.x && bb.0.x < ba.1.x && ba.0.y < bb.1.y && bb.0.y < ba.1.y;
                     if !meet {
                         continue;
                     }

@@ -344,7 +344,11 @@ mod tests {
         let w = [word(0, "BUS", 0.0, 1.5)];
         let f = check(&w.iter().cloned().collect::<Vec<_>>(), false, false, true);
         assert_eq!(rules(&f), ["MUTCD 11th §3B.21 ¶01 (R3)"]);
-        assert!(!f[0].error && f[0].message.contains("1.83 m (6.0 ft)"), "{}", f[0]);
+        assert!(
+            !f[0].error && f[0].message.contains("1.83 m (6.0 ft)"),
+            "{}",
+            f[0]
+        );
         assert!(check(&w, true, false, true).is_empty(), "1.5 m ≥ 4.5 ft");
         let small = [word(0, "BUS", 0.0, 1.3)];
         assert_eq!(check(&small, true, false, true).len(), 1);
@@ -353,11 +357,16 @@ mod tests {
     #[test]
     fn four_lines_and_gaps() {
         let h = 2.44;
-        let ok: Vec<RuleItem> = (0..3).map(|i| word(i, "A", i as f64 * 5.0 * h, h)).collect();
+        let ok: Vec<RuleItem> = (0..3)
+            .map(|i| word(i, "A", i as f64 * 5.0 * h, h))
+            .collect();
         assert!(check(&ok, false, false, true).is_empty());
         let mut four = ok.clone();
         four.push(word(3, "D", 15.0 * h, h));
-        assert_eq!(rules(&check(&four, false, false, true)), ["MUTCD 11th §3B.20 ¶06 (R4)"]);
+        assert_eq!(
+            rules(&check(&four, false, false, true)),
+            ["MUTCD 11th §3B.20 ¶06 (R4)"]
+        );
         let close = [word(0, "STOP", 0.0, h), word(1, "AHEAD", 2.0 * h, h)];
         let f = check(&close, false, false, true);
         assert!(f[0].error && f[0].rule.contains("R6"), "{f:?}");
@@ -365,14 +374,19 @@ mod tests {
         let f = check(&far, false, false, true);
         assert!(!f[0].error && f[0].message.contains("over 10×"), "{f:?}");
         let reversed = [word(0, "AHEAD", 5.0 * h, h), word(1, "STOP", 0.0, h)];
-        assert!(rules(&check(&reversed, false, false, true)).contains(&"MUTCD 11th §3B.21 ¶02 (R5)"));
+        assert!(
+            rules(&check(&reversed, false, false, true)).contains(&"MUTCD 11th §3B.21 ¶02 (R5)")
+        );
     }
 
     #[test]
     fn only_and_arrows() {
         let h = 2.44;
         let a = 2.44;
-        let shared = [symbol(0, "arrow-through-left", 0.0, a), word(1, "ONLY", a + 5.0 * h, h)];
+        let shared = [
+            symbol(0, "arrow-through-left", 0.0, a),
+            word(1, "ONLY", a + 5.0 * h, h),
+        ];
         let f = check(&shared, false, false, true);
         assert!(f.iter().any(|f| f.error && f.rule.contains("R11")), "{f:?}");
         assert!(f.iter().any(|f| f.rule.contains("R13")), "one arrow: {f:?}");
@@ -381,13 +395,20 @@ mod tests {
             word(1, "ONLY", a + 5.0 * h, h),
             symbol(2, "arrow-left", 40.0, a),
         ];
-        assert!(check(&good, false, false, true).is_empty(), "{:?}", check(&good, false, false, true));
+        assert!(
+            check(&good, false, false, true).is_empty(),
+            "{:?}",
+            check(&good, false, false, true)
+        );
         let near = [
             symbol(0, "arrow-left", 0.0, a),
             word(1, "ONLY", a + 5.0 * h, h),
             symbol(2, "arrow-left", 20.0, a),
         ];
-        assert_eq!(rules(&check(&near, false, false, true)), ["CA MUTCD §3B.23 ¶08"]);
+        assert_eq!(
+            rules(&check(&near, false, false, true)),
+            ["CA MUTCD §3B.23 ¶08"]
+        );
     }
 
     #[test]

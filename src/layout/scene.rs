@@ -190,7 +190,9 @@ fn check_lane(lane: f64) -> Result<(), String> {
 
 fn height(m: Option<f64>, ft: Option<f64>) -> Result<Option<f64>, String> {
     let h = match (m, ft) {
-        (Some(_), Some(_)) => return Err("give letter_height_m or letter_height_ft, not both".into()),
+        (Some(_), Some(_)) => {
+            return Err("give letter_height_m or letter_height_ft, not both".into())
+        }
         (Some(m), None) => Some(m),
         (None, Some(ft)) => Some(ft * M_PER_FT),
         (None, None) => None,
@@ -211,11 +213,15 @@ fn height(m: Option<f64>, ft: Option<f64>) -> Result<Option<f64>, String> {
 fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, String> {
     let given = [t.word.is_some(), t.symbol.is_some(), t.shape.is_some()];
     if given.iter().filter(|&&g| g).count() != 1 {
-        return Err("an item is exactly one of `word = \"STOP\"`, `symbol = \"arrow-left\"` \
+        return Err(
+            "an item is exactly one of `word = \"STOP\"`, `symbol = \"arrow-left\"` \
                     or `shape = \"logo.svg\"`"
-            .into());
+                .into(),
+        );
     }
-    let at = t.at_m.ok_or("needs `at_m = [x, y]`: the centre of its near edge in the lane")?;
+    let at = t
+        .at_m
+        .ok_or("needs `at_m = [x, y]`: the centre of its near edge in the lane")?;
     if at.iter().any(|v| !v.is_finite() || v.abs() > MAX_OFFSET_M) {
         return Err(format!(
             "at_m = [{}, {}] must be finite and within {MAX_OFFSET_M} m of the anchor",
@@ -379,7 +385,10 @@ mod tests {
     #[test]
     fn bad_items_say_which_and_why() {
         let e = parse("[[item]]\nsymbol = \"x\"\nword = \"A\"\nat_m = [0, 0]\n").unwrap_err();
-        assert!(e.to_string().contains("item 1: an item is exactly one of"), "{e}");
+        assert!(
+            e.to_string().contains("item 1: an item is exactly one of"),
+            "{e}"
+        );
         let e = parse("[[item]]\nsymbol = \"x\"\n").unwrap_err();
         assert!(e.to_string().contains("needs `at_m"), "{e}");
         let e = parse("[[item]]\nword = \"A\"\nat_m = [0, 0]\nscale = 2\n").unwrap_err();

@@ -398,10 +398,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
                     "stroke {} ({}) cannot be painted from station {si} at \
                      ({:.3}, {:.3}) m: {e}; use a smaller --letter-height or check the robot \
                      description",
-                    items[item].stroke,
-                    info.what,
-                    ks[k].tip.x,
-                    ks[k].tip.y
+                    items[item].stroke, info.what, ks[k].tip.x, ks[k].tip.y
                 )));
             };
             prev = *joints.last().unwrap_or(&prev);
