@@ -238,7 +238,7 @@ fn check_lane(i: usize, item: &Item, lo: Point, hi: Point, lane: f64) -> Result<
 fn check_overlaps(marks: &[PlacedMark], s: &Scene) -> Result<(), LayoutError> {
     let boxes: Vec<Vec<(Point, Point)>> = marks
         .iter()
-        .map(|m| m.strokes.iter().map(|st| extent_of(st)).collect())
+        .map(|m| m.strokes.iter().map(extent_of).collect())
         .collect();
     for a in 0..marks.len() {
         for b in a + 1..marks.len() {

@@ -342,7 +342,7 @@ mod tests {
     #[test]
     fn letter_height_with_and_without_low_speed() {
         let w = [word(0, "BUS", 0.0, 1.5)];
-        let f = check(&w.iter().cloned().collect::<Vec<_>>(), false, false, true);
+        let f = check(&w, false, false, true);
         assert_eq!(rules(&f), ["MUTCD 11th §3B.21 ¶01 (R3)"]);
         assert!(
             !f[0].error && f[0].message.contains("1.83 m (6.0 ft)"),
