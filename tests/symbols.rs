@@ -250,46 +250,24 @@ fn bad_scenes_are_refused_naming_what_and_by_how_much() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("outside the 3.660 m lane"));
 }
 
+/// The job's warnings, as JSON text, of `basr compile ARGS --json`.
+fn warnings_of(dir: &Path, args: &[&str]) -> String {
+    let mut all = vec!["compile", "--json", "-o", "w.job.json"];
+    all.extend(args);
+    json_of(&basr(dir, &all))["summary"]["warnings"].to_string()
+}
+
 #[test]
 fn mutcd_warnings_name_rule_and_section() {
     let d = tempfile::tempdir().unwrap();
     let dir = d.path();
     // 6 ft letters pass; 1.5 m letters warn unless --low-speed (R3, R9).
-    let out = basr(
-        dir,
-        &[
-            "compile",
-            "BUS",
-            "--letter-height",
-            "1.5",
-            "--json",
-            "-o",
-            "b.job.json",
-        ],
-    );
-    let w = json_of(&out)["summary"]["warnings"].to_string();
+    let w = warnings_of(dir, &["BUS", "--letter-height", "1.5"]);
     assert!(w.contains("MUTCD 11th §3B.21 ¶01 (R3)"), "{w}");
-    let out = basr(
-        dir,
-        &[
-            "compile",
-            "BUS",
-            "--letter-height",
-            "1.5",
-            "--low-speed",
-            "--json",
-            "-o",
-            "b.job.json",
-        ],
-    );
-    let w = json_of(&out)["summary"]["warnings"].to_string();
+    let w = warnings_of(dir, &["BUS", "--letter-height", "1.5", "--low-speed"]);
     assert!(!w.contains("(R3)"), "{w}");
     // Four lines (R4).
-    let out = basr(
-        dir,
-        &["compile", "A B C D", "--json", "-o", "abcd.job.json"],
-    );
-    let w = json_of(&out)["summary"]["warnings"].to_string();
+    let w = warnings_of(dir, &["A B C D"]);
     assert!(w.contains("should not exceed 3"), "{w}");
 }
 

@@ -8,17 +8,6 @@ use serde_json::json;
 
 use super::{Global, Outcome};
 
-/// Points per edge in `--json` (as `glyphs --json`).
-const JSON_POINTS: usize = 64;
-
-/// List the symbol library; draw its sheet.
-///
-/// Lists each symbol (names for `basr compile --symbol NAME` and a scene's
-/// `symbol = "NAME"`) with its size, painted area, stroke count and where
-/// its dimensions come from. `--json` prints every stroke's edges in metres
-/// (x across the lane, centred; y along the traffic from the symbol's near
-/// edge); `--svg` draws the sheet (outlines, rungs, stroke order,
-/// dimensions) and says only which file it wrote.
 #[derive(clap::Args)]
 #[command(after_help = "Examples:
   basr symbols
@@ -36,21 +25,7 @@ pub struct Args {
     pub svg: Option<PathBuf>,
 }
 
-fn pts(v: Vec<kurbo::Point>) -> Vec<[f64; 2]> {
-    v.into_iter().map(|p| [p.x, p.y]).collect()
-}
-
 fn symbol_json(s: &Symbol) -> serde_json::Value {
-    let strokes: Vec<_> = s
-        .strokes
-        .iter()
-        .map(|st| {
-            json!({
-                "left": pts(st.left.sample(JSON_POINTS)),
-                "right": pts(st.right.sample(JSON_POINTS)),
-            })
-        })
-        .collect();
     json!({
         "name": s.name,
         "description": s.description,
@@ -59,7 +34,7 @@ fn symbol_json(s: &Symbol) -> serde_json::Value {
         "area_m2": s.area_m2(),
         "source": s.source,
         "assumed": s.assumed,
-        "strokes": strokes,
+        "strokes": super::glyphs::strokes_json(&s.strokes),
     })
 }
 

@@ -403,7 +403,7 @@ mod tests {
         let near = [
             symbol(0, "arrow-left", 0.0, a),
             word(1, "ONLY", a + 5.0 * h, h),
-            symbol(2, "arrow-left", 20.0, a),
+            symbol(2, "arrow-left", -20.0, a),
         ];
         assert_eq!(
             rules(&check(&near, false, false, true)),
