@@ -76,6 +76,7 @@ enum Command {
     Workspace(cmd::workspace::Args),
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
+    Design(cmd::design::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Examples:
   basr completions bash > ~/.local/share/bash-completion/completions/basr
@@ -87,10 +88,38 @@ enum Command {
     },
 }
 
+/// Print clap's error (or help) as clap would, with a hint for the usual
+/// slip: `basr compile STOP AHEAD`, a message of several words unquoted.
+fn usage_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let compiling = args.first().is_some_and(|a| a == "compile");
+    if e.kind() != ErrorKind::UnknownArgument || !compiling {
+        e.exit();
+    }
+    let words: Vec<&str> = args[1..]
+        .iter()
+        .map(String::as_str)
+        .filter(|a| !a.is_empty() && a.chars().all(|c| c.is_alphanumeric()))
+        .collect();
+    let text = e.render().to_string();
+    note_text(&text);
+    if words.len() > 1 {
+        note!(
+            "hint: a message of several words is one argument; quote it: basr compile \"{}\"",
+            words.join(" ")
+        );
+    }
+    ExitCode::from(2)
+}
+
 fn main() -> ExitCode {
     basr::io::install_interrupt_cleanup();
     basr::io::stage_outputs();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(e),
+    };
     let global = cmd::Global { quiet: cli.quiet };
     let result = match cli.command {
         Command::Compile(a) => cmd::compile::run(a, &global),
@@ -102,6 +131,7 @@ fn main() -> ExitCode {
         Command::Workspace(a) => cmd::workspace::run(a, &global),
         Command::Pose(a) => cmd::pose::run(a, &global),
         Command::Check(a) => cmd::check::run(a, &global),
+        Command::Design(a) => cmd::design::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;
             // Generated into memory: clap_complete panics on a failed write,
@@ -116,7 +146,14 @@ fn main() -> ExitCode {
     // Every output of the run is renamed into place together, or none is.
     let result = match result {
         Ok(outcome) => basr::io::commit_outputs()
-            .map(|()| outcome)
+            .map(|()| {
+                if !global.quiet {
+                    for text in cmd::outputs::take_after_commit() {
+                        note!("{text}");
+                    }
+                }
+                outcome
+            })
             .map_err(Into::into),
         Err(e) => {
             basr::io::discard_outputs();

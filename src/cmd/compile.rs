@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use basr::layout::Overrides;
 use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
+use basr::units::Length;
 
 use super::{Global, Outcome};
 
@@ -72,22 +73,27 @@ pub struct Args {
     /// Nozzle tilt method.
     #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
     pub tilt: TiltArg,
-    /// Letter height in metres, 0.3–10 [default: 2.44, or the marking file's].
-    #[arg(allow_hyphen_values = true, long, value_name = "M")]
-    pub letter_height: Option<f64>,
-    /// Lane width in metres, at most 30 [default: 3.66, or the marking file's].
-    #[arg(allow_hyphen_values = true, long, value_name = "M")]
-    pub lane_width: Option<f64>,
-    /// Clear space between lines in metres, at least 4× the letter height
-    /// [default: 4× the letter height, or the marking file's].
-    #[arg(allow_hyphen_values = true, long, value_name = "M")]
-    pub line_gap: Option<f64>,
-    /// Largest distance between rungs along a stroke, in millimetres (1–100).
+    /// Letter height, 0.3–10 m; metres unless a unit is written (8ft,
+    /// 96in, 2440mm) [default: 2.44, or the marking file's].
+    #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
+    pub letter_height: Option<Length>,
+    /// Lane width, at most 30 m; metres unless a unit is written (12ft)
+    /// [default: 3.66, or the marking file's].
+    #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
+    pub lane_width: Option<Length>,
+    /// Clear space between lines, at least 4× the letter height; metres
+    /// unless a unit is written [default: 4× the letter height, or the
+    /// marking file's].
+    #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
+    pub line_gap: Option<Length>,
+    /// Largest distance between rungs along a stroke, 1–100 mm;
+    /// millimetres unless a unit is written (0.75in).
     #[arg(
         allow_negative_numbers = true,
         long,
         value_name = "MM",
-        default_value_t = 20.0
+        default_value = "20",
+        value_parser = basr::units::millimetres
     )]
     pub rung_spacing_mm: f64,
     /// Setpoint period in seconds, 0.005–0.1 (the controller samples at 0.005 s).
@@ -139,6 +145,23 @@ fn stem_of(text: &str) -> String {
         .collect()
 }
 
+/// Usual ranges, m, for the feet hint: letters of 1–12 ft (MUTCD §3B.20
+/// uses 6–8 ft) and lanes of 8–16 ft. // assumed: wide enough for
+/// every marking in markings/, narrow enough that 8 (ft) falls outside.
+const USUAL_LETTER_HEIGHT_M: (f64, f64) = (0.3, 3.7);
+const USUAL_LANE_WIDTH_M: (f64, f64) = (2.4, 5.0);
+
+/// Hints for bare numbers that look like feet (`--letter-height 8`).
+fn feet_hints(args: &Args) -> Vec<String> {
+    [
+        ("--letter-height", args.letter_height, USUAL_LETTER_HEIGHT_M),
+        ("--lane-width", args.lane_width, USUAL_LANE_WIDTH_M),
+    ]
+    .into_iter()
+    .filter_map(|(flag, l, usual)| basr::units::feet_hint(flag, l?, usual))
+    .collect()
+}
+
 /// Refuse outputs that name one file twice, or an input: each would be
 /// written over the other (the job over `--csv`, or over the marking file).
 fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
@@ -163,6 +186,16 @@ fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    // Before any work: a folder or a wrong name fails now, not after planning.
+    if let Some(p) = &args.output {
+        super::outputs::check("-o", p, &["json"])?;
+    }
+    if let Some(p) = &args.csv {
+        super::outputs::check("--csv", p, &["csv"])?;
+    }
+    if let Some(p) = &args.adept {
+        super::outputs::check("--adept", p, &[])?;
+    }
     // Non-finite and non-positive values are reported by the planner.
     let too_fine = |v: f64, min: f64| v.is_finite() && v > 0.0 && v < min;
     anyhow::ensure!(
@@ -202,9 +235,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let req = CompileRequest {
         source,
         overrides: Overrides {
-            letter_height_m: args.letter_height,
-            lane_width_m: args.lane_width,
-            line_gap_m: args.line_gap,
+            letter_height_m: args.letter_height.map(|l| l.m),
+            lane_width_m: args.lane_width.map(|l| l.m),
+            line_gap_m: args.line_gap.map(|l| l.m),
             low_speed: args.low_speed,
         },
         font: args.font.clone(),
@@ -220,9 +253,21 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         gun_lag_s: args.gun_lag_s,
         ..CompileRequest::message("")
     };
+    let hints = feet_hints(&args);
+    if !global.quiet {
+        for h in &hints {
+            note!("hint: {h}");
+        }
+    }
     let scene_file =
         matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
-    let job = compile_job(&req)?;
+    let job = compile_job(&req).map_err(|e| {
+        let e = anyhow::Error::from(e);
+        match hints.is_empty() {
+            true => e,
+            false => anyhow::anyhow!("{e:#}\n  hint: {}", hints.join("\n  hint: ")),
+        }
+    })?;
     // A symbol's job is named after it, a scene's after its file.
     let stem = match (&args.symbol, &args.marking) {
         (Some(name), _) => stem_of(name),
@@ -235,6 +280,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.job.json")));
+    super::outputs::check("the job", &out, &["json"])?;
     refuse_clashing_paths(&args, &out)?;
     // main renames all three into place together when the run succeeds, and
     // drops them all when any fails or the run is interrupted.

@@ -3,13 +3,16 @@
 
 pub mod check;
 pub mod compile;
+pub mod design;
 pub mod glyphs;
+pub mod outputs;
 pub mod pose;
 pub mod preview;
 pub mod robot;
 pub mod simulate;
 pub mod symbols;
 pub mod workspace;
+pub mod workspace_kinds;
 
 use std::path::Path;
 
@@ -74,7 +77,7 @@ pub fn read_job(path: &Path) -> anyhow::Result<basr::job::Job> {
             path.display()
         );
     }
-    Ok(basr::job::Job::read(path)?)
+    basr::job::Job::read(path)
 }
 
 /// What a file given as a job is instead, from its name or first bytes.

@@ -243,6 +243,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         inputs.push(("the font file (--font)", std::path::Path::new(f)));
     }
     super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
+    super::outputs::check("-o", &out, &["svg"])?;
     let job = super::read_job(&args.job)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
@@ -348,7 +349,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if jobs.iter().any(|(_, re)| *re) {
             note!("note: {replanned_note}");
         }
-        note!("wrote {}", out.display());
+        super::outputs::after_commit(format!("wrote {}", out.display()));
     }
     if args.json {
         let svg_name = out.display().to_string();

@@ -317,9 +317,19 @@ pub struct Job {
     pub sha256: String,
 }
 
-/// Canonical bytes of a JSON value (see the module docs).
-pub fn canonical_json(v: &serde_json::Value) -> Vec<u8> {
-    serde_json::to_vec(v).expect("a serde_json::Value always serialises")
+pub use crate::canon::canonical_json;
+
+impl Paint {
+    /// The job's `paint` object (SPEC §3) for a robot's nozzle and paint.
+    pub fn of(p: &crate::robot::Paint) -> Paint {
+        Paint {
+            fan_angle_rad: p.fan_angle_rad,
+            flow_m3ps: p.flow_m3ps,
+            transfer_efficiency: p.transfer_efficiency,
+            film_m: p.film_m,
+            k_m2ps: p.k_m2ps(),
+        }
+    }
 }
 
 fn document_hash(mut v: serde_json::Value) -> String {

@@ -24,8 +24,8 @@ pub struct PlacedMark {
     pub label: String,
     /// Message line (lines) or item index (scenes), 0 first.
     pub line: usize,
-    /// For messages: "letter S of line 1", "symbol stop-line of item 1".
-    pub what: String,
+    /// `"letter"`, `"symbol"` or `"shape"`, for messages.
+    pub kind: &'static str,
     /// Road frame, metres.
     pub strokes: Vec<Stroke>,
 }
@@ -54,7 +54,7 @@ pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, La
         marks.push(PlacedMark {
             label: l.ch.to_string(),
             line: l.line,
-            what: format!("letter {} of line {}", l.ch, l.line + 1),
+            kind: "letter",
             strokes: g
                 .strokes
                 .iter()
@@ -182,7 +182,7 @@ fn item_marks(
                 .marks
                 .into_iter()
                 .map(|mk| PlacedMark {
-                    what: format!("letter {} of item {} ({text})", mk.label, i + 1),
+                    kind: "letter",
                     line: i,
                     strokes: mk.strokes.iter().map(|s| s.transformed(&to_road)).collect(),
                     label: mk.label,
@@ -199,7 +199,7 @@ fn item_marks(
             Ok(vec![PlacedMark {
                 label: name.clone(),
                 line: i,
-                what: format!("symbol {name} of item {}", i + 1),
+                kind: "symbol",
                 strokes: sym.strokes.iter().map(|s| s.transformed(&m)).collect(),
             }])
         }

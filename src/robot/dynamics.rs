@@ -61,73 +61,199 @@ pub struct Dynamics {
 }
 
 impl Dynamics {
-    /// What is wrong: (dotted field, message).
+    /// What is wrong: (dotted field, message). Every number has a range
+    /// (see `ranges.rs`): past it the simulator would not describe an arm,
+    /// or its 1 ms RK4 step would not follow the dynamics.
     pub fn problems(&self) -> Vec<(String, String)> {
-        let mut out = Vec::new();
-        let positive: [(&str, f64); 19] = [
-            ("base_inertia_kgm2", self.base_inertia_kgm2),
-            ("ee_inertia_kgm2", self.ee_inertia_kgm2),
-            ("cylinder_bore_m", self.cylinder_bore_m),
-            ("cylinder_rod_m", self.cylinder_rod_m),
-            ("cylinder_dead_volume_m3", self.cylinder_dead_volume_m3),
-            ("cylinder_valve_flow_gain", self.cylinder_valve_flow_gain),
-            ("cylinder_command_limit", self.cylinder_command_limit),
-            ("valve_time_constant_s", self.valve_time_constant_s),
-            ("motor_stribeck_rad_per_s", self.motor_stribeck_rad_per_s),
-            ("cylinder_stribeck_m_per_s", self.cylinder_stribeck_m_per_s),
-            ("bulk_p_kappa_pa", self.bulk_p_kappa_pa),
-            ("relief_pa", self.relief_pa),
-            ("relief_gain_m3_per_s_pa", self.relief_gain_m3_per_s_pa),
-            ("yaw_bandwidth_rad_per_s", self.yaw_bandwidth_rad_per_s),
-            ("tilt_bandwidth_rad_per_s", self.tilt_bandwidth_rad_per_s),
-            (
-                "vertical_bandwidth_rad_per_s",
-                self.vertical_bandwidth_rad_per_s,
+        use super::ranges::Range;
+        const ARM: &str = "a truck-mounted arm of a few hundred kilograms";
+        const HYD: &str = "industrial hydraulics of this size";
+        const FRIC: &str = "friction well below the actuator's stall force";
+        const STEP: &str = "dynamics the simulator's 1 ms RK4 step can follow";
+        const SENS: &str = "a pressure transducer and ADC of a real controller";
+        let d = |name: &str| format!("dynamics.{name}");
+        let v = vec![
+            Range::new(
+                &d("base_inertia_kgm2"),
+                self.base_inertia_kgm2,
+                0.1,
+                1e4,
+                ARM,
             ),
-            ("linkage_damping_ratio", self.linkage_damping_ratio),
-            ("pressure_pa_per_volt", self.pressure_pa_per_volt),
-            ("adc_step_v", self.adc_step_v),
+            Range::new(
+                &d("ee_inertia_kgm2"),
+                self.ee_inertia_kgm2,
+                0.01,
+                100.0,
+                ARM,
+            ),
+            Range::new(&d("cylinder_bore_m"), self.cylinder_bore_m, 0.01, 0.3, HYD),
+            Range::new(&d("cylinder_rod_m"), self.cylinder_rod_m, 0.005, 0.3, HYD),
+            Range::new(
+                &d("cylinder_dead_volume_m3"),
+                self.cylinder_dead_volume_m3,
+                1e-5,
+                0.01,
+                HYD,
+            ),
+            Range::new(
+                &d("cylinder_valve_flow_gain"),
+                self.cylinder_valve_flow_gain,
+                1e-9,
+                1e-5,
+                HYD,
+            ),
+            Range::new(
+                &d("cylinder_command_limit"),
+                self.cylinder_command_limit,
+                0.01,
+                1.0,
+                "a fraction of the spool's full opening",
+            ),
+            Range::new(
+                &d("valve_time_constant_s"),
+                self.valve_time_constant_s,
+                1e-3,
+                0.1,
+                "at least the simulator's 1 ms integration step",
+            ),
+            Range::new(
+                &d("motor_off_command"),
+                self.motor_off_command,
+                -1.0,
+                1.0,
+                HYD,
+            ),
+            Range::new(
+                &d("cylinder_off_command"),
+                self.cylinder_off_command,
+                -1.0,
+                1.0,
+                HYD,
+            ),
+            Range::new(
+                &d("leakage_m3_per_s_pa"),
+                self.leakage_m3_per_s_pa,
+                0.0,
+                1e-10,
+                HYD,
+            ),
+            Range::new(
+                &d("motor_viscous_nms_per_rad"),
+                self.motor_viscous_nms_per_rad,
+                0.0,
+                1e4,
+                FRIC,
+            ),
+            Range::new(
+                &d("motor_coulomb_nm"),
+                self.motor_coulomb_nm,
+                0.0,
+                1e3,
+                FRIC,
+            ),
+            Range::new(
+                &d("motor_stiction_nm"),
+                self.motor_stiction_nm,
+                0.0,
+                1e3,
+                FRIC,
+            ),
+            Range::new(
+                &d("motor_stribeck_rad_per_s"),
+                self.motor_stribeck_rad_per_s,
+                1e-3,
+                1.0,
+                STEP,
+            ),
+            Range::new(
+                &d("cylinder_viscous_ns_per_m"),
+                self.cylinder_viscous_ns_per_m,
+                0.0,
+                1e5,
+                FRIC,
+            ),
+            Range::new(
+                &d("cylinder_coulomb_n"),
+                self.cylinder_coulomb_n,
+                0.0,
+                1e4,
+                FRIC,
+            ),
+            Range::new(
+                &d("cylinder_stiction_n"),
+                self.cylinder_stiction_n,
+                0.0,
+                1e4,
+                FRIC,
+            ),
+            Range::new(
+                &d("cylinder_stribeck_m_per_s"),
+                self.cylinder_stribeck_m_per_s,
+                1e-4,
+                1.0,
+                STEP,
+            ),
+            Range::new(&d("bulk_p_kappa_pa"), self.bulk_p_kappa_pa, 1e6, 1e8, HYD),
+            Range::new(&d("relief_pa"), self.relief_pa, 1e6, 5e7, HYD),
+            Range::new(
+                &d("relief_gain_m3_per_s_pa"),
+                self.relief_gain_m3_per_s_pa,
+                1e-13,
+                1e-8,
+                STEP,
+            ),
+            Range::new(
+                &d("yaw_bandwidth_rad_per_s"),
+                self.yaw_bandwidth_rad_per_s,
+                0.1,
+                300.0,
+                STEP,
+            ),
+            Range::new(
+                &d("tilt_bandwidth_rad_per_s"),
+                self.tilt_bandwidth_rad_per_s,
+                0.1,
+                300.0,
+                STEP,
+            ),
+            Range::new(
+                &d("vertical_bandwidth_rad_per_s"),
+                self.vertical_bandwidth_rad_per_s,
+                0.1,
+                300.0,
+                STEP,
+            ),
+            Range::new(
+                &d("linkage_damping_ratio"),
+                self.linkage_damping_ratio,
+                1e-3,
+                2.0,
+                STEP,
+            ),
+            Range::new(
+                &d("pressure_pa_per_volt"),
+                self.pressure_pa_per_volt,
+                1e5,
+                1e8,
+                SENS,
+            ),
+            Range::new(
+                &d("pressure_offset_v"),
+                self.pressure_offset_v,
+                -10.0,
+                10.0,
+                SENS,
+            ),
+            Range::new(&d("adc_step_v"), self.adc_step_v, 1e-6, 0.1, SENS),
         ];
-        for (name, v) in positive {
-            if v <= 0.0 {
-                out.push((
-                    format!("dynamics.{name}"),
-                    format!("must be positive (got {v})"),
-                ));
-            }
-        }
-        let non_negative: [(&str, f64); 7] = [
-            ("leakage_m3_per_s_pa", self.leakage_m3_per_s_pa),
-            ("motor_viscous_nms_per_rad", self.motor_viscous_nms_per_rad),
-            ("motor_coulomb_nm", self.motor_coulomb_nm),
-            ("motor_stiction_nm", self.motor_stiction_nm),
-            ("cylinder_viscous_ns_per_m", self.cylinder_viscous_ns_per_m),
-            ("cylinder_coulomb_n", self.cylinder_coulomb_n),
-            ("cylinder_stiction_n", self.cylinder_stiction_n),
-        ];
-        for (name, v) in non_negative {
-            if v < 0.0 {
-                out.push((
-                    format!("dynamics.{name}"),
-                    format!("must not be negative (got {v})"),
-                ));
-            }
-        }
+        let mut out = super::ranges::outside(v);
         if self.cylinder_rod_m >= self.cylinder_bore_m {
             out.push((
                 "dynamics.cylinder_rod_m".into(),
                 format!(
                     "the rod ({} m) must be thinner than the bore ({} m)",
                     self.cylinder_rod_m, self.cylinder_bore_m
-                ),
-            ));
-        }
-        if self.valve_time_constant_s > 0.0 && self.valve_time_constant_s < 1.0e-3 {
-            out.push((
-                "dynamics.valve_time_constant_s".into(),
-                format!(
-                    "{} s is below the simulator's 1 ms integration step; use at least 0.001",
-                    self.valve_time_constant_s
                 ),
             ));
         }

@@ -343,7 +343,12 @@ pub fn simulate(
             opts.tolerance_m
         )));
     }
-    let substeps = opts.substeps.unwrap_or(model.substeps).max(1);
+    if let Some(n) = opts.substeps.filter(|n| !(1..=100).contains(n)) {
+        return Err(SimError::Option(format!(
+            "substeps = {n} must be 1–100 RK4 steps per control period"
+        )));
+    }
+    let substeps = opts.substeps.unwrap_or(model.substeps);
     let s = &job.samples;
     let n = s.len();
     let dt_job = job.control_period_s;

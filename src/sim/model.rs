@@ -402,7 +402,11 @@ impl SimModel {
                 period_s: robot.control.controller_sample_s,
                 lambda_s: robot.control.delay_estimate_s,
             },
-            substeps: 5, // 1 ms RK4 step: 4× inside the valve's τ_s stability bound
+            // RK4 steps of at most 1 ms (5 in the seed's 5 ms period): 4×
+            // inside the valve's τ_s stability bound
+            substeps: (robot.control.controller_sample_s / 1.0e-3 - 1e-9)
+                .ceil()
+                .max(1.0) as u32,
         };
         m.validate()?;
         Ok(m)
@@ -480,8 +484,8 @@ impl SimModel {
                 return Err(format!("{name} = {v} is outside its physical range"));
             }
         }
-        if self.substeps == 0 {
-            return Err("substeps must be at least 1".into());
+        if self.substeps == 0 || self.substeps > 100 {
+            return Err(format!("substeps = {} must be 1–100", self.substeps));
         }
         Ok(())
     }

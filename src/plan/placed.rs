@@ -1,0 +1,173 @@
+//! Placed strokes: every band of paint of a marking in the road frame, with
+//! the item (letter, symbol, shape) it belongs to.
+//!
+//! This is the seam between what is painted and how: a scene of words,
+//! symbols or imported shapes only has to produce a [`PlacedStrokes`]; the
+//! rest of the planner (rungs, knots, passes, stations, tours, time law)
+//! reads nothing else about the marking. [`PlacedStrokes::from_letters`]
+//! makes one from a laid-out message and its font.
+
+use kurbo::Affine;
+
+use crate::font::{Font, Library, Stroke};
+use crate::job::{PlacedGlyph, PlacedStroke as OutlineStroke};
+use crate::layout::{self, Laid, LayoutError, Marking, Placed, Scene};
+
+use super::request::{CompileRequest, Source};
+
+use super::warnings::{Note, Owner};
+
+/// Outline samples of `layout.glyphs` are at most this far apart (m).
+const OUTLINE_STEP_M: f64 = 0.01;
+
+/// One item of the marking: a letter, a symbol or a shape.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedItem {
+    pub owner: Owner,
+}
+
+/// One stroke in the road frame (left and right edges as the font or
+/// shape gives them; see `font` for the convention).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlacedStroke {
+    pub stroke: Stroke,
+    /// Index into [`PlacedStrokes::items`].
+    pub item: usize,
+}
+
+/// Every stroke of a marking, in painting-plan order (the stroke index used
+/// in messages and the job's `stroke` column is the index here).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PlacedStrokes {
+    pub items: Vec<PlacedItem>,
+    pub strokes: Vec<PlacedStroke>,
+    /// Notes of the layout (MUTCD rules bent), carried into the job.
+    pub notes: Vec<Note>,
+}
+
+/// The layout stage: the request's message, marking file (lines or a scene
+/// of items) or single symbol laid out in the lane, as the marking the job
+/// records (its message, letter height and lane) and its placed strokes.
+pub fn lay_out(req: &CompileRequest, font: &Font) -> Result<(Marking, PlacedStrokes), LayoutError> {
+    let o = &req.overrides;
+    let lib = Library::embedded();
+    let laid = match &req.source {
+        Source::Message(m) => {
+            layout::lay_marking(&Marking::from_message(m, o)?, font, o.low_speed)?
+        }
+        Source::Marking { text, origin } if layout::is_scene(text) => {
+            layout::lay_scene(&Scene::from_toml(text, origin, o)?, font, lib)?
+        }
+        Source::Marking { text, origin } => {
+            layout::lay_marking(&Marking::from_toml(text, origin, o)?, font, o.low_speed)?
+        }
+        Source::Symbol(name) => layout::lay_scene(&Scene::single_symbol(name, o)?, font, lib)?,
+    };
+    let record = Marking {
+        lines: laid.message.split('\n').map(str::to_string).collect(),
+        letter_height_m: laid.letter_height_m,
+        letter_spacing_m: 0.0,
+        lane_width_m: laid.lane_width_m,
+        line_gap_m: 0.0,
+        anchor_x_m: 0.0,
+        anchor_y_m: 0.0,
+    };
+    Ok((record, PlacedStrokes::from_laid(&laid)))
+}
+
+impl PlacedStrokes {
+    /// The strokes of a laid-out message or scene (letters and symbols
+    /// already in the road frame), its warnings as layout notes.
+    pub fn from_laid(laid: &Laid) -> PlacedStrokes {
+        let mut out = PlacedStrokes {
+            notes: laid
+                .warnings
+                .iter()
+                .map(|w| Note::Layout { text: w.clone() })
+                .collect(),
+            ..PlacedStrokes::default()
+        };
+        for mark in &laid.marks {
+            let item = out.items.len();
+            out.items.push(PlacedItem {
+                owner: Owner {
+                    kind: mark.kind,
+                    label: mark.label.clone(),
+                    line: mark.line,
+                },
+            });
+            out.strokes
+                .extend(mark.strokes.iter().map(|st| PlacedStroke {
+                    stroke: st.clone(),
+                    item,
+                }));
+        }
+        out
+    }
+
+    /// The strokes of laid-out letters, each glyph mapped from its grid into
+    /// the road frame. Letters without a glyph were refused by the layout.
+    pub fn from_letters(placed: &Placed, font: &Font) -> PlacedStrokes {
+        let mut out = PlacedStrokes {
+            notes: placed
+                .warnings
+                .iter()
+                .map(|w| Note::Layout { text: w.clone() })
+                .collect(),
+            ..PlacedStrokes::default()
+        };
+        for letter in &placed.letters {
+            let Some(glyph) = font.glyph(letter.ch) else {
+                continue;
+            };
+            let s = letter.scale_m;
+            let to_road = Affine::new([s, 0.0, 0.0, s, letter.origin_m[0], letter.origin_m[1]]);
+            let item = out.items.len();
+            out.items.push(PlacedItem {
+                owner: Owner {
+                    kind: "letter",
+                    label: letter.ch.to_string(),
+                    line: letter.line,
+                },
+            });
+            out.strokes
+                .extend(glyph.strokes.iter().map(|st| PlacedStroke {
+                    stroke: st.transformed(&to_road),
+                    item,
+                }));
+        }
+        out
+    }
+
+    /// Who stroke `i` belongs to.
+    pub fn owner(&self, stroke: usize) -> &Owner {
+        &self.items[self.strokes[stroke].item].owner
+    }
+
+    /// The job's `layout.glyphs`: each item's stroke outlines (edges sampled
+    /// at most `OUTLINE_STEP_M` apart), the items in order.
+    pub fn outlines(&self) -> Vec<PlacedGlyph> {
+        let mut glyphs: Vec<PlacedGlyph> = self
+            .items
+            .iter()
+            .map(|it| PlacedGlyph {
+                char: it.owner.label.clone(),
+                line: it.owner.line,
+                strokes: vec![],
+            })
+            .collect();
+        for ps in &self.strokes {
+            let st = &ps.stroke;
+            let len = st.left.length().max(st.right.length());
+            let k = ((len / OUTLINE_STEP_M).ceil() as usize).max(1) + 1;
+            let pts = |e: &crate::geom::Edge| e.sample(k).iter().map(|p| [p.x, p.y]).collect();
+            glyphs[ps.item].strokes.push(OutlineStroke {
+                left: pts(&st.left),
+                right: pts(&st.right),
+            });
+        }
+        glyphs
+    }
+}
+
+pub use crate::layout::glyph_box;
