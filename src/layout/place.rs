@@ -303,3 +303,66 @@ pub fn glyph_box(g: &Glyph) -> GlyphBox {
         y_max: hi,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout::Overrides;
+    use proptest::prelude::*;
+
+    fn one(symbol: &str, at: [f64; 2], rot_deg: f64) -> Scene {
+        let text = format!(
+            "[[item]]\nsymbol = \"{symbol}\"\nat_m = [{}, {}]\nrotate_deg = {rot_deg}\n",
+            at[0], at[1]
+        );
+        Scene::from_toml(&text, "p.toml", &Overrides::default()).unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        /// Placing keeps a symbol's painted area and never lets a placed
+        /// item out of the lane: either every point is inside or the
+        /// layout is refused, by the amount the farthest point is out.
+        #[test]
+        fn placed_items_stay_in_the_lane_or_are_refused(
+            i in 0usize..18, x in -2.0f64..2.0, y in -5.0f64..5.0, rot in -180.0f64..180.0
+        ) {
+            let lib = Library::embedded();
+            let sym = lib.symbols().nth(i).unwrap();
+            let s = one(&sym.name, [x, y], rot);
+            let half = 0.5 * s.lane_width_m;
+            match lay_scene(&s, Font::embedded(), lib) {
+                Ok(laid) => {
+                    let (lo, hi) = extent(laid.marks.iter());
+                    prop_assert!(lo.x >= -half - 1e-6 && hi.x <= half + 1e-6);
+                    let area: f64 = laid.marks.iter().flat_map(|m| &m.strokes)
+                        .map(crate::font::stroke_area).sum();
+                    prop_assert!((area - sym.area_m2()).abs() < 1e-6 * sym.area_m2().max(1.0));
+                }
+                Err(LayoutError::OutsideLane { by_m, x_m, .. }) => {
+                    prop_assert!(by_m > 0.0);
+                    prop_assert!((x_m.abs() - half - by_m).abs() < 1e-9);
+                }
+                Err(e) => prop_assert!(false, "{e}"),
+            }
+        }
+    }
+
+    #[test]
+    fn items_that_share_paint_are_refused_both_named() {
+        let text = "[[item]]\nsymbol = \"stop-line\"\nat_m = [0, 0]\n\
+                    [[item]]\nword = \"SLOW\"\nat_m = [0, 0.5]\n";
+        let s = Scene::from_toml(text, "o.toml", &Overrides::default()).unwrap();
+        let e = lay_scene(&s, Font::embedded(), Library::embedded()).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("item 1 (symbol stop-line) and item 2 (word SLOW) overlap"),
+            "{e}"
+        );
+        // Clear of the line (S and O dip 0.02 m below their grids) is fine.
+        let text = text.replace("[0, 0.5]", "[0, 0.65]");
+        let s = Scene::from_toml(&text, "o.toml", &Overrides::default()).unwrap();
+        let laid = lay_scene(&s, Font::embedded(), Library::embedded());
+        assert!(laid.is_ok(), "{laid:?}");
+    }
+}
