@@ -37,6 +37,7 @@ Examples:
   basr compile \"STOP AHEAD\" --csv sa.csv # two lines, setpoints as CSV too
   basr preview STOP.job.json -o stop.svg # simulated paint film
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
+  basr report STOP.job.json -o STOP.html # the job sheet for the crew
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
   basr symbols --svg symbols.svg         # the symbol library, drawn
   basr compile --symbol arrow-left       # one symbol alone
@@ -71,6 +72,7 @@ enum Command {
     Glyphs(cmd::glyphs::Args),
     Symbols(cmd::symbols::Args),
     Preview(cmd::preview::Args),
+    Report(cmd::report::Args),
     Simulate(cmd::simulate::Args),
     Robot(cmd::robot::Args),
     Workspace(cmd::workspace::Args),
@@ -126,6 +128,7 @@ fn main() -> ExitCode {
         Command::Glyphs(a) => cmd::glyphs::run(a, &global),
         Command::Symbols(a) => cmd::symbols::run(a, &global),
         Command::Preview(a) => cmd::preview::run(a, &global),
+        Command::Report(a) => cmd::report::run(a, &global),
         Command::Simulate(a) => cmd::simulate::run(a, &global),
         Command::Robot(a) => cmd::robot::run(a, &global),
         Command::Workspace(a) => cmd::workspace::run(a, &global),
