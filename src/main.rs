@@ -39,6 +39,8 @@ Examples:
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
   basr report STOP.job.json -o STOP.html # the job sheet for the crew
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
+  basr symbols --svg symbols.svg         # the symbol library, drawn
+  basr compile --symbol arrow-left       # one symbol alone
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
   basr completions bash > basr.bash      # shell completions
 
@@ -68,6 +70,7 @@ struct Cli {
 enum Command {
     Compile(cmd::compile::Args),
     Glyphs(cmd::glyphs::Args),
+    Symbols(cmd::symbols::Args),
     Preview(cmd::preview::Args),
     Report(cmd::report::Args),
     Simulate(cmd::simulate::Args),
@@ -123,6 +126,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Compile(a) => cmd::compile::run(a, &global),
         Command::Glyphs(a) => cmd::glyphs::run(a, &global),
+        Command::Symbols(a) => cmd::symbols::run(a, &global),
         Command::Preview(a) => cmd::preview::run(a, &global),
         Command::Report(a) => cmd::report::run(a, &global),
         Command::Simulate(a) => cmd::simulate::run(a, &global),

@@ -30,6 +30,7 @@ enum Kind {
     Robot,
     Marking,
     Csv,
+    Symbols,
 }
 
 fn kind_of(text: &str) -> Option<Kind> {
@@ -41,11 +42,16 @@ fn kind_of(text: &str) -> Option<Kind> {
         return Some(Kind::Csv);
     }
     let table: toml::Table = toml::from_str(text).ok()?;
-    if table.contains_key("glyphs") || table.contains_key("primitives") {
+    if table.contains_key("symbols") {
+        Some(Kind::Symbols)
+    } else if table.contains_key("glyphs") || table.contains_key("primitives") {
         Some(Kind::Font)
     } else if table.contains_key("arm") {
         Some(Kind::Robot)
-    } else if table.contains_key("marking") || table.contains_key("lines") {
+    } else if table.contains_key("marking")
+        || table.contains_key("lines")
+        || table.contains_key("item")
+    {
         Some(Kind::Marking)
     } else {
         None
@@ -72,11 +78,16 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
         Some(Kind::Robot) => basr::robot::check_source(text, origin),
         // A robot file with a TOML syntax error: report where, not "unknown".
         None if basr::robot::looks_like_robot(text) => basr::robot::check_source(text, origin),
+        Some(Kind::Symbols) => basr::font::check_library_source(text, origin),
+        None if basr::font::looks_like_library(text) => {
+            basr::font::check_library_source(text, origin)
+        }
         Some(Kind::Font) => basr::font::check_source(text, origin),
         None if basr::font::looks_like_font(text) => basr::font::check_source(text, origin),
         None => vec![format!(
             "{origin}: not a basr file: expected a job (JSON), a setpoint CSV or a font, robot \
-             or marking description (TOML with a [glyphs], [arm] or [marking] table)"
+             or marking description (TOML with a [glyphs], [arm] or [marking] table) or a \
+             symbol library ([symbols.NAME] tables)"
         )],
     }
 }

@@ -33,7 +33,9 @@ Examples:
   basr compile STOP                               # writes STOP.job.json
   basr compile \"STOP AHEAD\" --csv sa.csv          # also the setpoint CSV
   basr compile --marking markings/school_xing.toml --adept school.v2
-  basr compile BUS --letter-height 1.83 --tilt none --json")]
+  basr compile BUS --letter-height 1.83 --tilt none --json
+  basr compile --symbol arrow-left                # writes arrow-left.job.json
+  basr compile --marking markings/stop_line.toml  # a scene: stop line and STOP")]
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
@@ -41,9 +43,18 @@ pub struct Args {
     // that is not UTF-8 gets our message naming --marking and the letters.
     #[arg(conflicts_with = "marking", value_parser = clap::value_parser!(std::ffi::OsString))]
     pub message: Option<std::ffi::OsString>,
-    /// A marking file (TOML, see markings/) giving the lines and layout.
+    /// A marking file (TOML, see markings/): `lines` of words, or a scene of
+    /// `[[item]]`s (words and symbols placed in the lane).
     #[arg(long, value_name = "FILE")]
     pub marking: Option<PathBuf>,
+    /// One library symbol alone at its standard size, centred in the lane
+    /// with its near end at the anchor (`basr symbols` lists the names).
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["message", "marking"])]
+    pub symbol: Option<String>,
+    /// The operating speed is below 25 mph: letters down to 4.5 ft and
+    /// symbols down to 75 % pass the MUTCD checks (11th §3B.20 ¶11).
+    #[arg(long)]
+    pub low_speed: bool,
     /// Job file to write [default: <MESSAGE>.job.json].
     #[arg(short, long, value_name = "JOB")]
     pub output: Option<PathBuf>,
@@ -129,7 +140,7 @@ fn stem_of(text: &str) -> String {
         .join("_")
         .chars()
         .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
                 c
             } else {
                 '_'
@@ -206,6 +217,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         args.period_s
     );
     let source = match (&args.message, &args.marking) {
+        _ if args.symbol.is_some() => Source::Symbol(args.symbol.clone().unwrap_or_default()),
         (Some(m), None) => Source::Message(
             m.to_str()
                 .ok_or_else(|| {
@@ -222,8 +234,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             origin: path.display().to_string(),
         },
         _ => anyhow::bail!(
-            "give the message to paint or a marking file: `basr compile STOP` or \
-             `basr compile --marking markings/stop.toml`"
+            "give the message to paint, a marking file or a symbol: `basr compile STOP`, \
+             `basr compile --marking markings/stop.toml` or `basr compile --symbol stop-line`"
         ),
     };
     let req = CompileRequest {
@@ -232,6 +244,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             letter_height_m: args.letter_height.map(|l| l.m),
             lane_width_m: args.lane_width.map(|l| l.m),
             line_gap_m: args.line_gap.map(|l| l.m),
+            low_speed: args.low_speed,
         },
         font: args.font.clone(),
         robot: args.robot.clone(),
@@ -252,6 +265,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             note!("hint: {h}");
         }
     }
+    let scene_file =
+        matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
     let job = compile_job(&req).map_err(|e| {
         let e = anyhow::Error::from(e);
         match hints.is_empty() {
@@ -259,10 +274,18 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             false => anyhow::anyhow!("{e:#}\n  hint: {}", hints.join("\n  hint: ")),
         }
     })?;
+    // A symbol's job is named after it, a scene's after its file.
+    let stem = match (&args.symbol, &args.marking) {
+        (Some(name), _) => stem_of(name),
+        (None, Some(path)) if scene_file => path
+            .file_stem()
+            .map_or_else(|| stem_of(&job.message), |s| stem_of(&s.to_string_lossy())),
+        _ => stem_of(&job.message),
+    };
     let out = args
         .output
         .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
+        .unwrap_or_else(|| PathBuf::from(format!("{stem}.job.json")));
     super::outputs::check("the job", &out, &["json"])?;
     refuse_clashing_paths(&args, &out)?;
     // main renames all three into place together when the run succeeds, and

@@ -39,6 +39,20 @@ fn pts(v: Vec<kurbo::Point>) -> Vec<[f64; 2]> {
     v.into_iter().map(|p| [p.x, p.y]).collect()
 }
 
+/// Each stroke's edges at `JSON_POINTS` equal-arc-length points
+/// (`glyphs --json`, `symbols --json`).
+pub fn strokes_json(strokes: &[basr::font::Stroke]) -> Vec<serde_json::Value> {
+    strokes
+        .iter()
+        .map(|s| {
+            json!({
+                "left": pts(s.left.sample(JSON_POINTS)),
+                "right": pts(s.right.sample(JSON_POINTS)),
+            })
+        })
+        .collect()
+}
+
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(svg) = &args.svg {
         let font = std::path::Path::new(&args.font);
@@ -59,19 +73,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if args.json {
         let glyphs: Vec<_> = font
             .glyphs()
-            .map(|g| {
-                let strokes: Vec<_> = g
-                    .strokes
-                    .iter()
-                    .map(|s| {
-                        json!({
-                            "left": pts(s.left.sample(JSON_POINTS)),
-                            "right": pts(s.right.sample(JSON_POINTS)),
-                        })
-                    })
-                    .collect();
-                json!({ "char": g.ch.to_string(), "strokes": strokes })
-            })
+            .map(|g| json!({ "char": g.ch.to_string(), "strokes": strokes_json(&g.strokes) }))
             .collect();
         let doc = json!({
             "font": { "name": font.name, "sha256": font.sha256 },

@@ -11,6 +11,7 @@ pub mod preview;
 pub mod report;
 pub mod robot;
 pub mod simulate;
+pub mod symbols;
 pub mod workspace;
 pub mod workspace_kinds;
 

@@ -17,6 +17,7 @@ mod build;
 mod sheet;
 mod spec;
 mod symbol;
+mod symbol_sheet;
 mod validate;
 
 use std::collections::BTreeMap;
@@ -31,6 +32,7 @@ pub use sheet::alphabet_sheet;
 pub use symbol::{
     check_library_source, extent, looks_like_library, stroke_area, Library, Symbol, SYMBOL_LIMITS,
 };
+pub use symbol_sheet::{feet_inches, symbol_sheet};
 pub use validate::{overlap_area, validate_stroke, Limits, DEFAULT_LIMITS};
 
 /// Width of the letter grid in font units (001 §2.3: 25 × 4 grid).

@@ -6,7 +6,7 @@ use svg::Document;
 use super::{Font, GRID_HEIGHT, GRID_WIDTH};
 
 /// Rungs drawn per stroke on the sheet.
-const SHEET_RUNGS: usize = 24;
+pub(super) const SHEET_RUNGS: usize = 24;
 /// Pixels per grid unit.
 const SCALE: f64 = 10.0;
 /// Glyphs per row.
@@ -22,7 +22,7 @@ const COLOURS: [&str; 6] = [
     "#f2c14e", "#7fb3d5", "#a3d9a5", "#f5a3a3", "#c9a3e6", "#f7cf9e",
 ];
 
-fn fmt(v: f64) -> String {
+pub(super) fn fmt(v: f64) -> String {
     format!("{v:.3}")
 }
 
@@ -72,67 +72,7 @@ pub fn alphabet_sheet(font: &Font) -> Document {
                 .set("stroke", "#cccccc")
                 .set("stroke-width", 0.5),
         );
-        // Stroke-order labels already placed: centre and half width (px).
-        let mut labels: Vec<(f64, f64, f64)> = Vec::new();
-        for (k, s) in glyph.strokes.iter().enumerate() {
-            let outline = s.outline(80);
-            let mut d = String::new();
-            for (j, p) in outline.iter().enumerate() {
-                let (x, y) = map(*p);
-                d.push_str(&format!(
-                    "{}{} {} ",
-                    if j == 0 { "M" } else { "L" },
-                    fmt(x),
-                    fmt(y)
-                ));
-            }
-            d.push('Z');
-            g = g.add(
-                Path::new()
-                    .set("d", d)
-                    .set("fill", COLOURS[k % COLOURS.len()])
-                    .set("stroke", "black")
-                    .set("stroke-width", 0.8),
-            );
-            for (a, b) in s.rungs(SHEET_RUNGS) {
-                let (x1, y1) = map(a);
-                let (x2, y2) = map(b);
-                g = g.add(
-                    Line::new()
-                        .set("x1", fmt(x1))
-                        .set("y1", fmt(y1))
-                        .set("x2", fmt(x2))
-                        .set("y2", fmt(y2))
-                        .set("stroke", "#555555")
-                        .set("stroke-width", 0.4),
-                );
-            }
-            // At the stroke's start, or as near it along the stroke as
-            // keeps clear of the labels before (strokes that start where
-            // another starts, as X's centre and arm, would print "25").
-            let text = format!("{}", k + 1);
-            let half_w = 0.5 * LABEL_DIGIT_W * text.len() as f64 + 1.0;
-            let clear = |&(x, y): &(f64, f64)| {
-                labels
-                    .iter()
-                    .all(|&(lx, ly, lw)| (x - lx).abs() >= half_w + lw || (y - ly).abs() >= LABEL_H)
-            };
-            let along: Vec<(f64, f64)> = s
-                .rungs(4 * SHEET_RUNGS)
-                .into_iter()
-                .map(|(a, b)| map(a.midpoint(b)))
-                .collect();
-            let (x, y) = along.iter().copied().find(clear).unwrap_or(along[0]);
-            labels.push((x, y, half_w));
-            g = g.add(
-                Text::new(text)
-                    .set("x", fmt(x))
-                    .set("y", fmt(y + 3.0))
-                    .set("font-size", LABEL_SIZE)
-                    .set("text-anchor", "middle")
-                    .set("fill", "#b00000"),
-            );
-        }
+        g = draw_strokes(g, &glyph.strokes, &map);
         g = g.add(
             Text::new(glyph.ch.to_string())
                 .set("x", fmt(ox + 0.5 * GRID_WIDTH * SCALE))
@@ -143,4 +83,76 @@ pub fn alphabet_sheet(font: &Font) -> Document {
         doc = doc.add(g);
     }
     doc
+}
+
+/// Each stroke filled (colours cycled), its rungs, and its number at its
+/// start (or as near it as keeps clear of the numbers before), mapped to
+/// pixels by `map`.
+pub(super) fn draw_strokes(
+    mut g: Group,
+    strokes: &[super::Stroke],
+    map: &impl Fn(kurbo::Point) -> (f64, f64),
+) -> Group {
+    // Stroke-order labels already placed: centre and half width (px).
+    let mut labels: Vec<(f64, f64, f64)> = Vec::new();
+    for (k, s) in strokes.iter().enumerate() {
+        let outline = s.outline(80);
+        let mut d = String::new();
+        for (j, p) in outline.iter().enumerate() {
+            let (x, y) = map(*p);
+            d.push_str(&format!(
+                "{}{} {} ",
+                if j == 0 { "M" } else { "L" },
+                fmt(x),
+                fmt(y)
+            ));
+        }
+        d.push('Z');
+        g = g.add(
+            Path::new()
+                .set("d", d)
+                .set("fill", COLOURS[k % COLOURS.len()])
+                .set("stroke", "black")
+                .set("stroke-width", 0.8),
+        );
+        for (a, b) in s.rungs(SHEET_RUNGS) {
+            let (x1, y1) = map(a);
+            let (x2, y2) = map(b);
+            g = g.add(
+                Line::new()
+                    .set("x1", fmt(x1))
+                    .set("y1", fmt(y1))
+                    .set("x2", fmt(x2))
+                    .set("y2", fmt(y2))
+                    .set("stroke", "#555555")
+                    .set("stroke-width", 0.4),
+            );
+        }
+        // At the stroke's start, or as near it along the stroke as
+        // keeps clear of the labels before (strokes that start where
+        // another starts, as X's centre and arm, would print "25").
+        let text = format!("{}", k + 1);
+        let half_w = 0.5 * LABEL_DIGIT_W * text.len() as f64 + 1.0;
+        let clear = |&(x, y): &(f64, f64)| {
+            labels
+                .iter()
+                .all(|&(lx, ly, lw)| (x - lx).abs() >= half_w + lw || (y - ly).abs() >= LABEL_H)
+        };
+        let along: Vec<(f64, f64)> = s
+            .rungs(4 * SHEET_RUNGS)
+            .into_iter()
+            .map(|(a, b)| map(a.midpoint(b)))
+            .collect();
+        let (x, y) = along.iter().copied().find(clear).unwrap_or(along[0]);
+        labels.push((x, y, half_w));
+        g = g.add(
+            Text::new(text)
+                .set("x", fmt(x))
+                .set("y", fmt(y + 3.0))
+                .set("font-size", LABEL_SIZE)
+                .set("text-anchor", "middle")
+                .set("fill", "#b00000"),
+        );
+    }
+    g
 }

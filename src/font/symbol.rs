@@ -123,14 +123,15 @@ impl Library {
         self.symbols.values()
     }
 
-    /// Up to three names nearest `name` (edit distance), nearest first.
+    /// Up to three names nearest `name` (Jaro–Winkler similarity, which
+    /// weighs a shared beginning: `arow` → `arrow-…`), nearest first.
     pub fn nearest(&self, name: &str) -> Vec<&str> {
-        let mut v: Vec<(usize, &str)> = self
+        let mut v: Vec<(f64, &str)> = self
             .symbols
             .keys()
-            .map(|k| (strsim::levenshtein(name, k), k.as_str()))
+            .map(|k| (strsim::jaro_winkler(name, k), k.as_str()))
             .collect();
-        v.sort();
+        v.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(b.1)));
         v.into_iter().take(3).map(|(_, k)| k).collect()
     }
 }
@@ -438,6 +439,7 @@ mod tests {
         let lib = Library::embedded();
         assert_eq!(lib.nearest("arow-left")[0], "arrow-left");
         assert_eq!(lib.nearest("stopline")[0], "stop-line");
+        assert!(lib.nearest("arow").iter().all(|n| n.starts_with("arrow-")));
     }
 
     fn lib(body: &str) -> Result<Library, Vec<String>> {

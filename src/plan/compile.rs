@@ -6,7 +6,7 @@
 use crate::job::Job;
 use crate::layout;
 
-use super::placed::{glyph_box, PlacedStrokes};
+use super::placed::{lay_out, PlacedStrokes};
 use super::seal::{seal, Planned};
 use super::{inputs, joints, passes, request, rungs, samples, stations, tours, trajectory, verify};
 
@@ -16,13 +16,8 @@ pub use super::request::{CompileRequest, Source, Tilt, DEFAULT_PERIOD_S, DEFAULT
 /// Compile a message or marking into a sealed job.
 pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
     request::check_settings(req)?;
-    let inputs::Inputs {
-        marking,
-        robot,
-        font,
-    } = inputs::read(req)?;
-    let laid_out = layout::place(&marking, |ch| font.glyph(ch).map(glyph_box))?;
-    let strokes = PlacedStrokes::from_letters(&laid_out, &font);
+    let inputs::Inputs { robot, font } = inputs::read(req)?;
+    let (marking, strokes) = lay_out(req, &font)?;
     compile_strokes(req, &marking, &font, robot, &strokes)
 }
 

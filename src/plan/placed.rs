@@ -9,9 +9,11 @@
 
 use kurbo::Affine;
 
-use crate::font::{Font, Glyph, Stroke};
+use crate::font::{Font, Library, Stroke};
 use crate::job::{PlacedGlyph, PlacedStroke as OutlineStroke};
-use crate::layout::{self, Placed};
+use crate::layout::{self, Laid, LayoutError, Marking, Placed, Scene};
+
+use super::request::{CompileRequest, Source};
 
 use super::warnings::{Note, Owner};
 
@@ -43,7 +45,66 @@ pub struct PlacedStrokes {
     pub notes: Vec<Note>,
 }
 
+/// The layout stage: the request's message, marking file (lines or a scene
+/// of items) or single symbol laid out in the lane, as the marking the job
+/// records (its message, letter height and lane) and its placed strokes.
+pub fn lay_out(req: &CompileRequest, font: &Font) -> Result<(Marking, PlacedStrokes), LayoutError> {
+    let o = &req.overrides;
+    let lib = Library::embedded();
+    let laid = match &req.source {
+        Source::Message(m) => {
+            layout::lay_marking(&Marking::from_message(m, o)?, font, o.low_speed)?
+        }
+        Source::Marking { text, origin } if layout::is_scene(text) => {
+            layout::lay_scene(&Scene::from_toml(text, origin, o)?, font, lib)?
+        }
+        Source::Marking { text, origin } => {
+            layout::lay_marking(&Marking::from_toml(text, origin, o)?, font, o.low_speed)?
+        }
+        Source::Symbol(name) => layout::lay_scene(&Scene::single_symbol(name, o)?, font, lib)?,
+    };
+    let record = Marking {
+        lines: laid.message.split('\n').map(str::to_string).collect(),
+        letter_height_m: laid.letter_height_m,
+        letter_spacing_m: 0.0,
+        lane_width_m: laid.lane_width_m,
+        line_gap_m: 0.0,
+        anchor_x_m: 0.0,
+        anchor_y_m: 0.0,
+    };
+    Ok((record, PlacedStrokes::from_laid(&laid)))
+}
+
 impl PlacedStrokes {
+    /// The strokes of a laid-out message or scene (letters and symbols
+    /// already in the road frame), its warnings as layout notes.
+    pub fn from_laid(laid: &Laid) -> PlacedStrokes {
+        let mut out = PlacedStrokes {
+            notes: laid
+                .warnings
+                .iter()
+                .map(|w| Note::Layout { text: w.clone() })
+                .collect(),
+            ..PlacedStrokes::default()
+        };
+        for mark in &laid.marks {
+            let item = out.items.len();
+            out.items.push(PlacedItem {
+                owner: Owner {
+                    kind: mark.kind,
+                    label: mark.label.clone(),
+                    line: mark.line,
+                },
+            });
+            out.strokes
+                .extend(mark.strokes.iter().map(|st| PlacedStroke {
+                    stroke: st.clone(),
+                    item,
+                }));
+        }
+        out
+    }
+
     /// The strokes of laid-out letters, each glyph mapped from its grid into
     /// the road frame. Letters without a glyph were refused by the layout.
     pub fn from_letters(placed: &Placed, font: &Font) -> PlacedStrokes {
@@ -132,24 +193,4 @@ impl PlacedStrokes {
     }
 }
 
-/// A glyph's extent on the grid: the grid's width, and the lowest and
-/// highest points of its strokes' edges.
-pub fn glyph_box(g: &Glyph) -> layout::GlyphBox {
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for s in &g.strokes {
-        for e in [&s.left, &s.right] {
-            for p in e.sample(65) {
-                lo = lo.min(p.y);
-                hi = hi.max(p.y);
-            }
-        }
-    }
-    if !(lo.is_finite() && hi.is_finite()) {
-        return layout::GlyphBox::GRID;
-    }
-    layout::GlyphBox {
-        width: crate::font::GRID_WIDTH,
-        y_min: lo,
-        y_max: hi,
-    }
-}
+pub use crate::layout::glyph_box;

@@ -20,8 +20,11 @@ pub const DEFAULT_PERIOD_S: f64 = 0.032;
 pub enum Source {
     /// Words typed on the command line; each word one line.
     Message(String),
-    /// A marking file's text; `origin` names it in messages.
+    /// A marking file's text (`lines`, or a scene of `[[item]]`s); `origin`
+    /// names it in messages.
     Marking { text: String, origin: String },
+    /// One library symbol alone, centred in the lane at the anchor.
+    Symbol(String),
 }
 
 /// Tilt method (001 §2.5).

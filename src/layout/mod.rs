@@ -15,6 +15,13 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod place;
+pub mod rules;
+pub mod scene;
+
+pub use place::{glyph_box, lay_marking, lay_scene, Laid, PlacedMark};
+pub use scene::{is_scene, Item, ItemKind, Scene, ShapeSize};
+
 /// Letter height when none is given (SPEC §4: 8 ft).
 pub const DEFAULT_LETTER_HEIGHT_M: f64 = 2.44;
 /// Lane width when none is given (SPEC §4: 12 ft).
@@ -124,6 +131,41 @@ pub enum LayoutError {
     },
     #[error("{origin}: {message}")]
     Marking { origin: String, message: String },
+    #[error(
+        "item {item}: no symbol {name:?} in the library; nearest: {nearest} \
+         (`basr symbols` lists them all)"
+    )]
+    UnknownSymbol {
+        item: usize,
+        name: String,
+        nearest: String,
+    },
+    #[error(
+        "item {item} ({label}) reaches x = {x_m:+.3} m, {by_m:.3} m outside the {lane_m:.3} m \
+         lane{}: move it (at_m), turn it, or widen the lane (lane_width_m); MUTCD 11th §3B.20 \
+         ¶08 (R7): a marking is at most one lane wide, except SCHOOL",
+        if *school { " and the half lane SCHOOL may take on either side" } else { "" }
+    )]
+    OutsideLane {
+        item: usize,
+        label: String,
+        x_m: f64,
+        by_m: f64,
+        lane_m: f64,
+        school: bool,
+    },
+    #[error(
+        "{a} and {b} overlap by about {:.0} cm²: items may abut but must not paint the same \
+         area twice; move one of them (at_m)", area_m2 * 1e4
+    )]
+    Overlap { a: String, b: String, area_m2: f64 },
+    #[error("{message}{}", if *more > 0 { format!(" (and {more} more)") } else { String::new() })]
+    Rule { message: String, more: usize },
+    #[error(
+        "item {item}: shape {path:?}: outline files need the shapes importer (issue 14), \
+         which is not in this build yet; use a library symbol (`basr symbols`)"
+    )]
+    ShapeNotYet { item: usize, path: String },
 }
 
 /// The settings of one marking: its lines and how to lay them out.
@@ -149,6 +191,8 @@ pub struct Overrides {
     pub letter_height_m: Option<f64>,
     pub lane_width_m: Option<f64>,
     pub line_gap_m: Option<f64>,
+    /// `--low-speed`: operating speed below 25 mph (MUTCD 11th §3B.20 ¶11).
+    pub low_speed: bool,
 }
 
 /// The `[marking]` table of a marking file. Unknown keys are errors.
@@ -394,11 +438,23 @@ fn toml_message(text: &str, e: &toml::de::Error) -> String {
 /// (it has a `[marking]` table header), so `basr check` reports its syntax
 /// error with the line instead of "not a basr file".
 pub fn looks_like_marking(text: &str) -> bool {
-    text.lines().any(|l| l.trim() == "[marking]")
+    text.lines()
+        .any(|l| l.trim() == "[marking]" || l.trim() == "[[item]]")
 }
 
 /// Every problem of a marking file's text (empty when valid); for `basr check`.
 pub fn check_marking_source(text: &str, origin: &str) -> Vec<String> {
+    if is_scene(text) {
+        let font = crate::font::Font::embedded();
+        let lib = crate::font::Library::embedded();
+        return match Scene::from_toml(text, origin, &Overrides::default()) {
+            Err(e) => vec![e.to_string()],
+            Ok(s) => match lay_scene(&s, font, lib) {
+                Ok(_) => vec![],
+                Err(e) => vec![format!("{origin}: {e}")],
+            },
+        };
+    }
     let m = match Marking::from_toml(text, origin, &Overrides::default()) {
         Ok(m) => m,
         Err(e) => return vec![e.to_string()],
@@ -554,11 +610,14 @@ pub fn place(
 
 /// The marking files shipped with basr (markings/*.toml), by file stem.
 pub const SHIPPED_MARKINGS: &[(&str, &str)] = &[
-    ("stop", include_str!("../markings/stop.toml")),
-    ("stop_ahead", include_str!("../markings/stop_ahead.toml")),
-    ("school_xing", include_str!("../markings/school_xing.toml")),
-    ("bus_only", include_str!("../markings/bus_only.toml")),
-    ("ped_xing", include_str!("../markings/ped_xing.toml")),
+    ("stop", include_str!("../../markings/stop.toml")),
+    ("stop_ahead", include_str!("../../markings/stop_ahead.toml")),
+    (
+        "school_xing",
+        include_str!("../../markings/school_xing.toml"),
+    ),
+    ("bus_only", include_str!("../../markings/bus_only.toml")),
+    ("ped_xing", include_str!("../../markings/ped_xing.toml")),
 ];
 
 #[cfg(test)]
