@@ -141,7 +141,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         inputs.push(("the robot file (--robot)", p));
     }
     super::refuse_clashes(&outputs, &inputs)?;
-    let job = basr::job::Job::read(&args.job)?;
+    if let Some(p) = &args.trace {
+        super::outputs::check("--trace", p, &["csv"])?;
+    }
+    if let Some(p) = &args.svg {
+        super::outputs::check("--svg", p, &["svg"])?;
+    }
+    let job = super::read_job(&args.job)?;
     let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {
@@ -231,6 +237,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     if let Some(p) = &args.svg {
         basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
+    }
+    for p in args.trace.iter().chain(&args.svg) {
+        super::outputs::after_commit(format!("wrote {}", p.display()));
     }
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;

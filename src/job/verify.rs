@@ -248,7 +248,7 @@ fn settings(job: &Job, origin: &str, c: &mut Collector) {
             format!("{origin}: the job's robot description: field `robot.{field}`: {what}"),
         );
     }
-    let want = job.robot.paint.job_paint();
+    let want = super::Paint::of(&job.robot.paint);
     let stated = &job.paint;
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-12);
     for (name, a, b) in [

@@ -11,6 +11,7 @@ pub mod model;
 pub mod plant;
 pub mod plants;
 pub mod report;
+pub mod servo;
 pub mod svg;
 pub mod synthetic;
 

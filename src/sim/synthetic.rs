@@ -238,7 +238,7 @@ fn sealed(
             0.0
         };
     }
-    let paint = robot.paint.job_paint();
+    let paint = crate::job::Paint::of(&robot.paint);
     let paint_volume_m3 = robot.paint.flow_m3ps * paint_time;
     let mut job = Job {
         format: crate::job::FORMAT.into(),
@@ -278,6 +278,10 @@ fn sealed(
             paint_volume_m3,
             warnings: vec![],
             balance: vec![],
+            lower_bound_s: 0.0,
+            bound_ratio: 0.0,
+            verified_max_error_m: None,
+            truck_moves_m: vec![],
         },
         sha256: String::new(),
     };
