@@ -35,6 +35,23 @@ fn bench(c: &mut Criterion) {
         });
     }
     g.finish();
+    // 100 plants of STOP within ±10 % (issue 12: ≤ 30 s on 2 cores), rayon
+    // over the machine's cores
+    let mut g = c.benchmark_group("simulate STOP --plants 100 --spread 0.1");
+    g.sample_size(10);
+    let plants = sim::plants::PlantsOptions {
+        n: 100,
+        spread: 0.1,
+        seed: 7,
+    };
+    g.bench_function("sjct", |b| {
+        b.iter(|| {
+            let s = sim::plants::run(&job, &model, &sim::Options::default(), &plants)
+                .unwrap_or_else(|e| panic!("100 plants of STOP: {e}"));
+            criterion::black_box(s.p95_max_error_m)
+        })
+    });
+    g.finish();
 }
 
 criterion_group!(benches, bench);

@@ -9,6 +9,7 @@ pub mod control;
 pub mod ee;
 pub mod model;
 pub mod plant;
+pub mod plants;
 pub mod report;
 pub mod servo;
 pub mod svg;
@@ -337,7 +338,20 @@ pub fn simulate(
     opts: &Options,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
+    simulate_plant(job, model, model, opts, progress)
+}
+
+/// [`simulate`] with the controller built for the `nominal` model (the
+/// robot description) driving another `model` (a plant drawn around it).
+pub fn simulate_plant(
+    job: &Job,
+    nominal: &SimModel,
+    model: &SimModel,
+    opts: &Options,
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
     validate_job(job)?;
+    nominal.validate().map_err(SimError::Model)?;
     model.validate().map_err(SimError::Model)?;
     if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
         return Err(SimError::Option(format!(
@@ -379,7 +393,7 @@ pub fn simulate(
     let measure = |st: &State, t: f64, reference: Reference| -> Measurement {
         let quant = |v: f64, q: f64| if sens.exact { v } else { (v / q).round() * q };
         // pressures go through the transducer's volts and the ADC's steps
-        let pres = |p: f64| quant(p, p_q);
+        let pres = |p: f64| quant(p * sens.pressure_gain, p_q);
         let r = model.arm.r_of_x(st[plant::X]);
         Measurement {
             t_s: t,
@@ -405,7 +419,7 @@ pub fn simulate(
 
     let nut_to_tilt = NutTable::new(&job.robot);
     let m0 = measure(&state, 0.0, reference_at(0.0));
-    let mut ctrl = opts.controller.build(model, &m0);
+    let mut ctrl = opts.controller.build(nominal, &m0);
 
     let mut all = ErrStats::default();
     let mut paint = ErrStats::default();
@@ -765,6 +779,7 @@ pub fn simulate(
         painting_s: painting_ticks as f64 * period,
         control_period_s: period,
         integrator_step_s: h,
+        plants: None,
     };
     Ok(Outcome { report, trace })
 }

@@ -222,6 +222,8 @@ pub struct Sensors {
     pub pressure_offset_v: f64,
     /// ADC step (V) (assumed: 12 bits over ±10 V).
     pub adc_step_v: f64,
+    /// Transducer gain error: the controller reads p × this (1 nominal).
+    pub pressure_gain: f64,
     /// Read exact values instead of counts and ADC steps (numerical checks
     /// only: quantisation makes the closed loop sensitive to the last bit).
     pub exact: bool,
@@ -425,6 +427,7 @@ impl SimModel {
                 pressure_pa_per_volt: dy.pressure_pa_per_volt,
                 pressure_offset_v: dy.pressure_offset_v,
                 adc_step_v: dy.adc_step_v,
+                pressure_gain: 1.0,
                 exact: false,
             },
             control: ControlSettings {

@@ -148,6 +148,10 @@ pub struct Report {
     pub painting_s: f64,
     pub control_period_s: f64,
     pub integrator_step_s: f64,
+    /// With `--plants N`: the spread of the verdict error over N plants
+    /// drawn around the description (the verdict is then on its p95).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plants: Option<super::plants::PlantsSummary>,
 }
 
 impl Report {
@@ -167,6 +171,9 @@ impl Report {
             mm(self.tolerance_m)
         );
         s += &format!("  worst at {}\n", self.worst.describe());
+        if let Some(p) = &self.plants {
+            s += &p.human(self.tolerance_m);
+        }
         s += &format!(
             "  whole job: max {:.3} mm, RMS {:.3} mm; waviness above {:.2} Hz: max {:.3} mm, RMS {:.3} mm\n",
             mm(self.max_error_all_m),
