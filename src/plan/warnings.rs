@@ -68,6 +68,21 @@ impl std::fmt::Display for Limit {
     }
 }
 
+/// Why the arm comes to rest inside a station.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StopWhy {
+    /// The station starts at rest in the stow pose (the truck has stopped).
+    LeaveStow,
+    /// The station ends at rest in the stow pose (the truck may move).
+    BackToStow,
+    /// Flying into this stroke would carry every moving joint past its range.
+    JointRange {
+        stroke: usize,
+        owner: Owner,
+        joint: &'static str,
+    },
+}
+
 /// One note of the planner.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Note {
@@ -99,6 +114,14 @@ pub enum Note {
         t_s: f64,
         /// Film there / target film.
         film_ratio: f64,
+    },
+
+    /// The arm comes to rest.
+    Stop {
+        station: usize,
+        t_s: f64,
+        at_m: [f64; 2],
+        why: StopWhy,
     },
 }
 
@@ -133,7 +156,7 @@ impl Note {
     pub fn severity(&self) -> Severity {
         match self {
             Note::Layout { .. } => Severity::Notice,
-            Note::Passes { .. } => Severity::Info,
+            Note::Passes { .. } | Note::Stop { .. } => Severity::Info,
             Note::HeightClamped { worst_ratio, .. } => {
                 graded(*worst_ratio, WIDER_SMALL, WIDER_LARGE)
             }
@@ -234,6 +257,39 @@ impl Note {
                     at_m[0], at_m[1]
                 ),
             },
+            Note::Stop {
+                station,
+                t_s,
+                at_m,
+                why,
+            } => {
+                let (stroke, reason) = match why {
+                    StopWhy::LeaveStow => (-1, "the station starts from the stow pose".to_string()),
+                    StopWhy::BackToStow => (-1, "the station ends in the stow pose".to_string()),
+                    StopWhy::JointRange {
+                        stroke,
+                        owner,
+                        joint,
+                    } => (
+                        *stroke as i64,
+                        format!(
+                            "flying into stroke {stroke} ({owner}) would carry {joint} past its range"
+                        ),
+                    ),
+                };
+                Warning {
+                    kind: "stop".into(),
+                    severity,
+                    stroke,
+                    t_s: Some(job::round_ns(*t_s)),
+                    factor: None,
+                    message: format!(
+                        "station {station}: the arm stops at t = {t_s:.2} s near ({:.3}, {:.3}) m: \
+                         {reason}. {todo}",
+                        at_m[0], at_m[1]
+                    ),
+                }
+            }
         }
     }
 }
