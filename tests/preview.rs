@@ -199,9 +199,9 @@ fn svg_renders_with_resvg_and_the_letter_is_coloured() {
         let (x, y) = frame.px(road);
         pix.pixel(x.round() as u32, y.round() as u32).unwrap()
     };
-    // Inside the letter: the colour of the target film (viridis, not grey).
+    // Inside the letter: the film scale's on-target band (not grey).
     let c = at([0.05, 0.5]);
-    let want = basr::plot::viridis((20.0 + 0.5) / 30.0);
+    let want = basr::plot::colour::film(1.0);
     let diff = (c.red() as i32 - want[0] as i32).abs()
         + (c.green() as i32 - want[1] as i32).abs()
         + (c.blue() as i32 - want[2] as i32).abs();

@@ -315,7 +315,15 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             replanned: re.then_some(&replanned_lines[..]),
         })
         .collect();
-    let title = format!("basr preview: {}", jobs[0].0.message.replace('\n', " / "));
+    let title = format!(
+        "basr preview{}: {}",
+        if args.from_sim {
+            " of the SIMULATED arm"
+        } else {
+            ""
+        },
+        jobs[0].0.message.replace('\n', " / ")
+    );
     let svg = preview::render_svg(&panels, &title);
     basr::io::write_atomic(&out, svg.as_bytes())?;
 

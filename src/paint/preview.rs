@@ -18,10 +18,10 @@ pub const DEFAULT_RESOLUTION_M: f64 = 0.005;
 /// The colour scale tops out at this multiple of the target film.
 // assumed: 1.5× shows both thin (< 50 %) and heavy (overlaps) film.
 const SCALE_TOP: f64 = 1.5;
-/// Colour steps of the film map, each 5 % of target; the scale starts half a
-/// step below zero so the target film sits in the middle of a step.
+/// Colour steps of the film map, each 5 % of target from zero, so the
+/// ±10 % band about the target is exactly four steps (plot::colour::film).
 const LEVELS: usize = 30;
-const SCALE_BOTTOM: f64 = -0.025;
+const SCALE_BOTTOM: f64 = 0.0;
 /// Film below this share of target is drawn as bare road.
 const HIDE_BELOW: f64 = 0.02;
 
@@ -277,12 +277,13 @@ fn panel_lines(p: &Panel) -> Vec<(String, String)> {
     lines
 }
 
-fn glyph_rows(m: &Metrics) -> Vec<Vec<String>> {
+fn glyph_rows(m: &Metrics, outlines: &[GlyphOutline]) -> Vec<Vec<String>> {
     m.glyphs
         .iter()
-        .map(|g| {
+        .zip(glyph_ids(outlines))
+        .map(|(g, id)| {
             vec![
-                g.char.clone(),
+                format!("{id} {}", g.char),
                 // People count lines from 1, as compile's warnings do.
                 (g.line + 1).to_string(),
                 format!("{:.3}", g.area_m2),
@@ -297,7 +298,7 @@ fn glyph_rows(m: &Metrics) -> Vec<Vec<String>> {
 }
 
 const GLYPH_HEADER: [&str; 8] = [
-    "glyph",
+    "letter",
     "line",
     "area m²",
     "mean",
@@ -306,7 +307,7 @@ const GLYPH_HEADER: [&str; 8] = [
     "overspray",
     "U",
 ];
-const GLYPH_WIDTHS: [f64; 8] = [40.0, 35.0, 60.0, 60.0, 55.0, 65.0, 65.0, 70.0];
+const GLYPH_WIDTHS: [f64; 8] = [60.0, 35.0, 60.0, 60.0, 55.0, 65.0, 65.0, 70.0];
 
 /// Road extent a panel shows: the film raster, the nozzle path and stations.
 fn panel_bounds(p: &Panel) -> Bounds {
@@ -324,6 +325,43 @@ fn panel_bounds(p: &Panel) -> Bounds {
     b.grow(0.1)
 }
 
+/// The road a single job's picture shows: one view per line of the
+/// message (its letters and a truck stop within 3 m of them), so a two-line
+/// job is not 17 m of road in one narrow panel; one view of everything for
+/// a one-line job or a marking without lines.
+fn line_views(p: &Panel) -> Vec<Bounds> {
+    let mut lines: std::collections::BTreeMap<usize, Bounds> = Default::default();
+    for g in &p.preview.outlines {
+        let b = g.bounds();
+        if !b.is_empty() {
+            let e = lines.entry(g.line).or_insert(Bounds::EMPTY);
+            *e = if e.is_empty() { b } else { e.union(b) };
+        }
+    }
+    if lines.len() < 2 {
+        return vec![panel_bounds(p)];
+    }
+    // assumed: 3 m reaches a stop planned for the line (STOP AHEAD's are
+    // 2.2 m past each line's far edge).
+    const STOP_REACH_M: f64 = 3.0;
+    lines
+        .into_values()
+        .map(|mut b| {
+            for s in &p.job.stations {
+                let near = s.y_m >= b.min[1] - STOP_REACH_M && s.y_m <= b.max[1] + STOP_REACH_M;
+                if near && s.x_m.is_finite() && s.y_m.is_finite() {
+                    b.include([s.x_m, s.y_m]);
+                }
+            }
+            b.grow(0.3)
+        })
+        .collect()
+}
+
+/// Views laid out at most this many to a row. // assumed: four 3.7 m lanes
+/// side by side keep letters about 60 px tall on a 900 px page.
+const VIEWS_PER_ROW: usize = 4;
+
 /// Page geometry shared by the drawing and by tests that look at pixels.
 struct Page {
     margin: f64,
@@ -336,10 +374,18 @@ struct Page {
 fn page(panels: &[Panel]) -> Page {
     let margin = 60.0;
     // Every panel at one scale, so letters compare at a glance.
-    let extents: Vec<Bounds> = panels.iter().map(panel_bounds).collect();
+    let extents: Vec<Bounds> = match panels {
+        [one] => line_views(one),
+        _ => panels.iter().map(panel_bounds).collect(),
+    };
     let max_w = extents.iter().map(|b| b.width()).fold(0.0, f64::max);
     let max_h = extents.iter().map(|b| b.height()).fold(0.0, f64::max);
-    let per_panel_px = if panels.len() > 1 { 560.0 } else { 900.0 };
+    let cols = extents.len().clamp(1, VIEWS_PER_ROW);
+    let per_panel_px = if panels.len() > 1 {
+        560.0
+    } else {
+        (900.0 - 40.0 * (cols - 1) as f64) / cols as f64
+    };
     let px_per_m = (per_panel_px / max_w.max(1e-3)).min(760.0 / max_h.max(1e-3));
     let mut header: Vec<(String, String)> = Vec::new();
     if let Some(p) = panels.first() {
@@ -375,12 +421,30 @@ fn page(panels: &[Panel]) -> Page {
         _ => 0.0,
     };
     let map_top = margin + head_h + caption_h;
-    let mut x = margin;
     let mut frames = Vec::new();
-    for ext in &extents {
-        let frame = Frame::new(x, map_top, px_per_m, ext.min, ext.max);
-        x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
-        frames.push(frame);
+    if panels.len() > 1 {
+        let mut x = margin;
+        for ext in &extents {
+            let frame = Frame::new(x, map_top, px_per_m, ext.min, ext.max);
+            x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+            frames.push(frame);
+        }
+    } else {
+        // Line views in rows, each row as tall as its tallest view, a
+        // caption line above each.
+        let caption = if extents.len() > 1 { 22.0 } else { 0.0 };
+        let mut top = map_top + caption;
+        for row in extents.chunks(VIEWS_PER_ROW) {
+            let mut x = margin;
+            let mut row_h: f64 = 0.0;
+            for ext in row {
+                let frame = Frame::new(x, top, px_per_m, ext.min, ext.max);
+                x += frame.width_px() + 40.0;
+                row_h = row_h.max(frame.height_px());
+                frames.push(frame);
+            }
+            top += row_h + 40.0 + caption;
+        }
     }
     Page {
         margin,
@@ -408,7 +472,52 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
     let mut bottom: f64 = map_top;
     let mut right: f64 = margin;
     let vmax = (SCALE_BOTTOM + SCALE_TOP) * target;
-    for (p, frame) in panels.iter().zip(&pg.frames) {
+    if let ([p], [_, _, ..]) = (panels, &pg.frames[..]) {
+        // One job, a view per line.
+        for (k, frame) in pg.frames.iter().enumerate() {
+            let id = format!("line-view-{}", k + 1);
+            let (x0, y0) = (frame.left_px, frame.top_px);
+            doc_g = doc_g
+                .add(
+                    svg::node::element::ClipPath::new()
+                        .set("id", id.clone())
+                        .add(
+                            Rectangle::new()
+                                .set("x", plot::num(x0 - 40.0))
+                                .set("y", plot::num(y0 - 4.0))
+                                .set("width", plot::num(frame.width_px() + 44.0))
+                                .set("height", plot::num(frame.height_px() + 40.0)),
+                        ),
+                )
+                .add(
+                    plot::text(x0, y0 - 8.0, &format!("line {}", k + 1), 13.0, "start")
+                        .set("font-weight", "bold"),
+                )
+                .add(draw_panel(p, frame, vmax).set("clip-path", format!("url(#{id})")));
+            bottom = bottom.max(frame.top_px + frame.height_px());
+            right = right.max(frame.left_px + frame.width_px() + 60.0);
+        }
+        let table_top = bottom + 50.0;
+        let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+        doc_g = doc_g.add(plot::table(
+            margin,
+            table_top,
+            &GLYPH_WIDTHS,
+            &GLYPH_HEADER,
+            &rows,
+        ));
+        bottom = table_top + plot::table_height(rows.len());
+        right = right.max(margin + GLYPH_WIDTHS.iter().sum::<f64>() + 60.0);
+    }
+    for (p, frame) in panels
+        .iter()
+        .zip(&pg.frames)
+        .take(if pg.frames.len() > panels.len() {
+            0
+        } else {
+            panels.len()
+        })
+    {
         if panels.len() > 1 {
             doc_g = doc_g.add(plot::title_block(
                 frame.left_px,
@@ -427,7 +536,7 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         }
         doc_g = doc_g.add(draw_panel(p, frame, vmax));
         let table_top = map_top + frame.height_px() + 50.0;
-        let rows = glyph_rows(&p.preview.metrics);
+        let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
         doc_g = doc_g.add(plot::table(
             frame.left_px,
             table_top,
@@ -450,6 +559,7 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         vmax,
         levels: LEVELS,
         hide_below: HIDE_BELOW * target,
+        target: Some(target),
     };
     let bar_h = 300.0_f64.min((bottom - map_top).max(100.0));
     doc_g = doc_g.add(plot::colour_bar(
@@ -518,7 +628,7 @@ fn legend(x: f64, y: f64) -> Group {
         .add(plot::text(
             x + 30.0,
             y + 58.0,
-            "truck station",
+            "truck stop (arm axis)",
             11.0,
             "start",
         ))
@@ -527,16 +637,35 @@ fn legend(x: f64, y: f64) -> Group {
 fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
     let grid = &p.preview.film.grid;
     let target = p.preview.metrics.target_film_m;
+    // Only the cells the frame shows (a line's view of a long job).
+    let cell = grid.cell_m;
+    let index = |v: f64, o: f64, n: usize| (((v - o) / cell).floor().max(0.0) as usize).min(n);
+    let (i0, i1) = (
+        index(frame.road_min[0], grid.x0, grid.nx),
+        (index(frame.road_max[0], grid.x0, grid.nx) + 1).min(grid.nx),
+    );
+    let (j0, j1) = (
+        index(frame.road_min[1], grid.y0, grid.ny),
+        (index(frame.road_max[1], grid.y0, grid.ny) + 1).min(grid.ny),
+    );
+    let crop: Vec<f64> = (j0..j1)
+        .flat_map(|j| {
+            grid.data[j * grid.nx + i0..j * grid.nx + i1]
+                .iter()
+                .copied()
+        })
+        .collect();
     let map = HeatMap {
-        values: &grid.data,
-        nx: grid.nx,
-        ny: grid.ny,
-        origin: [grid.x0, grid.y0],
+        values: &crop,
+        nx: i1.saturating_sub(i0),
+        ny: j1.saturating_sub(j0),
+        origin: [grid.x0 + i0 as f64 * cell, grid.y0 + j0 as f64 * cell],
         cell_m: grid.cell_m,
         vmin: SCALE_BOTTOM * target,
         vmax,
         levels: LEVELS,
         hide_below: HIDE_BELOW * target,
+        target: Some(target),
     };
     let (x0, y0) = frame.px([frame.road_min[0], frame.road_max[1]]);
     let mut g = Group::new()
@@ -606,13 +735,73 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
                 "start",
             ));
     }
-    g.add(plot::axes(frame, tick_spacing(frame)))
+    g.add(labels(p, frame))
+        .add(plot::axes(frame, tick_spacing(frame)))
 }
 
-/// Metre ticks about every 100 px.
+/// `line.place` of every glyph as the text numbers them (1-based), in the
+/// glyph table's order: `1.3` is the third letter of the first line.
+fn glyph_ids(outlines: &[GlyphOutline]) -> Vec<String> {
+    let mut seen = std::collections::BTreeMap::<usize, usize>::new();
+    outlines
+        .iter()
+        .map(|g| {
+            let place = seen.entry(g.line).or_insert(0);
+            *place += 1;
+            format!("{}.{}", g.line + 1, place)
+        })
+        .collect()
+}
+
+/// Letter labels (`1.3 O`) over each letter and stroke numbers (as the
+/// warnings number them) at the middle of each stroke's painted run.
+fn labels(p: &Panel, frame: &Frame) -> Group {
+    let mut g = Group::new()
+        .set("font-family", "DejaVu Sans, Arial, sans-serif")
+        .set("paint-order", "stroke")
+        .set("stroke", "#ffffff")
+        .set("stroke-width", 2.5)
+        .set("stroke-linejoin", "round");
+    for (gl, id) in p
+        .preview
+        .outlines
+        .iter()
+        .zip(glyph_ids(&p.preview.outlines))
+    {
+        let b = gl.bounds();
+        if b.is_empty() {
+            continue;
+        }
+        let (x, y) = frame.px([(b.min[0] + b.max[0]) / 2.0, b.max[1]]);
+        g = g.add(
+            plot::text(x, y - 6.0, &format!("{id} {}", gl.label), 12.0, "middle")
+                .set("font-weight", "bold"),
+        );
+    }
+    // Each stroke's gun-on samples; the label sits at the middle one.
+    let s = &p.job.samples;
+    let mut runs: std::collections::BTreeMap<i64, Vec<usize>> = Default::default();
+    for i in 0..s.len() {
+        if s.paint[i] != 0 && s.stroke[i] >= 0 {
+            runs.entry(s.stroke[i]).or_default().push(i);
+        }
+    }
+    for (stroke, rows) in runs {
+        let i = rows[rows.len() / 2];
+        let (x, y) = frame.px([s.x_m[i], s.y_m[i]]);
+        g = g
+            .add(plot::text(x, y + 3.0, &stroke.to_string(), 9.0, "middle").set("fill", "#000000"));
+    }
+    g
+}
+
+/// Metre ticks about every 100 px, and at least four along the shorter
+/// side (a narrow panel once had a single x tick).
 fn tick_spacing(frame: &Frame) -> f64 {
-    let raw = 100.0 / frame.px_per_m;
-    [0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0]
+    let short_m =
+        (frame.road_max[0] - frame.road_min[0]).min(frame.road_max[1] - frame.road_min[1]);
+    let raw = (100.0 / frame.px_per_m).min(short_m / 8.0);
+    [0.05, 0.1, 0.2, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0]
         .into_iter()
         .find(|&t| t >= raw)
         .unwrap_or(50.0)

@@ -29,6 +29,29 @@ pub fn viridis(t: f64) -> [u8; 3] {
     out
 }
 
+/// Film within this factor of the target is drawn as on target (the ±10 %
+/// band of the film scale). // assumed: 10 % off is not visible on a road.
+pub const FILM_BAND: f64 = 0.10;
+
+/// The film colour scale, diverging about the target: `ratio` = film /
+/// target. Thin film in blues (darker thinner), the ±10 % band around the
+/// target one flat green, heavy film in oranges to dark red at 1.5×.
+pub fn film(ratio: f64) -> [u8; 3] {
+    let mix = |a: [u8; 3], b: [u8; 3], t: f64| -> [u8; 3] {
+        let t = if t.is_nan() { 0.0 } else { t.clamp(0.0, 1.0) };
+        std::array::from_fn(|c| (a[c] as f64 + t * (b[c] as f64 - a[c] as f64)).round() as u8)
+    };
+    // ColorBrewer RdBu ends and YlOrRd middle, a green band between.
+    let (lo, hi) = (1.0 - FILM_BAND, 1.0 + FILM_BAND);
+    if ratio < lo {
+        mix([8, 48, 107], [158, 202, 225], ratio / lo)
+    } else if ratio <= hi {
+        [35, 139, 69]
+    } else {
+        mix([254, 178, 76], [128, 0, 38], (ratio - hi) / (1.5 - hi))
+    }
+}
+
 /// `#rrggbb` for a colour.
 pub fn hex(c: [u8; 3]) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])

@@ -109,6 +109,9 @@ pub struct HeatMap<'a> {
     pub levels: usize,
     /// Values below this are not drawn (bare background).
     pub hide_below: f64,
+    /// Colour by the film scale about this target ([`colour::film`]);
+    /// `None`: viridis.
+    pub target: Option<f64>,
 }
 
 impl HeatMap<'_> {
@@ -124,7 +127,13 @@ impl HeatMap<'_> {
 
     /// Colour of step `l`.
     pub fn colour(&self, l: usize) -> [u8; 3] {
-        viridis((l as f64 + 0.5) / self.levels as f64)
+        let t = (l as f64 + 0.5) / self.levels as f64;
+        match self.target {
+            Some(target) if target > 0.0 => {
+                colour::film((self.vmin + t * (self.vmax - self.vmin)) / target)
+            }
+            _ => viridis(t),
+        }
     }
 
     /// The cells as one path per colour step, runs of equal steps merged
@@ -240,8 +249,44 @@ pub fn colour_bar(
             k += 1;
         }
     }
+    // On the film scale: the target marked and the ±10 % band bracketed.
+    if let Some(target) = map.target.filter(|t| *t > 0.0) {
+        let at = |v: f64| y + h - (v - map.vmin) / (map.vmax - map.vmin) * h;
+        let (t, b0, b1) = (
+            at(target),
+            at(target * (1.0 + colour::FILM_BAND)),
+            at(target * (1.0 - colour::FILM_BAND)),
+        );
+        g = g
+            .add(line(x - 6.0, t, x + w, t, palette::INK, 1.5))
+            .add(line(x - 8.0, b0, x - 8.0, b1, palette::INK, 1.0))
+            .add(line(x - 8.0, b0, x - 4.0, b0, palette::INK, 1.0))
+            .add(line(x - 8.0, b1, x - 4.0, b1, palette::INK, 1.0))
+            .add(text(
+                x + w + 40.0,
+                t + 4.0,
+                "◀ target, ±10 % band",
+                10.0,
+                "start",
+            ));
+    }
     g.add(text(x, y - 8.0, label, 12.0, "start"))
 }
+
+/// `text` cut to `max` characters with an ellipsis, for titles and header
+/// values that would run off the page (a 200-letter message).
+pub fn clip(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        return text.to_string();
+    }
+    let mut s: String = text.chars().take(max.saturating_sub(1)).collect();
+    s.push('…');
+    s
+}
+
+/// Longest title and header value drawn, in characters. // assumed: about
+/// 900 px of 16 px bold text, the width of a single panel.
+pub const TITLE_CHARS: usize = 90;
 
 /// The smallest of 1, 2, 5 × 10ⁿ at least `raw` (0 for non-positive input).
 pub fn nice_step(raw: f64) -> f64 {
@@ -316,12 +361,19 @@ pub fn axes_named(frame: &Frame, tick_m: f64, x_name: &str, y_name: &str) -> Gro
 
 /// A title line followed by `key: value` lines, from (`x`, `y`) down.
 pub fn title_block(x: f64, y: f64, title: &str, lines: &[(String, String)]) -> Group {
-    let mut g = Group::new().add(text(x, y, title, 16.0, "start").set("font-weight", "bold"));
+    let mut g = Group::new()
+        .add(text(x, y, &clip(title, TITLE_CHARS), 16.0, "start").set("font-weight", "bold"));
     for (k, (key, value)) in lines.iter().enumerate() {
         let ty = y + 20.0 + 15.0 * k as f64;
         g = g
             .add(text(x, ty, key, 12.0, "start").set("fill", "#555555"))
-            .add(text(x + 150.0, ty, value, 12.0, "start"));
+            .add(text(
+                x + 150.0,
+                ty,
+                &clip(value, TITLE_CHARS + 20),
+                12.0,
+                "start",
+            ));
     }
     g
 }
@@ -434,6 +486,7 @@ mod tests {
             vmax: 2.0,
             levels: 4,
             hide_below: 0.5,
+            target: None,
         };
         let s = m
             .draw(&Frame::new(0.0, 0.0, 1.0, [0.0, 0.0], [3.0, 2.0]))

@@ -28,19 +28,14 @@ const TOLERANCE: &str = "#2ca02c";
 const WORST: &str = "#000000";
 const PAINTING_SHADE: &str = "#eef5ff";
 
-/// Error magnification: the largest error drawn as ≈2 % of the plot's span,
-/// rounded down to 1, 2 or 5 × 10ⁿ and at least 1.
-fn magnification(max_err: f64, span: f64) -> f64 {
-    if max_err <= 0.0 {
-        return 1.0;
-    }
-    let raw = (0.02 * span / max_err).max(1.0);
-    let p = 10f64.powf(raw.log10().floor());
-    let m = [5.0, 2.0, 1.0]
-        .into_iter()
-        .find(|&f| f * p <= raw)
-        .unwrap_or(1.0);
-    m * p
+/// Error magnification of the path plot, fixed so plots of different jobs
+/// compare: 1 mm of error is drawn as 20 mm on the road, so the 1/4 in
+/// tolerance shows as 127 mm, about a letter's stroke width at 8 ft.
+/// // assumed: large enough to see millimetres on a 4 m wide plot.
+pub const ERROR_MAGNIFICATION: f64 = 20.0;
+
+fn magnification(_max_err: f64, _span: f64) -> f64 {
+    ERROR_MAGNIFICATION
 }
 
 fn polyline(pts: impl Iterator<Item = (f64, f64)>) -> String {
@@ -382,11 +377,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn magnification_is_round_and_at_least_one() {
+    fn magnification_is_the_same_for_every_job() {
         assert_eq!(magnification(0.001, 2.0), 20.0);
-        assert_eq!(magnification(1.0, 2.0), 1.0);
-        assert_eq!(magnification(0.0, 2.0), 1.0);
-        assert_eq!(magnification(0.0003, 3.0), 200.0);
+        assert_eq!(magnification(1.0, 2.0), 20.0);
+        assert_eq!(magnification(0.0003, 3.0), 20.0);
     }
 
     #[test]
