@@ -61,6 +61,9 @@ pub fn describe(c: char) -> String {
             );
         }
     }
+    if c.is_ascii_graphic() {
+        return format!("{c:?}");
+    }
     if c.is_control() || c.is_whitespace() {
         return format!("{c:?} ({code}, an invisible character)");
     }

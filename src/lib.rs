@@ -16,6 +16,7 @@ pub mod layout;
 pub mod paint;
 pub mod plan;
 pub mod plot;
+pub mod report;
 pub mod robot;
 pub mod sim;
 pub mod units;

@@ -37,6 +37,7 @@ Examples:
   basr compile \"STOP AHEAD\" --csv sa.csv # two lines, setpoints as CSV too
   basr preview STOP.job.json -o stop.svg # simulated paint film
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
+  basr report STOP.job.json -o STOP.html # the job sheet for the crew
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
   basr completions bash > basr.bash      # shell completions
@@ -68,6 +69,7 @@ enum Command {
     Compile(cmd::compile::Args),
     Glyphs(cmd::glyphs::Args),
     Preview(cmd::preview::Args),
+    Report(cmd::report::Args),
     Simulate(cmd::simulate::Args),
     Robot(cmd::robot::Args),
     Workspace(cmd::workspace::Args),
@@ -122,6 +124,7 @@ fn main() -> ExitCode {
         Command::Compile(a) => cmd::compile::run(a, &global),
         Command::Glyphs(a) => cmd::glyphs::run(a, &global),
         Command::Preview(a) => cmd::preview::run(a, &global),
+        Command::Report(a) => cmd::report::run(a, &global),
         Command::Simulate(a) => cmd::simulate::run(a, &global),
         Command::Robot(a) => cmd::robot::run(a, &global),
         Command::Workspace(a) => cmd::workspace::run(a, &global),

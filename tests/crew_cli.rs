@@ -99,3 +99,48 @@ fn a_folder_as_output_is_refused_before_work_and_earlier_files_stay() {
         );
     }
 }
+
+/// Issue 15: compile's default text is a short block with a verdict and at
+/// most the problems; --verbose lists every warning; JSON keeps them all,
+/// each with a severity.
+#[test]
+fn compile_says_what_where_how_long_and_whether_to_go() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = basr(dir.path(), &["compile", "STOP"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = stderr(&out);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines.len() <= 12, "{} lines:\n{text}", lines.len());
+    assert!(
+        lines[0].contains("min on site") && lines[0].contains(" L of paint"),
+        "{text}"
+    );
+    assert!(
+        text.contains("stop 1: arm axis 4.60 m past the near edge of STOP"),
+        "{text}"
+    );
+    assert!(text.contains("verdict: "), "{text}");
+    for l in &lines[3..] {
+        assert!(l.starts_with("  problem: ") || l.starts_with("  … "), "{l}");
+    }
+
+    let out = basr(dir.path(), &["compile", "STOP", "--json", "-q"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let warnings = v["summary"]["warnings"].as_array().unwrap();
+    assert!(!warnings.is_empty());
+    for w in warnings {
+        let sev = w["severity"].as_str().unwrap_or("");
+        assert!(["info", "notice", "problem"].contains(&sev), "{w}");
+    }
+
+    let out = basr(dir.path(), &["compile", "STOP", "--verbose"]);
+    let listed = stderr(&out)
+        .lines()
+        .filter(|l| {
+            ["  info: ", "  notice: ", "  problem: "]
+                .iter()
+                .any(|p| l.starts_with(p))
+        })
+        .count();
+    assert_eq!(listed, warnings.len());
+}

@@ -104,9 +104,13 @@ pub struct Args {
         default_value_t = 0.0
     )]
     pub gun_lag_s: f64,
-    /// Print the summary as JSON on stdout.
+    /// Print the summary as JSON on stdout (every warning, with its
+    /// severity).
     #[arg(long)]
     pub json: bool,
+    /// List every warning (info and notices too), not only the problems.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 /// Finest rung spacing, mm. Assumed: 1/20 of the default and far below the
@@ -177,6 +181,8 @@ fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // Before any work: a folder or a wrong name fails now, not after planning.
     if let Some(p) = &args.output {
+        // Two outputs on one file is the more useful complaint.
+        refuse_clashing_paths(&args, p)?;
         super::outputs::check("-o", p, &["json"])?;
     }
     if let Some(p) = &args.csv {
@@ -285,66 +291,124 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
     if !global.quiet {
-        print_summary(&job, &out, &args);
+        // Printed once every output is in place.
+        super::outputs::after_commit(summary_text(&job, &out, &args).join("\n"));
     }
     Ok(Outcome::Success)
 }
 
-fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
-    let s = &job.summary;
-    note!(
-        "{}: {:?} in {} station(s), {} stroke(s), {} setpoints every {} s",
-        out.display(),
-        job.message.replace('\n', " / "),
-        job.stations.len(),
-        s.strokes,
-        job.samples.len(),
-        job.control_period_s
-    );
-    note!(
-        "  duration {:.1} s: paint {:.1} s, air {:.1} s; paint sprayed {:.2} L",
-        s.duration_s,
-        s.paint_time_s,
-        s.air_time_s,
-        s.paint_volume_m3 * 1e3
-    );
-    if let Some((none, tilted)) = s.u_overall() {
-        // The stroke whose tilted U strays furthest from even (0.5).
-        let spread = |u: [f64; 2]| (0.5 - u[0]).max(u[1] - 0.5);
-        let worst = s
-            .balance
-            .iter()
-            .max_by(|a, b| spread(a.u_tilted).total_cmp(&spread(b.u_tilted)));
-        note!(
-            "  paint balance U (001 eq. 2.7, 0.5 is even): {:.3}–{:.3} untilted, \
-             {:.3}–{:.3} with {} tilt{}",
-            none[0],
-            none[1],
-            tilted[0],
-            tilted[1],
-            job.layout.tilt_method,
-            worst
-                .map(|w| format!(" (least even: stroke {}, letter {})", w.stroke, w.char))
-                .unwrap_or_default()
-        );
-    }
-    for (i, st) in job.stations.iter().enumerate() {
-        note!(
-            "  station {i}: arm axis at x {:+.3} m, y {:.3} m",
-            st.x_m,
-            st.y_m
-        );
-    }
-    if let Some(c) = &args.csv {
-        note!("  setpoints: {}", c.display());
-    }
-    if let Some(a) = &args.adept {
-        note!("  Adept V+ program: {}", a.display());
-    }
-    if !s.warnings.is_empty() {
-        note!("  {} warning(s):", s.warnings.len());
-        for w in &s.warnings {
-            note!("  warning: {}", w.message);
+/// Lines compile prints at most without --verbose (issue 15: a crew reads
+/// a short block, not 300 warnings).
+const MAX_LINES: usize = 12;
+/// Stops listed one per line before they are summed up in one.
+const MAX_STOP_LINES: usize = 3;
+
+/// The warnings of one kind on one item, worst first: printed as one line.
+fn grouped(warnings: &[basr::job::Warning]) -> Vec<Vec<&basr::job::Warning>> {
+    // The owner is the message's text before ", stroke" ("letter P of line 1").
+    let owner =
+        |w: &basr::job::Warning| w.message.split(", stroke").next().unwrap_or("").to_string();
+    let mut groups: Vec<Vec<&basr::job::Warning>> = Vec::new();
+    for w in warnings {
+        match groups
+            .iter_mut()
+            .find(|g| g[0].kind == w.kind && g[0].severity == w.severity && owner(g[0]) == owner(w))
+        {
+            Some(g) => g.push(w),
+            None => groups.push(vec![w]),
         }
     }
+    for g in &mut groups {
+        g.sort_by(|a, b| b.factor.unwrap_or(0.0).total_cmp(&a.factor.unwrap_or(0.0)));
+    }
+    groups
+}
+
+/// Compile's human text: what, where the truck stops, time on site, paint,
+/// the verdict and the problems; `verbose` adds every warning.
+fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
+    let s = &job.summary;
+    let stops = job.stations.len();
+    let mut lines = vec![format!(
+        "{}: {:?}, {stops} stop{}, {:.1} min on site, {:.2} L of paint ({} strokes, {} setpoints)",
+        out.display(),
+        job.message.replace('\n', " / "),
+        if stops == 1 { "" } else { "s" },
+        basr::report::time_on_site_s(job) / 60.0,
+        s.paint_volume_m3 * 1e3,
+        s.strokes,
+        job.samples.len()
+    )];
+    let anchor = basr::report::anchor_words(job);
+    if stops <= MAX_STOP_LINES {
+        for (k, st) in job.stations.iter().enumerate() {
+            lines.push(format!(
+                "  stop {}: arm axis {}",
+                k + 1,
+                basr::report::place_words(st, &anchor)
+            ));
+        }
+    } else {
+        lines.push(format!(
+            "  stops 1–{stops}: the first with the arm axis {}; `basr report` lists them all",
+            basr::report::place_words(&job.stations[0], &anchor)
+        ));
+    }
+    let written: Vec<String> = [("setpoints", &args.csv), ("Adept V+ program", &args.adept)]
+        .iter()
+        .filter_map(|(what, p)| p.as_ref().map(|p| format!("{what} {}", p.display())))
+        .collect();
+    if !written.is_empty() {
+        lines.push(format!("  also wrote {}", written.join(", ")));
+    }
+    let count = |sev: &str| s.warnings.iter().filter(|w| w.severity == sev).count();
+    let (problems, notices, infos) = (count("problem"), count("notice"), count("info"));
+    let severities: Vec<&str> = s.warnings.iter().map(|w| w.severity.as_str()).collect();
+    let verdict = basr::report::overall(&severities, false).to_uppercase();
+    let more = if args.verbose || s.warnings.is_empty() {
+        String::new()
+    } else {
+        "; --verbose lists them".to_string()
+    };
+    lines.push(format!(
+        "  verdict: {verdict} ({problems} problem{}, {notices} notice{}, {infos} for \
+         information{more})",
+        if problems == 1 { "" } else { "s" },
+        if notices == 1 { "" } else { "s" },
+    ));
+    let shown: Vec<&basr::job::Warning> = s
+        .warnings
+        .iter()
+        .filter(|w| args.verbose || w.severity == "problem")
+        .collect();
+    if args.verbose {
+        for w in shown {
+            lines.push(format!("  {}: {}", w.severity, w.message));
+        }
+        return lines;
+    }
+    let groups = grouped(&shown.into_iter().cloned().collect::<Vec<_>>())
+        .into_iter()
+        .map(|g| {
+            let others: Vec<String> = g[1..].iter().map(|w| w.stroke.to_string()).collect();
+            let also = match others.len() {
+                0 => String::new(),
+                1 => format!(" (the same on stroke {})", others[0]),
+                _ => format!(" (the same on strokes {})", others.join(", ")),
+            };
+            format!("  problem: {}{also}", g[0].message)
+        })
+        .collect::<Vec<_>>();
+    let room = MAX_LINES.saturating_sub(lines.len());
+    if groups.len() > room {
+        let keep = room.saturating_sub(1);
+        let left = groups.len() - keep;
+        lines.extend(groups.into_iter().take(keep));
+        lines.push(format!(
+            "  … {left} more problem lines: --verbose, or `basr report` for the job sheet"
+        ));
+    } else {
+        lines.extend(groups);
+    }
+    lines
 }

@@ -8,6 +8,7 @@ pub mod glyphs;
 pub mod outputs;
 pub mod pose;
 pub mod preview;
+pub mod report;
 pub mod robot;
 pub mod simulate;
 pub mod workspace;

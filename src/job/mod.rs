@@ -91,6 +91,11 @@ pub struct FontRef {
 pub struct Warning {
     /// Short machine-readable kind, e.g. `"slowed"`, `"height_clamped"`.
     pub kind: String,
+    /// How much it matters to the crew: `"info"` (nothing to do),
+    /// `"notice"` (paints, slightly off somewhere), `"problem"` (visibly off
+    /// target). Empty in jobs written before severities existed.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub severity: String,
     /// Stroke index, or -1 when not about one stroke.
     pub stroke: i64,
     /// Time in the job where it applies (s), when known.
@@ -114,6 +119,22 @@ pub struct Summary {
     /// "report the U range per stroke before and after tilt"), in stroke order.
     #[serde(default)]
     pub balance: Vec<StrokeBalance>,
+    /// Paint-time bound: the painted area over k (every stroke's area at
+    /// speed × width = k, 001 eq. 2.6), s; 0 in jobs written before it.
+    #[serde(default)]
+    pub lower_bound_s: f64,
+    /// `duration_s / lower_bound_s` (issue 11 aims at ≤ 1.20).
+    #[serde(default)]
+    pub bound_ratio: f64,
+    /// Largest nozzle error while painting in the closed-loop simulation
+    /// compile verified the job with (default controller), m; `None` when
+    /// not verified.
+    #[serde(default)]
+    pub verified_max_error_m: Option<f64>,
+    /// How far the truck drives to each station from the previous one (the
+    /// first from where the job starts), m.
+    #[serde(default)]
+    pub truck_moves_m: Vec<f64>,
 }
 
 /// Range of the seed's tile area ratio U of one stroke (001 eq. 2.7–2.8:
@@ -485,6 +506,10 @@ mod tests {
                 paint_volume_m3: 0.0,
                 warnings: vec![],
                 balance: vec![],
+                lower_bound_s: 0.0,
+                bound_ratio: 0.0,
+                verified_max_error_m: None,
+                truck_moves_m: vec![],
             },
             sha256: String::new(),
         };

@@ -8,7 +8,7 @@ use crate::layout;
 
 use super::placed::{glyph_box, PlacedStrokes};
 use super::seal::{seal, Planned};
-use super::{inputs, joints, passes, request, rungs, samples, stations, tours, trajectory};
+use super::{inputs, joints, passes, request, rungs, samples, stations, tours, trajectory, verify};
 
 pub use super::error::CompileError;
 pub use super::request::{CompileRequest, Source, Tilt, DEFAULT_PERIOD_S, DEFAULT_RUNG_SPACING_M};
@@ -40,28 +40,65 @@ pub fn compile_strokes(
     let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)?;
     let tours = tours::tours(&passes, &plan, &robot);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
-    let timed = trajectory::time_law(
-        strokes,
-        &paths,
-        &robot,
-        req.period_s,
-        req.gun_lead_s,
-        req.gun_lag_s,
-    )?;
-    let mut notes = strokes.notes.clone();
-    notes.extend(passes.notes);
-    notes.extend(timed.notes.iter().cloned());
-    let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
-    Ok(seal(Planned {
-        marking,
-        font,
-        robot,
-        tilt: req.tilt,
-        period_s: req.period_s,
-        strokes,
-        stations: plan,
-        samples,
-        balance: passes.balance,
-        notes,
-    }))
+    let mut pace = trajectory::Pace::FULL;
+    loop {
+        let timed = trajectory::time_law(
+            strokes,
+            &plan,
+            &paths,
+            &robot,
+            &trajectory::TimeLaw {
+                period_s: req.period_s,
+                gun_lead_s: req.gun_lead_s,
+                gun_lag_s: req.gun_lag_s,
+                pace,
+            },
+        )?;
+        let mut notes = strokes.notes.clone();
+        notes.extend(passes.notes.iter().cloned());
+        notes.extend(timed.notes.iter().cloned());
+        let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
+        let mut job = seal(Planned {
+            marking,
+            font,
+            robot: robot.clone(),
+            tilt: req.tilt,
+            period_s: req.period_s,
+            strokes,
+            stations: plan.clone(),
+            samples,
+            balance: passes.balance.clone(),
+            notes,
+        });
+        if !req.verify {
+            return Ok(job);
+        }
+        let verdict = verify::verify(&job)?;
+        if verdict.ok {
+            job.summary.verified_max_error_m = Some(verdict.max_error_m);
+            job.seal();
+            return Ok(job);
+        }
+        // Slow where the arm fell behind: the move out of stow when the
+        // worst error is on a station's first stroke, else the strokes' path.
+        let (si, stroke) = verdict.worst;
+        let first = paths.stations.get(si as usize).and_then(|r| r.first());
+        let after_stow = first.is_some_and(|r| r.stroke as i64 == stroke) && pace.air > MIN_PACE;
+        if after_stow {
+            pace.air *= PACE_STEP;
+        } else if pace.path > MIN_PACE {
+            pace.path *= PACE_STEP;
+        } else {
+            return Err(CompileError::NotFollowed {
+                pace: pace.path * 100.0,
+                why: verdict.why,
+            });
+        }
+    }
 }
+
+/// Each re-timing uses this share of the last one's accelerations.
+/// assumed: a few steps reach `MIN_PACE` while each still gains.
+const PACE_STEP: f64 = 0.6;
+/// Slowest re-timing tried before the job is refused (share of the limits).
+const MIN_PACE: f64 = 0.1;

@@ -26,6 +26,14 @@ pub enum CompileError {
     Knots(String),
     #[error("time law: {0}")]
     Timing(String),
+    #[error("verification: {0}")]
+    Verify(String),
+    #[error(
+        "the arm cannot follow this job closely enough even at {pace:.0} % of its joint \
+         limits: {why}; use a smaller --letter-height, a shorter --period-s or check the \
+         robot description"
+    )]
+    NotFollowed { pace: f64, why: String },
 }
 
 /// Errors of station planning.

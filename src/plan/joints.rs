@@ -35,8 +35,25 @@ pub struct JointPaths {
     pub stations: Vec<Vec<Run>>,
 }
 
-/// Solve every tour's knots for the joints, from the stow pose on. A pass
-/// out of reach is refused with the stroke, its item and the place.
+/// A pass's knots with leads and the joint solutions of each fan branch
+/// and yaw turn that follows the whole pass.
+struct Candidates {
+    stroke: usize,
+    knots: Vec<Knot>,
+    paint_first: usize,
+    paint_last: usize,
+    /// (joint travel inside the pass, joints at every knot) per branch.
+    branches: Vec<(f64, Vec<Joints>)>,
+}
+
+/// Solve every pass of every station for the joints, both ways round, and
+/// choose the painting order, each pass's direction and its fan branch
+/// (ψ, β) / (ψ+π, −β) and yaw turn over the whole station: the tour's order
+/// is the starting point, and moves that reverse a pass, move it or reverse
+/// a run of passes are kept while they shorten the station's joint-time
+/// estimate, each priced with the shortest path over the branches
+/// (`best_branches`, every joint counted). A pass out of reach either way
+/// is refused with the stroke, its item and the place.
 pub fn joint_paths(
     strokes: &PlacedStrokes,
     passes: &Passes,
@@ -47,62 +64,243 @@ pub fn joint_paths(
     let stow = stow_joints(robot);
     let mut out = JointPaths::default();
     for (si, (station, tour)) in plan.stations.iter().zip(&tours.stations).enumerate() {
-        let mut prev = stow;
-        let mut runs = vec![];
+        // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
+        let mut ways: Vec<[Option<Candidates>; 2]> = Vec::with_capacity(tour.len());
         for v in tour {
             let pass = &passes.passes[v.item];
-            let mut ks = pass.knots.clone();
-            if v.reversed {
-                ks.reverse();
-            }
-            let mut solved = None;
-            let mut first_err = None;
-            for lead in [LEAD_M, 0.5 * LEAD_M, 0.0] {
-                let (all, a, b) = with_leads(&ks, lead);
-                match solve_run(robot, station, &all, &prev) {
-                    Ok(j) => {
-                        solved = Some((all, j, a, b));
-                        break;
-                    }
-                    Err((k, e)) => {
-                        // Report the painting knot, not a lead's.
-                        let k = k.saturating_sub(a).min(ks.len() - 1);
-                        first_err.get_or_insert((k, e));
-                    }
+            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke);
+            let rev = candidates(robot, station, &pass.knots, true, pass.stroke);
+            match (fwd, rev) {
+                (Err((k, e)), Err(_)) => {
+                    let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
+                    return Err(CompileError::Unreachable(format!(
+                        "stroke {} ({}) cannot be painted from station {si} at ({:.3}, {:.3}) \
+                         m: {e}; use a smaller --letter-height or check the robot description",
+                        pass.stroke,
+                        strokes.owner(pass.stroke),
+                        tip.x,
+                        tip.y
+                    )));
                 }
+                (f, r) => ways.push([f.ok(), r.ok()]),
             }
-            let Some((all, joints, a, b)) = solved else {
-                let (k, e) = first_err.unwrap_or((0, unreachable_pose()));
-                return Err(CompileError::Unreachable(format!(
-                    "stroke {} ({}) cannot be painted from station {si} at ({:.3}, {:.3}) m: \
-                     {e}; use a smaller --letter-height or check the robot description",
-                    pass.stroke,
-                    strokes.owner(pass.stroke),
-                    ks[k].tip.x,
-                    ks[k].tip.y
-                )));
-            };
-            prev = *joints.last().unwrap_or(&prev);
-            runs.push(Run {
-                stroke: pass.stroke,
-                knots: all,
-                joints,
-                paint_first: a,
-                paint_last: b,
-            });
         }
-        out.stations.push(runs);
+        // The tour as (index into ways, reversed), each way one that exists.
+        let mut seq: Vec<(usize, bool)> = tour
+            .iter()
+            .enumerate()
+            .map(|(k, v)| {
+                let rev = if ways[k][v.reversed as usize].is_some() {
+                    v.reversed
+                } else {
+                    !v.reversed
+                };
+                (k, rev)
+            })
+            .collect();
+        improve(robot, &stow, &ways, &mut seq);
+        let picked: Vec<&Candidates> = seq
+            .iter()
+            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+            .collect();
+        let (_, choice) = best_branches(robot, &stow, &picked);
+        out.stations.push(
+            picked
+                .into_iter()
+                .zip(choice)
+                .map(|(c, b)| Run {
+                    stroke: c.stroke,
+                    knots: c.knots.clone(),
+                    joints: c.branches[b].1.clone(),
+                    paint_first: c.paint_first,
+                    paint_last: c.paint_last,
+                })
+                .collect(),
+        );
     }
     Ok(out)
 }
 
-/// Joint travel time between two joint sets at the joints' speed limits.
+/// Most improvement sweeps over a station's order (each strictly lowers the
+/// cost; the bound keeps a long station's compile time in hand).
+const MAX_SWEEPS: usize = 8;
+/// Gains below this (s) are ignored, so rounding cannot make the search cycle.
+const MIN_GAIN_S: f64 = 1e-6;
+
+/// Local search over the order and directions (see `joint_paths`).
+fn improve(
+    robot: &Robot,
+    stow: &Joints,
+    ways: &[[Option<Candidates>; 2]],
+    seq: &mut Vec<(usize, bool)>,
+) {
+    let cost_of = |seq: &[(usize, bool)]| -> f64 {
+        let picked: Vec<&Candidates> = seq
+            .iter()
+            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+            .collect();
+        if picked.len() < seq.len() {
+            return f64::INFINITY;
+        }
+        best_branches(robot, stow, &picked).0
+    };
+    let n = seq.len();
+    let mut best = cost_of(seq);
+    for _ in 0..MAX_SWEEPS {
+        let mut gained = false;
+        // Reverse one pass.
+        for i in 0..n {
+            let mut t = seq.clone();
+            t[i].1 = !t[i].1;
+            let c = cost_of(&t);
+            if c < best - MIN_GAIN_S {
+                (*seq, best, gained) = (t, c, true);
+            }
+        }
+        // Reverse a run of passes (2-opt), each pass flipped.
+        for i in 0..n {
+            for j in i + 1..n {
+                let mut t = seq.clone();
+                t[i..=j].reverse();
+                for v in &mut t[i..=j] {
+                    v.1 = !v.1;
+                }
+                let c = cost_of(&t);
+                if c < best - MIN_GAIN_S {
+                    (*seq, best, gained) = (t, c, true);
+                }
+            }
+        }
+        // Move one pass elsewhere (or-opt), either way round.
+        for i in 0..n {
+            for j in 0..n {
+                if i == j {
+                    continue;
+                }
+                for flip in [false, true] {
+                    let mut t = seq.clone();
+                    let mut v = t.remove(i);
+                    v.1 ^= flip;
+                    t.insert(j, v);
+                    let c = cost_of(&t);
+                    if c < best - MIN_GAIN_S {
+                        (*seq, best, gained) = (t, c, true);
+                    }
+                }
+            }
+        }
+        if !gained {
+            break;
+        }
+    }
+}
+
+/// A pass's knots (reversed when asked) with the longest leads the arm
+/// reaches, and every branch that follows it. Err: the painting knot (in
+/// the pass's own order) where the last lead length tried fails, and why.
+fn candidates(
+    robot: &Robot,
+    station: &Station,
+    knots: &[Knot],
+    reversed: bool,
+    stroke: usize,
+) -> Result<Candidates, (usize, crate::robot::Unreachable)> {
+    let mut ks = knots.to_vec();
+    if reversed {
+        ks.reverse();
+    }
+    let mut first_err = None;
+    for lead in [LEAD_M, 0.5 * LEAD_M, 0.0] {
+        let (all, a, b) = with_leads(&ks, lead);
+        match solve_branches(robot, station, &all) {
+            Ok(br) => {
+                return Ok(Candidates {
+                    stroke,
+                    knots: all,
+                    paint_first: a,
+                    paint_last: b,
+                    branches: br,
+                })
+            }
+            Err((k, e)) => {
+                // Report the painting knot, not a lead's.
+                let k = k.saturating_sub(a).min(ks.len() - 1);
+                let k = if reversed { ks.len() - 1 - k } else { k };
+                first_err.get_or_insert((k, e));
+            }
+        }
+    }
+    Err(first_err.unwrap_or((0, unreachable_pose())))
+}
+
+/// The branch of every pass on the cheapest path stow → passes → stow
+/// (Viterbi over the passes; ties to the lower branch index), and its cost.
+fn best_branches(robot: &Robot, stow: &Joints, cands: &[&Candidates]) -> (f64, Vec<usize>) {
+    let n = cands.len();
+    if n == 0 {
+        return (0.0, vec![]);
+    }
+    let first = |c: &Candidates, b: usize| c.branches[b].1[0];
+    let last = |c: &Candidates, b: usize| *c.branches[b].1.last().unwrap_or(stow);
+    // cost[i][b]: cheapest way to have painted passes 0..=i, pass i on branch b.
+    let mut cost: Vec<Vec<f64>> = Vec::with_capacity(n);
+    let mut from: Vec<Vec<usize>> = Vec::with_capacity(n);
+    for (i, c) in cands.iter().enumerate() {
+        let mut row = Vec::with_capacity(c.branches.len());
+        let mut back = Vec::with_capacity(c.branches.len());
+        for (b, (inside, _)) in c.branches.iter().enumerate() {
+            let entry = first(c, b);
+            let (best, arg) = if i == 0 {
+                (travel(robot, stow, &entry), 0)
+            } else {
+                let p = cands[i - 1];
+                (0..p.branches.len())
+                    .map(|a| (cost[i - 1][a] + travel(robot, &last(p, a), &entry), a))
+                    .fold(
+                        (f64::INFINITY, 0),
+                        |m, x| if x.0 < m.0 - 1e-12 { x } else { m },
+                    )
+            };
+            let mut total = best + inside;
+            if i + 1 == n {
+                total += travel(robot, &last(c, b), stow);
+            }
+            row.push(total);
+            back.push(arg);
+        }
+        cost.push(row);
+        from.push(back);
+    }
+    let (mut b, total) = cost[n - 1]
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::INFINITY),
+            |m, (k, &v)| if v < m.1 - 1e-12 { (k, v) } else { m },
+        );
+    let mut choice = vec![0; n];
+    for i in (0..n).rev() {
+        choice[i] = b;
+        b = from[i][b];
+    }
+    (total, choice)
+}
+
+/// Joint travel time between two joint sets: the slowest joint, each
+/// accelerating and braking at its limit up to its speed limit.
 fn travel(robot: &Robot, a: &Joints, b: &Joints) -> f64 {
     robot
         .limits
         .iter()
         .zip(a.values().into_iter().zip(b.values()))
-        .map(|((_, l), (x, y))| (x - y).abs() / l.max_vel)
+        .map(|((_, l), (x, y))| {
+            let d = (x - y).abs();
+            if d * l.max_acc <= l.max_vel * l.max_vel {
+                2.0 * (d / l.max_acc).sqrt()
+            } else {
+                d / l.max_vel + l.max_vel / l.max_acc
+            }
+        })
         .fold(0.0, f64::max)
 }
 
@@ -124,22 +322,23 @@ fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
 /// step is a jump to the other fan branch (π) or yaw turn (2π).
 const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
 
-/// Joints for every knot of a run. The fan's two branches (ψ with β, ψ+π
-/// with −β) and every yaw turn are tried at the first knot; each is followed
-/// along the run by the nearest solution, and the branch with the least
-/// joint travel (entry included) wins. Err: the knot index and why.
-fn solve_run(
+/// Joints for every knot of a run, per branch: the fan's two branches (ψ
+/// with β, ψ+π with −β) and every yaw turn are tried at the first knot, and
+/// each is followed along the run by the nearest solution; those that hold
+/// to the end come back with their joint travel. Err: no branch does (the
+/// knot index and why).
+#[allow(clippy::type_complexity)]
+fn solve_branches(
     robot: &Robot,
     station: &Station,
     ks: &[Knot],
-    prev: &Joints,
-) -> Result<Vec<Joints>, (usize, crate::robot::Unreachable)> {
+) -> Result<Vec<(f64, Vec<Joints>)>, (usize, crate::robot::Unreachable)> {
     let first = knot_pose(station, &ks[0]);
     let starts = robot.ik(&first).map_err(|e| (0, e))?;
-    let mut best: Option<(f64, Vec<Joints>)> = None;
+    let mut found = vec![];
     let mut last_err = None;
     'branch: for start in starts {
-        let mut cost = travel(robot, prev, &start);
+        let mut cost = 0.0;
         let mut out = Vec::with_capacity(ks.len());
         out.push(start);
         for (i, k) in ks.iter().enumerate().skip(1) {
@@ -179,13 +378,12 @@ fn solve_run(
                 }
             }
         }
-        if best.as_ref().is_none_or(|(c, _)| cost < *c - 1e-12) {
-            best = Some((cost, out));
-        }
+        found.push((cost, out));
     }
-    match best {
-        Some((_, v)) => Ok(v),
-        None => Err(last_err.unwrap_or_else(|| (0, unreachable_pose()))),
+    if found.is_empty() {
+        Err(last_err.unwrap_or_else(|| (0, unreachable_pose())))
+    } else {
+        Ok(found)
     }
 }
 

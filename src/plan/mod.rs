@@ -4,6 +4,7 @@
 //! `leads`) → `trajectory` (the `timing` time law) → `samples` → `seal`.
 //! `warnings` holds every note a stage makes and renders it.
 
+pub mod chain;
 pub mod compile;
 pub mod error;
 pub mod inputs;
@@ -23,4 +24,5 @@ pub mod tilt;
 pub mod timing;
 pub mod tours;
 pub mod trajectory;
+pub mod verify;
 pub mod warnings;

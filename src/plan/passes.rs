@@ -154,13 +154,16 @@ pub fn paint_law(robot: &Robot) -> PaintLaw {
 
 /// Raise knots whose tilted tip would need the vertical joint below its
 /// stroke: the tilt four-bar lifts the tip by rise(β), so the lowest tip
-/// height at tilt β is `law.min_height_m + rise(β)`. The fan then covers
+/// height at tilt ±β is `law.min_height_m + max(rise(β), rise(−β))`. The fan then covers
 /// more than the rung, and the speed follows the covered width (as
 /// `knots::knots` does for its own clamp). Returns the knots raised.
 fn lift_for_tilt(robot: &Robot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
     let mut raised = vec![];
     for (i, k) in ks.iter_mut().enumerate() {
-        let rise = robot.tilt_tip_offset(k.tilt_rad)[1];
+        // The fan's other branch (ψ+π, −β) paints the same rung; the four-bar
+        // lifts the tip differently at −β, so the height suits both and the
+        // tour may pick either branch (`joints`).
+        let rise = robot.tilt_tip_offset(k.tilt_rad)[1].max(robot.tilt_tip_offset(-k.tilt_rad)[1]);
         if !(rise.is_finite() && rise > 0.0) {
             continue;
         }

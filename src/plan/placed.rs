@@ -78,6 +78,29 @@ impl PlacedStrokes {
         out
     }
 
+    /// Summed area of every stroke's outline (m²; overlaps count twice, as
+    /// they are painted twice).
+    pub fn painted_area_m2(&self) -> f64 {
+        self.strokes
+            .iter()
+            .map(|ps| {
+                let st = &ps.stroke;
+                let len = st.left.length().max(st.right.length());
+                let k = ((len / OUTLINE_STEP_M).ceil() as usize).max(1) + 1;
+                let pts = st.outline(k);
+                let n = pts.len();
+                (0..n)
+                    .map(|i| {
+                        let (a, b) = (pts[i], pts[(i + 1) % n]);
+                        a.x * b.y - b.x * a.y
+                    })
+                    .sum::<f64>()
+                    .abs()
+                    / 2.0
+            })
+            .sum()
+    }
+
     /// Who stroke `i` belongs to.
     pub fn owner(&self, stroke: usize) -> &Owner {
         &self.items[self.strokes[stroke].item].owner

@@ -80,6 +80,10 @@ pub struct CompileRequest {
     pub gun_lag_s: f64,
     /// Margin kept from the edge of the arm's reach (m).
     pub reach_margin_m: f64,
+    /// Run the closed-loop simulator on the job and re-time it until the arm
+    /// follows it (`plan::verify`); off only where a job is re-planned for
+    /// comparison and never written.
+    pub verify: bool,
 }
 
 impl CompileRequest {
@@ -97,6 +101,7 @@ impl CompileRequest {
             gun_lead_s: 0.0,
             gun_lag_s: 0.0,
             reach_margin_m: stations::DEFAULT_MARGIN_M,
+            verify: true,
         }
     }
 }

@@ -31,6 +31,8 @@ pub fn seal(p: Planned<'_>) -> Job {
     let paint_samples = p.samples.paint.iter().filter(|&&g| g == 1).count();
     let duration_s = job::tick_time(n.saturating_sub(1), p.period_s);
     let paint_time_s = job::tick_time(paint_samples, p.period_s);
+    // Every stroke painted at speed × width = k takes its area / k.
+    let lower_bound_s = p.strokes.painted_area_m2() / p.robot.paint.k_m2ps();
     let summary = Summary {
         duration_s,
         paint_time_s,
@@ -41,6 +43,23 @@ pub fn seal(p: Planned<'_>) -> Job {
         paint_volume_m3: p.robot.paint.flow_m3ps * paint_time_s,
         warnings: warnings::render_all(&p.notes),
         balance: p.balance,
+        lower_bound_s,
+        bound_ratio: if lower_bound_s > 0.0 {
+            duration_s / lower_bound_s
+        } else {
+            0.0
+        },
+        verified_max_error_m: None,
+        truck_moves_m: p
+            .stations
+            .stations
+            .iter()
+            .scan(None::<[f64; 2]>, |prev, st| {
+                let d = prev.map_or(0.0, |q| (st.x_m - q[0]).hypot(st.y_m - q[1]));
+                *prev = Some([st.x_m, st.y_m]);
+                Some(d)
+            })
+            .collect(),
     };
     let mut job = Job {
         format: job::FORMAT.into(),

@@ -5,13 +5,15 @@
 
 use crate::robot::{Joints, Robot};
 
+use super::chain::{chain, StopReason};
 use super::error::CompileError;
 use super::joints::{JointPaths, Run};
 use super::knots::{self, Knot};
 use super::placed::PlacedStrokes;
+use super::stations::{self, StationPlan};
 use super::stow::stow_joints;
 use super::timing;
-use super::warnings::{Limit, Note};
+use super::warnings::{Limit, Note, StopWhy};
 
 /// Every station's timed samples, and the notes of the time law.
 #[derive(Clone, Debug, PartialEq, Default)]
@@ -25,18 +27,50 @@ pub struct TimedTrajectory {
 /// the job's time (stations follow each other sample after sample).
 pub fn time_law(
     strokes: &PlacedStrokes,
+    plan: &StationPlan,
     paths: &JointPaths,
     robot: &Robot,
-    period_s: f64,
-    gun_lead_s: f64,
-    gun_lag_s: f64,
+    law: &TimeLaw,
 ) -> Result<TimedTrajectory, CompileError> {
+    let TimeLaw {
+        period_s,
+        gun_lead_s,
+        gun_lag_s,
+        pace,
+    } = *law;
     let stow = stow_joints(robot);
     let mut out = TimedTrajectory::default();
     let mut rows = 0usize;
-    for runs in &paths.stations {
+    for (si, runs) in paths.stations.iter().enumerate() {
         let t0 = rows as f64 * period_s;
-        let (timed, slows) = time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s)?;
+        let (timed, slows, stops) =
+            time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, pace)?;
+        let at = |q: &Q| {
+            let p = robot.fk(&joints_of(q));
+            let st = &plan.stations[si];
+            stations::base_to_road(st, [p.x_m, p.y_m])
+        };
+        let last = timed.last().map(|t| t.q).unwrap_or_else(|| q_of(&stow));
+        out.notes.push(Note::Stop {
+            station: si,
+            t_s: t0,
+            at_m: at(&q_of(&stow)),
+            why: StopWhy::LeaveStow,
+        });
+        for (t_s, q, ri, why) in stops {
+            let StopReason::JointRange { joint } = why;
+            let stroke = runs[ri].stroke;
+            out.notes.push(Note::Stop {
+                station: si,
+                t_s: t0 + t_s,
+                at_m: at(&q),
+                why: StopWhy::JointRange {
+                    stroke,
+                    owner: strokes.owner(stroke).clone(),
+                    joint,
+                },
+            });
+        }
         for sl in slows {
             let run = &runs[sl.run];
             let k = &run.knots[sl.knot.min(run.knots.len() - 1)];
@@ -49,6 +83,12 @@ pub fn time_law(
                 film_ratio: sl.factor,
             });
         }
+        out.notes.push(Note::Stop {
+            station: si,
+            t_s: t0 + timed.len().saturating_sub(1) as f64 * period_s,
+            at_m: at(&last),
+            why: StopWhy::BackToStow,
+        });
         rows += timed.len();
         out.stations.push(timed);
     }
@@ -78,12 +118,41 @@ const JERK_PER_ACC: f64 = 10.0;
 /// The robot's joint limits for the time law. The tilt's ball nut has its
 /// own speed limit (SPEC §4: 0.11 m/s), applied as a tilt-rate limit at the
 /// steepest nut travel per radian of the tilt range.
-fn timing_limits(robot: &Robot) -> timing::JointLimits<5> {
+/// How much of the joints' limits the time law uses (each 0–1], lowered
+/// by the verification where the arm falls behind: `air` for the moves
+/// from and to the stow pose (the arm arrives at its first stroke ringing
+/// after a long fast move), `path` for the chained path through the strokes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pace {
+    pub air: f64,
+    pub path: f64,
+}
+
+impl Pace {
+    pub const FULL: Pace = Pace {
+        air: 1.0,
+        path: 1.0,
+    };
+}
+
+/// The time law's settings: the setpoint period, the gun valve's delays
+/// and the pace.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimeLaw {
+    pub period_s: f64,
+    pub gun_lead_s: f64,
+    pub gun_lag_s: f64,
+    pub pace: Pace,
+}
+
+/// `pace` (0–1] scales every acceleration and jerk limit, and the speed
+/// limits by its square root.
+fn timing_limits(robot: &Robot, pace: f64) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
     for (j, (_, l)) in robot.limits.iter().enumerate() {
-        vel[j] = l.max_vel;
-        acc[j] = l.max_acc;
+        vel[j] = l.max_vel * pace.sqrt();
+        acc[j] = l.max_acc * pace;
     }
     let t = &robot.limits.tilt_rad;
     let fb = &robot.end_effector.fourbar;
@@ -140,9 +209,13 @@ struct Slow {
     limit: Limit,
 }
 
-/// Time a station: stow → (air → run)* → air → stow, sampled at `period`
-/// from t = 0 (`plan::timing`). Gun windows from the runs' first and last
-/// painting knots, shifted by the lead and lag.
+/// Time a station: stow → air move → the chained path through every run →
+/// air move → stow, sampled at `period` from t = 0 (`plan::timing`). The air
+/// moves from and to the stow pose are jerk-limited and start and end at
+/// rest; the chained path is time-optimal under the joints' speed and
+/// acceleration limits and never faster than the film law asks over paint.
+/// Gun windows from the runs' first and last painting knots, shifted by the
+/// lead and lag.
 fn time_station(
     robot: &Robot,
     stow: &Joints,
@@ -150,79 +223,70 @@ fn time_station(
     period_s: f64,
     gun_lead_s: f64,
     gun_lag_s: f64,
-) -> Result<(Vec<Timed>, Vec<Slow>), CompileError> {
-    let limits = timing_limits(robot);
+    pace: Pace,
+) -> Result<StationTiming, CompileError> {
+    let limits = timing_limits(robot, pace.path);
+    let air_limits = timing_limits(robot, pace.air);
     let options = timing::PathOptions::default();
     let err = |what: String| CompileError::Timing(what);
-    let mut pieces = vec![];
-    // Piece index of each run, and each run's arc lengths.
-    let mut run_piece = vec![];
-    let mut arcs = vec![];
-    let mut at = q_of(stow);
-    for run in runs {
-        let s = arc_lengths(&run.knots);
-        let points: Vec<timing::PathPoint<5>> = run
-            .knots
-            .iter()
-            .zip(&run.joints)
-            .enumerate()
-            .map(|(i, (k, j))| timing::PathPoint {
-                s_m: s[i],
-                q: q_of(j),
-                // Leads are gun-off run-ups: as fast as the joints allow.
-                max_speed_mps: (run.paint_first..=run.paint_last)
-                    .contains(&i)
-                    .then_some(k.speed_mps),
-            })
-            .collect();
-        let first = points[0].q;
-        pieces.push(
-            timing::air_move(at, first, &limits, options.margin)
-                .map_err(|e| err(format!("air move to stroke {}: {e}", run.stroke)))?,
-        );
-        run_piece.push(pieces.len());
-        pieces.push(
-            timing::time_path(&points, &limits, &options)
-                .map_err(|e| err(format!("stroke {}: {e}", run.stroke)))?,
-        );
-        at = points[points.len() - 1].q;
-        arcs.push(s);
+    let home = q_of(stow);
+    if runs.is_empty() {
+        let still = timing::air_move(home, home, &limits, options.margin)
+            .map_err(|e| err(e.to_string()))?;
+        let sampled = timing::resample(&[still], period_s).map_err(|e| err(e.to_string()))?;
+        return Ok((
+            sampled
+                .q
+                .iter()
+                .map(|&q| Timed {
+                    q,
+                    run: None,
+                    s: 0.0,
+                    gun: None,
+                })
+                .collect(),
+            vec![],
+            vec![],
+        ));
     }
-    pieces.push(
-        timing::air_move(at, q_of(stow), &limits, options.margin)
+    let ch = chain(robot, runs);
+    let first = ch.points[0].q;
+    let last = ch.points[ch.points.len() - 1].q;
+    let pieces = vec![
+        timing::air_move(home, first, &air_limits, options.margin)
+            .map_err(|e| err(format!("air move to stroke {}: {e}", runs[0].stroke)))?,
+        timing::time_path(&ch.points, &limits, &options)
+            .map_err(|e| err(format!("station path: {e}")))?,
+        timing::air_move(last, home, &air_limits, options.margin)
             .map_err(|e| err(format!("air move to the stow pose: {e}")))?,
-    );
+    ];
+    let path = &pieces[1];
+    let t_path = pieces[0].duration_s();
     let sampled = timing::resample(&pieces, period_s).map_err(|e| err(e.to_string()))?;
-    let starts: Vec<f64> = pieces
-        .iter()
-        .scan(0.0, |acc, p| {
-            let s0 = *acc;
-            *acc += p.duration_s();
-            Some(s0)
-        })
-        .collect();
     // Gun command windows (station time).
     let windows: Vec<(f64, f64)> = runs
         .iter()
         .enumerate()
         .map(|(ri, run)| {
-            let p = &pieces[run_piece[ri]];
-            let (on, off) = p.gun_times(
-                arcs[ri][run.paint_first],
-                arcs[ri][run.paint_last],
+            let s0 = ch.spans[ri].offset;
+            let (on, off) = path.gun_times(
+                s0 + ch.arcs[ri][run.paint_first],
+                s0 + ch.arcs[ri][run.paint_last],
                 gun_lead_s,
                 gun_lag_s,
             );
-            let t0 = starts[run_piece[ri]];
-            (t0 + on, t0 + off)
+            (t_path + on, t_path + off)
         })
         .collect();
     let mut out = Vec::with_capacity(sampled.len());
     let mut w = 0usize;
     for k in 0..sampled.len() {
         let t = sampled.t_s[k];
-        let piece = sampled.piece[k];
-        let run = run_piece.iter().position(|&p| p == piece);
+        let (run, s) = if sampled.piece[k] == 1 {
+            ch.run_at(sampled.s[k])
+        } else {
+            (None, 0.0)
+        };
         while w + 1 < windows.len() && t >= windows[w].1 {
             w += 1;
         }
@@ -233,26 +297,38 @@ fn time_station(
         out.push(Timed {
             q: sampled.q[k],
             run,
-            s: sampled.s[k],
+            s,
             gun,
         });
     }
     let mut slows = vec![];
-    for (ri, &pi) in run_piece.iter().enumerate() {
-        for sd in &pieces[pi].slowdowns {
-            let limit = match sd.binding {
-                timing::Binding::Velocity { joint } => Limit::Speed { joint },
-                timing::Binding::Acceleration { joint } => Limit::Acceleration { joint },
-                timing::Binding::Rest => Limit::RunUp,
-            };
-            slows.push(Slow {
-                run: ri,
-                factor: 1.0 / sd.factor.max(1e-9),
-                knot: sd.worst_waypoint,
-                t_s: starts[pi] + pieces[pi].time_at(arcs[ri][sd.worst_waypoint]),
-                limit,
-            });
-        }
+    for sd in &path.slowdowns {
+        let (ri, knot) = ch.knot_of(sd.worst_waypoint);
+        let limit = match sd.binding {
+            timing::Binding::Velocity { joint } => Limit::Speed { joint },
+            timing::Binding::Acceleration { joint } => Limit::Acceleration { joint },
+            timing::Binding::Rest => Limit::RunUp,
+        };
+        slows.push(Slow {
+            run: ri,
+            factor: 1.0 / sd.factor.max(1e-9),
+            knot,
+            t_s: t_path + path.time_at(ch.points[sd.worst_waypoint].s_m),
+            limit,
+        });
     }
-    Ok((out, slows))
+    let stops = ch
+        .stops
+        .into_iter()
+        .map(|(ri, why)| {
+            let sp = ch.spans[ri];
+            let t = t_path + path.time_at(sp.offset + ch.arcs[ri][sp.lo]);
+            (t, runs[ri].joints[sp.lo].values(), ri, why)
+        })
+        .collect();
+    Ok((out, slows, stops))
 }
+
+/// A station's samples, slow-downs and stops (station time, joints there,
+/// run entered, why).
+type StationTiming = (Vec<Timed>, Vec<Slow>, Vec<(f64, Q, usize, StopReason)>);

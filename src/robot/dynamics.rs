@@ -58,6 +58,35 @@ pub struct Dynamics {
     pub pressure_pa_per_volt: f64,
     pub pressure_offset_v: f64,
     pub adc_step_v: f64,
+    /// Supply accumulator (000 §I): gas volume at precharge (m³), precharge (Pa).
+    pub accumulator_gas_m3: f64,
+    pub accumulator_precharge_pa: f64,
+    /// Oil in the supply manifold and hose (m³).
+    pub supply_volume_m3: f64,
+    /// Pressure-compensated pump: full flow (m³/s) and the band below
+    /// `hydraulics.supply_pa` over which it falls to zero (Pa).
+    pub pump_flow_m3ps: f64,
+    pub pump_band_pa: f64,
+    /// Supply check valves (000 §I): cracking pressure (Pa).
+    pub supply_check_crack_pa: f64,
+    /// Counterbalance valves on the motor's exhaust (000 §I): pilot ratio,
+    /// cracking pressure and opening band (Pa), fully open orifice
+    /// coefficient (m³/(s·√Pa)), damping bleed across the motor (m³/(s·Pa)).
+    pub counterbalance_pilot_ratio: f64,
+    pub counterbalance_crack_pa: f64,
+    pub counterbalance_band_pa: f64,
+    pub counterbalance_flow_gain: f64,
+    pub counterbalance_bleed_m3_per_s_pa: f64,
+    /// Hose between each servovalve port and its actuator: volume (m³),
+    /// effective bulk modulus (Pa), inertance (kg/m⁴), laminar resistance (Pa·s/m³).
+    pub line_volume_m3: f64,
+    pub line_bulk_modulus_pa: f64,
+    pub line_inertance_kg_per_m4: f64,
+    pub line_resistance_pa_s_per_m3: f64,
+    /// Lateral bending mode of each main link (Hz) and their damping ratio.
+    pub boom_link1_hz: f64,
+    pub boom_link2_hz: f64,
+    pub boom_damping_ratio: f64,
 }
 
 impl Dynamics {
@@ -246,8 +275,121 @@ impl Dynamics {
                 SENS,
             ),
             Range::new(&d("adc_step_v"), self.adc_step_v, 1e-6, 0.1, SENS),
+            Range::new(
+                &d("accumulator_gas_m3"),
+                self.accumulator_gas_m3,
+                1e-4,
+                0.1,
+                HYD,
+            ),
+            Range::new(
+                &d("accumulator_precharge_pa"),
+                self.accumulator_precharge_pa,
+                1e6,
+                4e7,
+                HYD,
+            ),
+            Range::new(
+                &d("supply_volume_m3"),
+                self.supply_volume_m3,
+                1e-4,
+                0.05,
+                STEP,
+            ),
+            Range::new(&d("pump_flow_m3ps"), self.pump_flow_m3ps, 1e-5, 0.01, HYD),
+            Range::new(&d("pump_band_pa"), self.pump_band_pa, 1e5, 1e7, HYD),
+            Range::new(
+                &d("supply_check_crack_pa"),
+                self.supply_check_crack_pa,
+                0.0,
+                1e6,
+                HYD,
+            ),
+            Range::new(
+                &d("counterbalance_pilot_ratio"),
+                self.counterbalance_pilot_ratio,
+                1.0,
+                20.0,
+                HYD,
+            ),
+            Range::new(
+                &d("counterbalance_crack_pa"),
+                self.counterbalance_crack_pa,
+                1e6,
+                1e8,
+                HYD,
+            ),
+            Range::new(
+                &d("counterbalance_band_pa"),
+                self.counterbalance_band_pa,
+                1e5,
+                5e7,
+                HYD,
+            ),
+            Range::new(
+                &d("counterbalance_flow_gain"),
+                self.counterbalance_flow_gain,
+                1e-9,
+                1e-5,
+                HYD,
+            ),
+            Range::new(
+                &d("counterbalance_bleed_m3_per_s_pa"),
+                self.counterbalance_bleed_m3_per_s_pa,
+                0.0,
+                1e-11,
+                HYD,
+            ),
+            Range::new(&d("line_volume_m3"), self.line_volume_m3, 1e-5, 0.01, STEP),
+            Range::new(
+                &d("line_bulk_modulus_pa"),
+                self.line_bulk_modulus_pa,
+                1e8,
+                2.5e9,
+                HYD,
+            ),
+            Range::new(
+                &d("line_inertance_kg_per_m4"),
+                self.line_inertance_kg_per_m4,
+                1e5,
+                1e9,
+                STEP,
+            ),
+            Range::new(
+                &d("line_resistance_pa_s_per_m3"),
+                self.line_resistance_pa_s_per_m3,
+                0.0,
+                1e10,
+                HYD,
+            ),
+            Range::new(&d("boom_link1_hz"), self.boom_link1_hz, 0.5, 60.0, STEP),
+            Range::new(&d("boom_link2_hz"), self.boom_link2_hz, 0.5, 60.0, STEP),
+            Range::new(
+                &d("boom_damping_ratio"),
+                self.boom_damping_ratio,
+                1e-3,
+                1.0,
+                STEP,
+            ),
         ];
         let mut out = super::ranges::outside(v);
+        // The hose's own resonance must stay where the 1 ms RK4 step follows
+        // it: ω·h well inside RK4's 2.8 stability bound, with the chamber
+        // coupled to it.
+        let line_hz = (self.line_bulk_modulus_pa
+            / (self.line_volume_m3 * self.line_inertance_kg_per_m4))
+            .sqrt()
+            / std::f64::consts::TAU;
+        if line_hz > 250.0 {
+            out.push((
+                "dynamics.line_inertance_kg_per_m4".into(),
+                format!(
+                    "the hose resonates at {line_hz:.0} Hz (bulk modulus over volume × inertance), \
+                     above the 250 Hz the simulator's 1 ms step can follow; a longer or wider hose \
+                     (more volume or inertance) brings it down"
+                ),
+            ));
+        }
         if self.cylinder_rod_m >= self.cylinder_bore_m {
             out.push((
                 "dynamics.cylinder_rod_m".into(),

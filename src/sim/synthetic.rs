@@ -278,6 +278,10 @@ fn sealed(
             paint_volume_m3,
             warnings: vec![],
             balance: vec![],
+            lower_bound_s: 0.0,
+            bound_ratio: 0.0,
+            verified_max_error_m: None,
+            truck_moves_m: vec![],
         },
         sha256: String::new(),
     };

@@ -136,6 +136,10 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             paint_volume_m3: on * FLOW,
             warnings: vec![],
             balance: vec![],
+            lower_bound_s: 0.0,
+            bound_ratio: 0.0,
+            verified_max_error_m: None,
+            truck_moves_m: vec![],
         },
         sha256: String::new(),
     };
