@@ -115,6 +115,16 @@ fn workspace_svg_for_every_kind_parses_and_says_ring_and_voids() {
     }
 }
 
+/// `basr design --kind telescopic --points POINTS -o OUT`, more arguments to add.
+fn design(points: &std::path::Path, out: &std::path::Path) -> Command {
+    let mut c = basr();
+    c.args(["design", "--kind", "telescopic", "--points"])
+        .arg(points)
+        .arg("-o")
+        .arg(out);
+    c
+}
+
 /// The lane of the acceptance: four points across 12 ft, 3 m back.
 const LANE: &str =
     "points_m = [[-1.83, 3.0, 0.15], [-0.61, 3.0, 0.15], [0.61, 3.0, 0.15], [1.83, 3.0, 0.15]]\n";
@@ -125,13 +135,7 @@ fn design_across_a_lane_then_every_point_is_reachable() {
     let points = dir.path().join("lane.toml");
     std::fs::write(&points, LANE).unwrap();
     let arm = dir.path().join("arm.toml");
-    let out = basr()
-        .args(["design", "--kind", "telescopic", "--json", "--points"])
-        .arg(&points)
-        .arg("-o")
-        .arg(&arm)
-        .output()
-        .unwrap();
+    let out = design(&points, &arm).arg("--json").output().unwrap();
     assert!(
         out.status.success(),
         "{}",
@@ -173,11 +177,7 @@ fn design_refuses_unreachable_sets_and_writes_nothing() {
     ] {
         let f = dir.path().join("p.toml");
         std::fs::write(&f, points).unwrap();
-        basr()
-            .args(["design", "--kind", "telescopic", "--points"])
-            .arg(&f)
-            .arg("-o")
-            .arg(&arm)
+        design(&f, &arm)
             .assert()
             .code(2)
             .stderr(predicate::str::contains(why));
@@ -189,4 +189,20 @@ fn design_refuses_unreachable_sets_and_writes_nothing() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("telescopic kind only"));
+}
+
+#[test]
+fn compile_refuses_another_kind_naming_it_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in KINDS {
+        let robot = std::fs::canonicalize(f).unwrap();
+        basr()
+            .current_dir(dir.path())
+            .args(["compile", "STOP", "--robot"])
+            .arg(&robot)
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains("take BASR only so far"));
+        assert!(!dir.path().join("STOP.job.json").exists());
+    }
 }

@@ -22,8 +22,8 @@ use std::f64::consts::FRAC_PI_2;
 use serde::{Deserialize, Serialize};
 
 use super::kind::{
-    check_pose_finite, expand_turns, keep_closest, paint_control_problems, sort_dedup, ArmKind,
-    Kind, ServoJoint, Q,
+    check_pose_finite, electric_problems, expand_turns, keep_closest, servo_counts, sort_dedup,
+    ArmKind, Kind, ServoJoint, Q,
 };
 use super::kinematics::wrap_pi;
 use super::{Control, JointLimit, NozzlePose, Paint, Unreachable};
@@ -205,8 +205,15 @@ impl Articulated {
     }
 
     pub fn problems(&self) -> Vec<(String, String)> {
-        let mut out = paint_control_problems(&self.paint, &self.control);
         let a = &self.arm;
+        let mut out = electric_problems(
+            &self.paint,
+            &self.control,
+            [a.tip_height_min_m, a.tip_height_max_m],
+            &JOINT_NAMES,
+            self.joints.all(),
+            4,
+        );
         if self.kind != Kind::Articulated {
             out.push(("kind".into(), "must be \"articulated\" here".into()));
         }
@@ -220,22 +227,6 @@ impl Articulated {
             if v <= 0.0 {
                 out.push((format!("arm.{k}"), format!("must be positive (got {v})")));
             }
-        }
-        if a.tip_height_min_m >= a.tip_height_max_m {
-            out.push((
-                "arm.tip_height_min_m".into(),
-                "reversed range: must be below arm.tip_height_max_m".into(),
-            ));
-        }
-        for (name, j) in JOINT_NAMES.iter().zip(self.joints.all()) {
-            out.extend(j.problems(&format!("joints.{name}")));
-        }
-        let t = &self.joints.gun_tilt_rad;
-        if t.max - t.min < std::f64::consts::PI {
-            out.push((
-                "joints.gun_tilt_rad.max".into(),
-                "the gun's turn must span at least π so the fan can face every direction".into(),
-            ));
         }
         out
     }
@@ -307,8 +298,7 @@ impl ArmKind for Articulated {
     }
 
     fn encoders(&self, q: &Q) -> [i64; 5] {
-        let j = self.joints.all();
-        std::array::from_fn(|k| (q[k] * j[k].counts_per_unit).round() as i64)
+        servo_counts(self.joints.all(), q)
     }
     fn tip_heights_m(&self) -> [f64; 2] {
         [self.arm.tip_height_min_m, self.arm.tip_height_max_m]

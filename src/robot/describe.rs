@@ -13,6 +13,12 @@ pub enum RobotError {
         origin: String,
         problems: Vec<String>,
     },
+    /// A valid description of a kind the command does not take yet.
+    #[error(
+        "{origin}: a robot of kind \"{kind}\": compile, preview and simulate take BASR only so far; \
+         check, robot, pose, workspace and design take every kind (docs/robot-kinds.md)"
+    )]
+    Kind { origin: String, kind: &'static str },
 }
 
 /// `origin:line:col` of a parser's error span, and the dotted name of the

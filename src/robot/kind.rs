@@ -315,6 +315,44 @@ pub(crate) fn paint_control_problems(p: &Paint, c: &Control) -> Vec<(String, Str
     out
 }
 
+/// The checks every electric kind shares: paint and control, the painting
+/// heights, each joint table, and a span of at least π for the joint that
+/// turns the fan (`fan_joint`).
+pub(crate) fn electric_problems(
+    paint: &Paint,
+    control: &Control,
+    heights: [f64; 2],
+    names: &[&str; 5],
+    joints: [&ServoJoint; 5],
+    fan_joint: usize,
+) -> Vec<(String, String)> {
+    let mut out = paint_control_problems(paint, control);
+    if heights[0] >= heights[1] {
+        out.push((
+            "arm.tip_height_min_m".into(),
+            "reversed range: must be below arm.tip_height_max_m".into(),
+        ));
+    }
+    for (name, j) in names.iter().zip(joints) {
+        out.extend(j.problems(&format!("joints.{name}")));
+    }
+    let f = joints[fan_joint];
+    if f.max - f.min < std::f64::consts::PI {
+        out.push((
+            format!("joints.{}.max", names[fan_joint]),
+            "the joint that turns the fan must span at least π so it can face every direction"
+                .into(),
+        ));
+    }
+    out
+}
+
+/// Encoder counts of servo joints (nearest count, count 0 at joint 0).
+pub(crate) fn servo_counts(joints: [&ServoJoint; 5], q: &Q) -> [i64; 5] {
+    // `as` saturates; joints are finite by contract (IK never returns NaN).
+    std::array::from_fn(|k| (q[k] * joints[k].counts_per_unit).round() as i64)
+}
+
 /// Pose fields that must be finite before any IK.
 pub(crate) fn check_pose_finite(pose: &NozzlePose) -> Result<(), Unreachable> {
     for (name, v) in [

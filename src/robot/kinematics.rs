@@ -319,17 +319,7 @@ impl Robot {
     /// Sorted by base rotation, then yaw. Err names the binding limit of the
     /// candidate that comes closest.
     pub fn ik(&self, pose: &NozzlePose) -> Result<Vec<Joints>, Unreachable> {
-        for (name, v) in [
-            ("x_m", pose.x_m),
-            ("y_m", pose.y_m),
-            ("z_m", pose.z_m),
-            ("yaw_rad", pose.yaw_rad),
-            ("tilt_rad", pose.tilt_rad),
-        ] {
-            if !v.is_finite() {
-                return Err(Unreachable::not_finite(name, v));
-            }
-        }
+        super::kind::check_pose_finite(pose)?;
         let mut found = Vec::new();
         let mut closest: Option<Unreachable> = None;
         let mut note_on = |flip: bool, u: Unreachable| {
@@ -457,33 +447,9 @@ impl Robot {
     /// The joint set of `all` with the shortest travel from `prev` (None
     /// when `all` is empty).
     pub fn nearest_of(&self, all: &[Joints], prev: &Joints) -> Option<Joints> {
-        let (first, others) = all.split_first()?;
-        let cost = |j: &Joints| {
-            let mut worst: f64 = 0.0;
-            let mut sum = 0.0;
-            for ((_, l), (a, b)) in self
-                .limits
-                .iter()
-                .zip(j.values().into_iter().zip(prev.values()))
-            {
-                let t = (a - b).abs() / l.max_vel;
-                worst = worst.max(t);
-                sum += t;
-            }
-            (worst, sum)
-        };
-        let mut best = *first;
-        let mut best_cost = cost(&best);
-        for j in others {
-            let c = cost(j);
-            if c.0 < best_cost.0 - 1e-12
-                || ((c.0 - best_cost.0).abs() <= 1e-12 && c.1 < best_cost.1)
-            {
-                best = *j;
-                best_cost = c;
-            }
-        }
-        Some(best)
+        let qs: Vec<[f64; 5]> = all.iter().map(Joints::values).collect();
+        let limits = super::ArmKind::limits(self);
+        super::kind::shortest_travel(&qs, &prev.values(), &limits).map(|i| all[i])
     }
 
     /// Check a joint trajectory sampled every `dt` seconds against every

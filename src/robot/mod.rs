@@ -266,14 +266,14 @@ impl Robot {
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Robot, RobotError> {
         match describe::kind_of(text, origin)? {
             Kind::Basr => describe::parse(text, origin),
-            kind => Err(RobotError::Invalid {
-                origin: origin.to_string(),
-                problems: vec![format!(
-                    "{origin}: a robot of kind \"{}\": this command takes a BASR description so \
-                     far (docs/robot-kinds.md says which commands take every kind)",
-                    kind.name()
-                )],
-            }),
+            kind => {
+                // Report the description's own problems first.
+                AnyRobot::from_toml_str(text, origin)?;
+                Err(RobotError::Kind {
+                    origin: origin.to_string(),
+                    kind: kind.name(),
+                })
+            }
         }
     }
 

@@ -14,8 +14,8 @@ use serde::{Deserialize, Serialize};
 
 use super::envelope::{real_roots, Dh};
 use super::kind::{
-    check_pose_finite, expand_turns, keep_closest, paint_control_problems, sort_dedup, ArmKind,
-    Kind, ServoJoint, Q,
+    check_pose_finite, electric_problems, expand_turns, keep_closest, servo_counts, sort_dedup,
+    ArmKind, Kind, ServoJoint, Q,
 };
 use super::kinematics::wrap_pi;
 use super::{Control, JointLimit, NozzlePose, Paint, Unreachable};
@@ -176,8 +176,15 @@ impl Telescopic {
     }
 
     pub fn problems(&self) -> Vec<(String, String)> {
-        let mut out = paint_control_problems(&self.paint, &self.control);
         let a = &self.arm;
+        let mut out = electric_problems(
+            &self.paint,
+            &self.control,
+            [a.tip_height_min_m, a.tip_height_max_m],
+            &JOINT_NAMES,
+            self.joints.all(),
+            3,
+        );
         if self.kind != Kind::Telescopic {
             out.push(("kind".into(), "must be \"telescopic\" here".into()));
         }
@@ -212,15 +219,6 @@ impl Telescopic {
         if a.a2_m < 0.0 {
             out.push(("arm.a2_m".into(), "must not be negative".into()));
         }
-        if a.tip_height_min_m >= a.tip_height_max_m {
-            out.push((
-                "arm.tip_height_min_m".into(),
-                "reversed range: must be below arm.tip_height_max_m".into(),
-            ));
-        }
-        for (name, j) in JOINT_NAMES.iter().zip(self.joints.all()) {
-            out.extend(j.problems(&format!("joints.{name}")));
-        }
         let j = &self.joints;
         if j.stroke_m.min < 0.0 {
             out.push((
@@ -232,12 +230,6 @@ impl Telescopic {
             out.push((
                 "joints.tilt_rad.max".into(),
                 "the tilt range must lie within ±1.2 rad (the nozzle must face the road)".into(),
-            ));
-        }
-        if j.ee_yaw_rad.max - j.ee_yaw_rad.min < std::f64::consts::PI {
-            out.push((
-                "joints.ee_yaw_rad.max".into(),
-                "the yaw range must span at least π so the fan can face every direction".into(),
             ));
         }
         out
@@ -317,8 +309,7 @@ impl ArmKind for Telescopic {
     }
 
     fn encoders(&self, q: &Q) -> [i64; 5] {
-        let j = self.joints.all();
-        std::array::from_fn(|k| (q[k] * j[k].counts_per_unit).round() as i64)
+        servo_counts(self.joints.all(), q)
     }
     fn tip_heights_m(&self) -> [f64; 2] {
         [self.arm.tip_height_min_m, self.arm.tip_height_max_m]
