@@ -94,8 +94,9 @@ impl Library {
         LIB.get_or_init(|| {
             // Fixed at build time and checked by a test: a failure is a build
             // defect, not bad input.
-            Library::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN)
-                .unwrap_or_else(|p| panic!("the embedded symbol library is invalid:\n{}", p.join("\n")))
+            Library::from_toml_str(EMBEDDED_SOURCE, EMBEDDED_ORIGIN).unwrap_or_else(|p| {
+                panic!("the embedded symbol library is invalid:\n{}", p.join("\n"))
+            })
         })
     }
 
@@ -249,7 +250,11 @@ fn build(text: &str, origin: &str) -> (String, BTreeMap<String, Symbol>, Vec<Str
         let before = problems.len();
         let mut strokes: Vec<(String, Stroke)> = vec![];
         for (i, st) in s.strokes.iter().enumerate() {
-            let ctx = format!("{}: symbol `{name}` stroke {}", loc.at(st.span().start), i + 1);
+            let ctx = format!(
+                "{}: symbol `{name}` stroke {}",
+                loc.at(st.span().start),
+                i + 1
+            );
             if let Some(built) = stroke(
                 st.get_ref(),
                 &primitives,
@@ -262,7 +267,11 @@ fn build(text: &str, origin: &str) -> (String, BTreeMap<String, Symbol>, Vec<Str
             }
         }
         for (i, part) in s.parts.iter().enumerate() {
-            let ctx = format!("{}: symbol `{name}` part {}", loc.at(part.span().start), i + 1);
+            let ctx = format!(
+                "{}: symbol `{name}` part {}",
+                loc.at(part.span().start),
+                i + 1
+            );
             let p = part.get_ref();
             let Some(used) = out.get(&p.symbol) else {
                 problems.push(format!(
@@ -286,7 +295,11 @@ fn build(text: &str, origin: &str) -> (String, BTreeMap<String, Symbol>, Vec<Str
             }
         }
         for (i, l) in s.letters.iter().enumerate() {
-            let ctx = format!("{}: symbol `{name}` letter {}", loc.at(l.span().start), i + 1);
+            let ctx = format!(
+                "{}: symbol `{name}` letter {}",
+                loc.at(l.span().start),
+                i + 1
+            );
             let l = l.get_ref();
             let glyph = Font::embedded().glyph(l.char);
             let ok_h = l.height.is_finite() && l.height > 0.0;
@@ -310,7 +323,9 @@ fn build(text: &str, origin: &str) -> (String, BTreeMap<String, Symbol>, Vec<Str
             continue;
         }
         if strokes.is_empty() {
-            problems.push(format!("{at}: symbol `{name}` has no strokes, parts or letters"));
+            problems.push(format!(
+                "{at}: symbol `{name}` has no strokes, parts or letters"
+            ));
             continue;
         }
         // Into the symbol's frame: centred across, nearest point at y = 0.
@@ -356,8 +371,11 @@ fn build(text: &str, origin: &str) -> (String, BTreeMap<String, Symbol>, Vec<Str
 
 fn is_kebab(s: &str) -> bool {
     !s.is_empty()
-        && s.split('-')
-            .all(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit()))
+        && s.split('-').all(|w| {
+            !w.is_empty()
+                && w.chars()
+                    .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit())
+        })
 }
 
 /// Lower-left and upper-right corners of strokes' edges (dense samples).
@@ -408,7 +426,10 @@ mod tests {
             let s = lib.get(n).unwrap_or_else(|| panic!("{n} missing"));
             assert!(!s.source.is_empty(), "{n} names no source");
             let (lo, hi) = extent(s.strokes.iter());
-            assert!(lo.y.abs() < 1e-9 && (lo.x + hi.x).abs() < 1e-9, "{n} not anchored");
+            assert!(
+                lo.y.abs() < 1e-9 && (lo.x + hi.x).abs() < 1e-9,
+                "{n} not anchored"
+            );
         }
     }
 
@@ -441,9 +462,16 @@ mod tests {
         );
         let e = lib(&twice.replace("size = [1, 1]", "size = [1, 1.5]")).unwrap_err();
         assert!(e.iter().any(|m| m.contains("overlaps stroke 1")), "{e:?}");
-        let thin = ok.replace("primitive = \"bar\" }", "primitive = \"bar\", transform = [{ scale = [0.05, 1] }] }");
+        let thin = ok.replace(
+            "primitive = \"bar\" }",
+            "primitive = \"bar\", transform = [{ scale = [0.05, 1] }] }",
+        );
         let e = lib(&thin.replace("size = [1, 1]", "size = [0.05, 1]")).unwrap_err();
-        assert!(e.iter().any(|m| m.contains("shorter than the minimum 0.09")), "{e:?}");
+        assert!(
+            e.iter()
+                .any(|m| m.contains("shorter than the minimum 0.09")),
+            "{e:?}"
+        );
         let e = lib(&ok.replace("[symbols.box]", "[symbols.Box]")).unwrap_err();
         assert!(e[0].contains("lower-case"), "{e:?}");
     }

@@ -113,14 +113,9 @@ pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
     // On the grid.
     let m = lim.grid_margin;
     let [fw, fh] = lim.frame.unwrap_or([f64::INFINITY, f64::INFINITY]);
-    let off = |p: &&Point| {
-        lim.frame.is_some() && (p.x < -m || p.x > fw + m || p.y < -m || p.y > fh + m)
-    };
-    if let Some(p) = l
-        .iter()
-        .chain(r.iter())
-        .find(|p| !p.is_finite() || off(p))
-    {
+    let off =
+        |p: &&Point| lim.frame.is_some() && (p.x < -m || p.x > fw + m || p.y < -m || p.y > fh + m);
+    if let Some(p) = l.iter().chain(r.iter()).find(|p| !p.is_finite() || off(p)) {
         if p.is_finite() {
             out.push(format!(
                 "{ctx}: reaches ({:.2}, {:.2}), off the 4 × 25 grid (allowed margin {m})",

@@ -13,6 +13,7 @@ use crate::robot::{Joints, NozzlePose, Robot};
 use super::error::CompileError;
 use super::joints::{JointPaths, Run};
 use super::stations::{self, StationPlan};
+use super::stow::{stow_joints, truck_rows};
 use super::trajectory::{arc_lengths, joints_of, Timed, TimedTrajectory};
 
 /// Largest joint overshoot `clamp_to_range` absorbs (m or rad); anything
@@ -29,6 +30,26 @@ pub fn sample(
 ) -> Result<Samples, CompileError> {
     let mut samples = Samples::default();
     for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
+        if si > 0 {
+            // The truck drives to this station with the arm stowed.
+            let prev = &plan.stations[si - 1];
+            let hold = Timed {
+                q: stow_joints(robot).values(),
+                run: None,
+                s: 0.0,
+                gun: None,
+            };
+            let n = truck_rows(robot, prev, station, period_s);
+            append_samples(
+                &mut samples,
+                robot,
+                prev,
+                si as u32 - 1,
+                &[],
+                &vec![hold; n],
+                period_s,
+            );
+        }
         clamp_to_range(robot, &mut rows)?;
         // The robot's own check of the sampled joints (speeds, accelerations,
         // ball-nut speed).
