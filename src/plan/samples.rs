@@ -31,24 +31,18 @@ pub fn sample(
     let mut samples = Samples::default();
     for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
         if si > 0 {
-            // The truck drives to this station with the arm stowed.
-            let prev = &plan.stations[si - 1];
+            // The truck drives to this station with the arm stowed: rows of
+            // the station being driven to (the road frame jumps where the
+            // rows change station), one piece with the station's own rows so
+            // the speed column's differences run across the seam.
             let hold = Timed {
                 q: stow_joints(robot).values(),
                 run: None,
                 s: 0.0,
                 gun: None,
             };
-            let n = truck_rows(robot, prev, station, period_s);
-            append_samples(
-                &mut samples,
-                robot,
-                prev,
-                si as u32 - 1,
-                &[],
-                &vec![hold; n],
-                period_s,
-            );
+            let n = truck_rows(robot, &plan.stations[si - 1], station, period_s);
+            rows.splice(0..0, std::iter::repeat_n(hold, n));
         }
         clamp_to_range(robot, &mut rows)?;
         // The robot's own check of the sampled joints (speeds, accelerations,
