@@ -13,6 +13,7 @@ use crate::robot::{Joints, NozzlePose, Robot};
 use super::error::CompileError;
 use super::joints::{JointPaths, Run};
 use super::stations::{self, StationPlan};
+use super::stow::{stow_joints, truck_rows};
 use super::trajectory::{arc_lengths, joints_of, Timed, TimedTrajectory};
 
 /// Largest joint overshoot `clamp_to_range` absorbs (m or rad); anything
@@ -29,6 +30,20 @@ pub fn sample(
 ) -> Result<Samples, CompileError> {
     let mut samples = Samples::default();
     for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
+        if si > 0 {
+            // The truck drives to this station with the arm stowed: rows of
+            // the station being driven to (the road frame jumps where the
+            // rows change station), one piece with the station's own rows so
+            // the speed column's differences run across the seam.
+            let hold = Timed {
+                q: stow_joints(robot).values(),
+                run: None,
+                s: 0.0,
+                gun: None,
+            };
+            let n = truck_rows(robot, &plan.stations[si - 1], station, period_s);
+            rows.splice(0..0, std::iter::repeat_n(hold, n));
+        }
         clamp_to_range(robot, &mut rows)?;
         // The robot's own check of the sampled joints (speeds, accelerations,
         // ball-nut speed).

@@ -1,6 +1,7 @@
 //! The stow pose: where the arm waits while the truck moves, and where
 //! every station's motion starts and ends.
 
+use crate::job::Station;
 use crate::robot::{Joints, Robot};
 
 /// Straight back, retracted, nozzle at the top of its stroke, yaw and tilt
@@ -14,5 +15,19 @@ pub fn stow_joints(robot: &Robot) -> Joints {
         vertical_m: l.vertical_m.min,
         ee_yaw_rad: 0.0_f64.clamp(l.ee_yaw_rad.min, l.ee_yaw_rad.max),
         tilt_rad: 0.0_f64.clamp(l.tilt_rad.min, l.tilt_rad.max),
+    }
+}
+
+/// Setpoint rows the arm holds the stow pose while the truck drives from
+/// station `from` to `to` and settles (the robot's `truck` speed and settle
+/// time), at least one.
+pub fn truck_rows(robot: &Robot, from: &Station, to: &Station, period_s: f64) -> usize {
+    let t = &robot.truck;
+    let d = (to.x_m - from.x_m).hypot(to.y_m - from.y_m);
+    let secs = d / t.speed_mps + t.settle_s;
+    if secs.is_finite() && secs > 0.0 {
+        ((secs / period_s).ceil() as usize).max(1)
+    } else {
+        1
     }
 }

@@ -11,7 +11,7 @@ use super::joints::{JointPaths, Run};
 use super::knots::{self, Knot};
 use super::placed::PlacedStrokes;
 use super::stations::{self, StationPlan};
-use super::stow::stow_joints;
+use super::stow::{stow_joints, truck_rows};
 use super::timing;
 use super::warnings::{Limit, Note, StopWhy};
 
@@ -42,6 +42,9 @@ pub fn time_law(
     let mut out = TimedTrajectory::default();
     let mut rows = 0usize;
     for (si, runs) in paths.stations.iter().enumerate() {
+        if si > 0 {
+            rows += truck_rows(robot, &plan.stations[si - 1], &plan.stations[si], period_s);
+        }
         let t0 = rows as f64 * period_s;
         let (timed, slows, stops) =
             time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, pace)?;

@@ -27,6 +27,16 @@ pub struct Verdict {
 
 /// Simulate `job` with the default options and judge it.
 pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
+    // The checks `basr check` and `simulate` make of every job: compile must
+    // not write one they refuse.
+    let problems = crate::job::verify::problems(job, "the compiled job");
+    if let Some(first) = problems.first() {
+        return Err(CompileError::Verify(format!(
+            "the job fails the content checks of `basr check` ({} problem(s)), first: {first}; \
+             this is a planner bug, please report it",
+            problems.len()
+        )));
+    }
     let model = SimModel::from_robot(&job.robot)
         .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
     let opts = sim::Options::default();

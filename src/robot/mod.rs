@@ -54,6 +54,32 @@ pub struct Robot {
     pub limits: Limits,
     /// What `basr simulate` needs beyond kinematics (src/robot/dynamics.rs).
     pub dynamics: Dynamics,
+    /// How the truck moves between stations (the job's truck phases).
+    #[serde(default)]
+    pub truck: Truck,
+}
+
+/// The truck's move from one station to the next, with the arm stowed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Truck {
+    /// Creeping speed between stations (m/s). assumed: no source gives it;
+    /// 0.5 m/s (1.8 km/h), a walking pace for a truck edging along a lane
+    /// with a crew beside it.
+    pub speed_mps: f64,
+    /// Time from the truck stopping to the arm leaving stow (s). assumed: no
+    /// source gives it; 3 s for the brakes to set and the chassis to stop
+    /// rocking.
+    pub settle_s: f64,
+}
+
+impl Default for Truck {
+    fn default() -> Truck {
+        Truck {
+            speed_mps: 0.5, // assumed, see the field
+            settle_s: 3.0,  // assumed, see the field
+        }
+    }
 }
 
 /// The pantograph arm on its rotating base (SPEC §2, §4).
