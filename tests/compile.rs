@@ -299,10 +299,8 @@ fn refused(args: &[&str], says: &str) {
 
 #[test]
 fn bad_input_exits_2_and_leaves_nothing() {
-    refused(
-        &["ST*P"],
-        "unsupported character '*' (U+002A) at position 3",
-    );
+    refused(&["ST*P"], "unsupported character '*'");
+    refused(&["ST*P"], "at position 3");
     refused(&["   "], "empty");
     refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.660 m");
     refused(
