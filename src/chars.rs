@@ -61,9 +61,6 @@ pub fn describe(c: char) -> String {
             );
         }
     }
-    if c.is_ascii_graphic() {
-        return format!("{c:?}");
-    }
     if c.is_control() || c.is_whitespace() {
         return format!("{c:?} ({code}, an invisible character)");
     }

@@ -105,3 +105,15 @@ fn not_a_job(path: &Path) -> Option<&'static str> {
         None
     }
 }
+
+/// An output named after the job, in the current folder:
+/// `a/STOP.job.json` → `STOP.EXT`.
+pub fn named_after_job(job: &Path, ext: &str) -> std::path::PathBuf {
+    let name = job
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "job".into());
+    let stem = name.strip_suffix(".json").unwrap_or(&name);
+    let stem = stem.strip_suffix(".job").unwrap_or(stem);
+    std::path::PathBuf::from(format!("{stem}.{ext}"))
+}

@@ -114,13 +114,7 @@ const MAX_RESOLUTION_MM: f64 = 20.0;
 
 /// `STOP.job.json` → `STOP.svg` in the current folder.
 fn default_output(job: &Path) -> PathBuf {
-    let name = job
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "job".into());
-    let stem = name.strip_suffix(".json").unwrap_or(&name);
-    let stem = stem.strip_suffix(".job").unwrap_or(stem);
-    PathBuf::from(format!("{stem}.svg"))
+    super::named_after_job(job, "svg")
 }
 
 fn parse_tilt(s: &str) -> anyhow::Result<Tilt> {

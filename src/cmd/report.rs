@@ -52,17 +52,6 @@ pub struct Args {
     pub tip_tally: Option<PathBuf>,
 }
 
-/// `STOP.job.json` → `STOP.html`.
-fn default_output(job: &Path) -> PathBuf {
-    let name = job
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "job".into());
-    let stem = name.strip_suffix(".json").unwrap_or(&name);
-    let stem = stem.strip_suffix(".job").unwrap_or(stem);
-    PathBuf::from(format!("{stem}.html"))
-}
-
 fn read_sim(path: &Path) -> anyhow::Result<SimVerdict> {
     let text = basr::io::read_text(path)?;
     serde_json::from_str(&text).map_err(|e| {
@@ -98,7 +87,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let out = args
         .output
         .clone()
-        .unwrap_or_else(|| default_output(&args.job));
+        .unwrap_or_else(|| super::named_after_job(&args.job, "html"));
     let mut outputs: Vec<(&str, &Path)> = vec![("the page (-o)", &out)];
     if let Some(t) = &args.tip_tally {
         outputs.push(("the tip tally (--tip-tally)", t));

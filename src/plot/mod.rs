@@ -445,6 +445,15 @@ mod tests {
     }
 
     #[test]
+    fn long_titles_are_clipped_with_an_ellipsis() {
+        assert_eq!(clip("STOP", 10), "STOP");
+        let long = "STOPS / ".repeat(40);
+        let c = clip(&long, TITLE_CHARS);
+        assert_eq!(c.chars().count(), TITLE_CHARS);
+        assert!(c.ends_with('…'));
+    }
+
+    #[test]
     fn nice_steps() {
         assert_eq!(nice_step(83.0), 100.0);
         assert_eq!(nice_step(0.3), 0.5);
