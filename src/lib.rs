@@ -15,4 +15,5 @@ pub mod paint;
 pub mod plan;
 pub mod plot;
 pub mod robot;
+pub mod shape;
 pub mod sim;

@@ -38,6 +38,7 @@ Examples:
   basr preview STOP.job.json -o stop.svg # simulated paint film
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
+  basr compile --shape logo.svg --shape-height-m 2   # any filled outline
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
   basr completions bash > basr.bash      # shell completions
 
@@ -67,6 +68,7 @@ struct Cli {
 enum Command {
     Compile(cmd::compile::Args),
     Glyphs(cmd::glyphs::Args),
+    Import(cmd::import::Args),
     Preview(cmd::preview::Args),
     Simulate(cmd::simulate::Args),
     Robot(cmd::robot::Args),
@@ -92,6 +94,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Compile(a) => cmd::compile::run(a, &global),
         Command::Glyphs(a) => cmd::glyphs::run(a, &global),
+        Command::Import(a) => cmd::import::run(a, &global),
         Command::Preview(a) => cmd::preview::run(a, &global),
         Command::Simulate(a) => cmd::simulate::run(a, &global),
         Command::Robot(a) => cmd::robot::run(a, &global),

@@ -32,17 +32,24 @@ Examples:
   basr compile STOP                               # writes STOP.job.json
   basr compile \"STOP AHEAD\" --csv sa.csv          # also the setpoint CSV
   basr compile --marking markings/school_xing.toml --adept school.v2
-  basr compile BUS --letter-height 1.83 --tilt none --json")]
+  basr compile BUS --letter-height 1.83 --tilt none --json
+  basr compile --shape logo.svg --shape-height-m 2 -o logo.job.json")]
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
     // Taken as raw bytes and checked in `run`, so a missing message or one
     // that is not UTF-8 gets our message naming --marking and the letters.
-    #[arg(conflicts_with = "marking", value_parser = clap::value_parser!(std::ffi::OsString))]
+    #[arg(conflicts_with_all = ["marking", "shape"], value_parser = clap::value_parser!(std::ffi::OsString))]
     pub message: Option<std::ffi::OsString>,
     /// A marking file (TOML, see markings/) giving the lines and layout.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "shape")]
     pub marking: Option<PathBuf>,
+    /// A filled outline to paint (SVG or DXF), decomposed into strokes as
+    /// `basr import` does; centred in the lane, its near edge at the anchor.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["font", "letter_height"])]
+    pub shape: Option<PathBuf>,
+    #[command(flatten)]
+    pub shape_size: super::import::SizeArgs,
     /// Job file to write [default: <MESSAGE>.job.json].
     #[arg(short, long, value_name = "JOB")]
     pub output: Option<PathBuf>,
@@ -142,6 +149,9 @@ fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
     if let Some(p) = &args.marking {
         inputs.push(("the marking file (--marking)", p));
     }
+    if let Some(p) = &args.shape {
+        inputs.push(("the shape file (--shape)", p));
+    }
     if let Some(p) = &args.robot {
         inputs.push(("the robot file (--robot)", p));
     }
@@ -166,7 +176,22 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
          which would never read the extra setpoints: give at least {MIN_PERIOD_S}",
         args.period_s
     );
+    let mut shape_font = None;
+    let mut letter_height = args.letter_height;
     let source = match (&args.message, &args.marking) {
+        (None, None) if args.shape.is_some() => {
+            let path = args.shape.as_deref().unwrap_or(Path::new(""));
+            let bands = super::import::bands_of(args.robot.as_deref())?;
+            let imported = basr::shape::import(path, args.shape_size.size(), &bands)?;
+            shape_font = Some(imported.font(&path.display().to_string())?);
+            letter_height = Some(imported.height_m);
+            if !global.quiet {
+                for l in basr::shape::report_lines(&imported.decomposition, &bands) {
+                    note!("shape {l}");
+                }
+            }
+            Source::Message(basr::shape::GLYPH.to_string())
+        }
         (Some(m), None) => Source::Message(
             m.to_str()
                 .ok_or_else(|| {
@@ -190,11 +215,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let req = CompileRequest {
         source,
         overrides: Overrides {
-            letter_height_m: args.letter_height,
+            letter_height_m: letter_height,
             lane_width_m: args.lane_width,
             line_gap_m: args.line_gap,
         },
         font: args.font.clone(),
+        font_value: shape_font,
         robot: args.robot.clone(),
         tilt: match args.tilt {
             TiltArg::None => Tilt::None,
@@ -208,10 +234,17 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         ..CompileRequest::message("")
     };
     let job = compile_job(&req)?;
+    let stem = match &args.shape {
+        Some(p) => p
+            .file_stem()
+            .map(|s| stem_of(&s.to_string_lossy()))
+            .unwrap_or_else(|| "shape".into()),
+        None => stem_of(&job.message),
+    };
     let out = args
         .output
         .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
+        .unwrap_or_else(|| PathBuf::from(format!("{stem}.job.json")));
     refuse_clashing_paths(&args, &out)?;
     // main renames all three into place together when the run succeeds, and
     // drops them all when any fails or the run is interrupted.

@@ -21,6 +21,8 @@ pub struct Limits {
     /// Overlap area (square units) below which abutting strokes count as
     /// touching, not overlapping (polyline sampling of shared curved edges).
     pub overlap_area: f64,
+    /// The grid's width (units): 4 for letters, a shape's own width.
+    pub grid_width: f64,
 }
 
 /// The limits `basr` applies on load.
@@ -35,6 +37,7 @@ pub const DEFAULT_LIMITS: Limits = Limits {
     scan_step: 0.02,
     // assumed: ≈ 1 cm² at an 8 ft letter (1 unit ≈ 0.098 m).
     overlap_area: 0.01,
+    grid_width: GRID_WIDTH,
 };
 
 fn segments_cross(a0: Point, a1: Point, b0: Point, b1: Point) -> bool {
@@ -104,12 +107,12 @@ pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
     // On the grid.
     let m = lim.grid_margin;
     if let Some(p) = l.iter().chain(r.iter()).find(|p| {
-        !p.is_finite() || p.x < -m || p.x > GRID_WIDTH + m || p.y < -m || p.y > GRID_HEIGHT + m
+        !p.is_finite() || p.x < -m || p.x > lim.grid_width + m || p.y < -m || p.y > GRID_HEIGHT + m
     }) {
         if p.is_finite() {
             out.push(format!(
-                "{ctx}: reaches ({:.2}, {:.2}), off the 4 × 25 grid (allowed margin {m})",
-                p.x, p.y
+                "{ctx}: reaches ({:.2}, {:.2}), off the {} × 25 grid (allowed margin {m})",
+                p.x, p.y, lim.grid_width
             ));
         } else {
             out.push(format!(

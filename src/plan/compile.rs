@@ -62,6 +62,9 @@ pub struct CompileRequest {
     pub overrides: Overrides,
     /// Font name or file; `None` = the embedded font.
     pub font: Option<String>,
+    /// A font already in hand (a shape decomposed by `shape`), used instead
+    /// of `font` when set.
+    pub font_value: Option<Font>,
     /// Robot description file; `None` = the embedded BASR.
     pub robot: Option<PathBuf>,
     /// A robot description already in hand (a job's own, when preview
@@ -89,6 +92,7 @@ impl CompileRequest {
             source: Source::Message(text.to_string()),
             overrides: Overrides::default(),
             font: None,
+            font_value: None,
             robot: None,
             robot_description: None,
             tilt: Tilt::default(),
@@ -178,15 +182,18 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
             .map_err(|e| CompileError::Robot(e.to_string()))?,
     };
     let owned_font;
-    let font: &Font = match &req.font {
-        None => Font::embedded(),
-        Some(name) => {
+    let font: &Font = match (&req.font_value, &req.font) {
+        (Some(f), _) => f,
+        (None, None) => Font::embedded(),
+        (None, Some(name)) => {
             owned_font =
                 Font::from_name_or_path(name).map_err(|e| CompileError::Font(e.to_string()))?;
             &owned_font
         }
     };
-    let placed = layout::place(&marking, |ch| font.glyph(ch).map(glyph_box))?;
+    let placed = layout::place(&marking, |ch| {
+        font.glyph(ch).map(|g| glyph_box(g, font.grid_width))
+    })?;
     let mut warnings: Vec<Warning> = placed
         .warnings
         .iter()
@@ -512,7 +519,7 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
 
 /// A glyph's extent on the grid: the grid's width, and the lowest and
 /// highest points of its strokes' edges.
-fn glyph_box(g: &crate::font::Glyph) -> layout::GlyphBox {
+fn glyph_box(g: &crate::font::Glyph, width: f64) -> layout::GlyphBox {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for s in &g.strokes {
         for e in [&s.left, &s.right] {
@@ -526,7 +533,7 @@ fn glyph_box(g: &crate::font::Glyph) -> layout::GlyphBox {
         return layout::GlyphBox::GRID;
     }
     layout::GlyphBox {
-        width: crate::font::GRID_WIDTH,
+        width,
         y_min: lo,
         y_max: hi,
     }
@@ -534,7 +541,7 @@ fn glyph_box(g: &crate::font::Glyph) -> layout::GlyphBox {
 
 /// The paint law of the robot's nozzle and vertical joint. The reachable tip
 /// heights leave room for the tilt's vertical tip offset at any tilt.
-fn paint_law(robot: &Robot) -> PaintLaw {
+pub fn paint_law(robot: &Robot) -> PaintLaw {
     let p = &robot.paint;
     let top = robot.end_effector.tip_height_top_m;
     let v = &robot.limits.vertical_m;

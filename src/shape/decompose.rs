@@ -1,0 +1,469 @@
+//! Regions → strokes. Each region is cut into bands (a run of rungs, each
+//! joining a point on the left boundary to one on the right) by two
+//! methods: boustrophedon cells swept along the region's long axis or
+//! across it (`sweep`), and ring-following bands around a hole (`ring`).
+//! A band is then made paintable: its ends are trimmed where it is
+//! narrower than the fan can usefully paint, it is cut where the number of
+//! passes its width needs changes, cut again where its rungs would lean
+//! too far, and each piece is split into parallel strips at most one pass
+//! wide. Pieces and strips share their cut rungs and edges, so the strokes
+//! tile the band: no overlap, no gap. The method with the better predicted
+//! film (then time) is kept per region and reported.
+
+use kurbo::Point;
+
+use super::region::Region;
+use super::{ring, sweep, ShapeError};
+use crate::font::Stroke;
+use crate::geom::{Edge, Segment, JOIN_TOLERANCE};
+use crate::plan::knots::swept_area;
+
+/// Ends of a band narrower than this fraction of the narrowest fan band are
+/// left unpainted; between it and the narrowest band the fan paints its
+/// narrowest band, wider than the shape. assumed: half, which about
+/// balances the area left bare against the area sprayed outside on a
+/// straight-sided tip (both grow with the square of the cut width).
+const CUT_FRACTION: f64 = 0.5;
+/// Passes are planned this much narrower than the widest band the nozzle
+/// height allows. assumed: 5 % keeps a pass inside the reach after the
+/// tilt's height compensation.
+const PASS_MARGIN: f64 = 0.95;
+/// A piece is cut again where a rung would lean more than this from the
+/// partner its arc-length position gives on the other edge (tan of the
+/// angle). assumed: 30°; `plan::knots::pace` keeps the film on leaning
+/// rungs, the cut keeps the fan's footprint close to square to the travel.
+const MAX_LEAN: f64 = 0.577;
+/// Time a stroke costs besides its painting (gun on and off, lead-in and
+/// lead-out, the air move to the next). assumed: 2 s, about what today's
+/// planner spends between the strokes of a letter.
+const STROKE_OVERHEAD_S: f64 = 2.0;
+/// Strips with less area than this (m²) are float slivers. assumed: a
+/// square millimetre.
+const SLIVER_M2: f64 = 1e-6;
+/// Rung spacing of the narrow-place analysis (m). assumed: 5 mm, a
+/// quarter of the default rung spacing.
+const REPORT_STEP_M: f64 = 0.005;
+/// Films within this fraction of the area are equally good; time decides.
+/// assumed: 1 % of the area.
+const FILM_TIE: f64 = 0.01;
+
+/// The fan's limits and rates the decomposition plans for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bands {
+    /// Narrowest band: what the fan paints from the lowest nozzle height (m).
+    pub min_width_m: f64,
+    /// Widest band one pass paints, from the highest nozzle height (m).
+    pub max_width_m: f64,
+    /// Paint rate: speed × width (m²/s, SPEC §3).
+    pub k_m2ps: f64,
+    /// End-effector yaw rate limit (rad/s).
+    pub yaw_rate_rad_s: f64,
+}
+
+/// A run of rungs (left point, right point) in travel order (m).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Band {
+    pub rungs: Vec<(Point, Point)>,
+}
+
+impl Band {
+    fn width(&self, i: usize) -> f64 {
+        (self.rungs[i].1 - self.rungs[i].0).hypot()
+    }
+    fn tile(&self, i: usize) -> f64 {
+        let ((a, b), (c, d)) = (self.rungs[i], self.rungs[i + 1]);
+        swept_area(a, b, c, d)
+    }
+}
+
+/// How a region was cut.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Boustrophedon cells swept along this road angle (rad).
+    Sweep { angle_rad: f64 },
+    /// Bands following the ring around its hole.
+    Ring,
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Method::Sweep { angle_rad } => write!(
+                f,
+                "boustrophedon cells swept at {:.1}°",
+                angle_rad.to_degrees().rem_euclid(180.0)
+            ),
+            Method::Ring => write!(f, "ring-following bands"),
+        }
+    }
+}
+
+/// A place narrower than the fan's narrowest band.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Narrow {
+    /// Where it is narrowest (m, shape frame: lower-left corner at the origin).
+    pub at: Point,
+    /// Its narrowest width (m).
+    pub width_m: f64,
+    /// How much narrower than the fan's narrowest band (m).
+    pub shortfall_m: f64,
+    /// Length of the narrow stretch along the band (m).
+    pub length_m: f64,
+    /// Area left bare where it is narrower than the cut (m²).
+    pub unpainted_m2: f64,
+    /// Area the narrowest band sprays outside the shape (m²).
+    pub overspray_m2: f64,
+}
+
+/// What one region's candidates predicted, and which was kept.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Candidate {
+    pub method: Method,
+    pub strokes: usize,
+    /// Predicted gun-on time plus the per-stroke overhead (s).
+    pub time_s: f64,
+    /// (Unpainted + oversprayed area) / region area.
+    pub film_error: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegionReport {
+    pub area_m2: f64,
+    pub chosen: Candidate,
+    pub others: Vec<Candidate>,
+}
+
+/// The strokes (m, shape frame) and what was decided.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Decomposition {
+    pub strokes: Vec<Stroke>,
+    pub regions: Vec<RegionReport>,
+    pub narrow: Vec<Narrow>,
+    pub area_m2: f64,
+}
+
+struct Plan {
+    candidate: Candidate,
+    strokes: Vec<Stroke>,
+    narrow: Vec<Narrow>,
+}
+
+/// Decompose every region; see the module docs.
+pub fn decompose(regions: &[Region], lim: &Bands, origin: &str) -> Result<Decomposition, ShapeError> {
+    let mut out = Decomposition {
+        strokes: vec![],
+        regions: vec![],
+        narrow: vec![],
+        area_m2: 0.0,
+    };
+    for r in regions {
+        let area = r.area();
+        let axis = sweep::principal_angle(r);
+        let mut plans: Vec<Plan> = vec![];
+        for angle in [axis, axis + std::f64::consts::FRAC_PI_2] {
+            let bands = sweep::bands(r, angle);
+            plans.push(plan(Method::Sweep { angle_rad: angle }, &bands, area, lim, origin)?);
+        }
+        if let Some(bands) = ring::bands(r, axis) {
+            plans.push(plan(Method::Ring, &bands, area, lim, origin)?);
+        }
+        let best_film = plans
+            .iter()
+            .map(|p| p.candidate.film_error)
+            .fold(f64::INFINITY, f64::min);
+        let pick = plans
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.candidate.film_error <= best_film + FILM_TIE)
+            .min_by(|a, b| a.1.candidate.time_s.total_cmp(&b.1.candidate.time_s))
+            .map(|(i, _)| i)
+            .unwrap_or(0);
+        let chosen = plans.swap_remove(pick);
+        out.strokes.extend(chosen.strokes);
+        out.narrow.extend(chosen.narrow);
+        out.regions.push(RegionReport {
+            area_m2: area,
+            chosen: chosen.candidate,
+            others: plans.into_iter().map(|p| p.candidate).collect(),
+        });
+        out.area_m2 += area;
+    }
+    Ok(out)
+}
+
+fn plan(method: Method, bands: &[Band], area: f64, lim: &Bands, origin: &str) -> Result<Plan, ShapeError> {
+    let mut strokes = vec![];
+    let mut narrow = vec![];
+    let mut time = 0.0;
+    let mut bad_area = 0.0;
+    let pass = lim.max_width_m * PASS_MARGIN;
+    for band in bands {
+        let (kept, mut nar) = trim(band, lim);
+        bad_area += nar.iter().map(|n| n.unpainted_m2 + n.overspray_m2).sum::<f64>();
+        narrow.append(&mut nar);
+        for piece in kept {
+            for (p, n) in by_passes(&piece, pass) {
+                for q in by_lean(&p) {
+                    for s in strips(&q, n) {
+                        // A sliver between two outline vertices a float's
+                        // width apart has no length to paint.
+                        let side = |f: fn(&(Point, Point)) -> Point| {
+                            polyline_len(&s.rungs.iter().map(f).collect::<Vec<_>>())
+                        };
+                        let area: f64 = (0..s.rungs.len() - 1).map(|i| s.tile(i)).sum();
+                        if side(|r| r.0).min(side(|r| r.1)) <= 4.0 * JOIN_TOLERANCE
+                            || area <= SLIVER_M2
+                        {
+                            continue;
+                        }
+                        time += predicted_time(&s, lim) + STROKE_OVERHEAD_S;
+                        strokes.push(stroke(&s, origin)?);
+                    }
+                }
+            }
+        }
+    }
+    Ok(Plan {
+        candidate: Candidate {
+            method,
+            strokes: strokes.len(),
+            time_s: time,
+            film_error: if area > 0.0 { bad_area / area } else { 0.0 },
+        },
+        strokes,
+        narrow,
+    })
+}
+
+fn lerp_rung(a: (Point, Point), b: (Point, Point), t: f64) -> (Point, Point) {
+    (a.0.lerp(b.0, t), a.1.lerp(b.1, t))
+}
+
+/// Where between rungs i and i+1 the width crosses `w` (linear in width).
+fn cross_at(band: &Band, i: usize, w: f64) -> (Point, Point) {
+    let (w0, w1) = (band.width(i), band.width(i + 1));
+    let t = if (w1 - w0).abs() < 1e-15 {
+        0.5
+    } else {
+        ((w - w0) / (w1 - w0)).clamp(0.0, 1.0)
+    };
+    lerp_rung(band.rungs[i], band.rungs[i + 1], t)
+}
+
+/// Cut the band where it is narrower than the cut width, and list every
+/// stretch narrower than the fan's narrowest band.
+fn trim(band: &Band, lim: &Bands) -> (Vec<Band>, Vec<Narrow>) {
+    let cut = lim.min_width_m * CUT_FRACTION;
+    let n = band.rungs.len();
+    let mut kept = vec![];
+    let mut cur: Vec<(Point, Point)> = vec![];
+    for i in 0..n {
+        let w = band.width(i);
+        if w >= cut {
+            if cur.is_empty() && i > 0 {
+                cur.push(cross_at(band, i - 1, cut));
+            }
+            cur.push(band.rungs[i]);
+        } else if !cur.is_empty() {
+            cur.push(cross_at(band, i - 1, cut));
+            kept.push(Band {
+                rungs: std::mem::take(&mut cur),
+            });
+        }
+    }
+    if cur.len() >= 2 {
+        kept.push(Band { rungs: cur });
+    }
+    kept.retain(|b| b.rungs.len() >= 2);
+    // Narrow stretches, tile by tile on a finer copy (a sweep cell's rungs
+    // are only at the outline's vertices; its width is linear between them).
+    let band = &refined(band, REPORT_STEP_M);
+    let n = band.rungs.len();
+    let mut narrow: Vec<Narrow> = vec![];
+    let mut open: Option<Narrow> = None;
+    for i in 0..n.saturating_sub(1) {
+        let (w0, w1) = (band.width(i), band.width(i + 1));
+        let wm = 0.5 * (w0 + w1);
+        if wm < lim.min_width_m {
+            let tile = band.tile(i);
+            let len = (lerp_mid(band.rungs[i + 1]) - lerp_mid(band.rungs[i])).hypot();
+            let nr = open.get_or_insert(Narrow {
+                at: lerp_mid(band.rungs[i]),
+                width_m: f64::INFINITY,
+                shortfall_m: 0.0,
+                length_m: 0.0,
+                unpainted_m2: 0.0,
+                overspray_m2: 0.0,
+            });
+            let wmin = w0.min(w1);
+            if wmin < nr.width_m {
+                nr.width_m = wmin;
+                nr.at = if w0 < w1 {
+                    lerp_mid(band.rungs[i])
+                } else {
+                    lerp_mid(band.rungs[i + 1])
+                };
+            }
+            nr.length_m += len;
+            if wm < cut {
+                nr.unpainted_m2 += tile;
+            } else if wm > 0.0 {
+                nr.overspray_m2 += tile * (lim.min_width_m / wm - 1.0);
+            }
+        } else if let Some(nr) = open.take() {
+            narrow.push(nr);
+        }
+    }
+    narrow.extend(open);
+    for nr in &mut narrow {
+        nr.shortfall_m = lim.min_width_m - nr.width_m;
+    }
+    (kept, narrow)
+}
+
+/// Rungs at most `step` apart (midpoint travel), by linear interpolation.
+fn refined(band: &Band, step: f64) -> Band {
+    let mut rungs = vec![band.rungs[0]];
+    for w in band.rungs.windows(2) {
+        let d = (lerp_mid(w[1]) - lerp_mid(w[0])).hypot();
+        let k = ((d / step).ceil() as usize).clamp(1, 10_000);
+        for j in 1..=k {
+            rungs.push(lerp_rung(w[0], w[1], j as f64 / k as f64));
+        }
+    }
+    Band { rungs }
+}
+
+fn lerp_mid(r: (Point, Point)) -> Point {
+    r.0.midpoint(r.1)
+}
+
+/// Cut where the number of passes the width needs changes; each piece with
+/// its pass count (the most any of its rungs needs).
+fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
+    let count = |w: f64| ((w / pass).ceil() as usize).max(1);
+    let n = band.rungs.len();
+    let mut out = vec![];
+    let mut cur = vec![band.rungs[0]];
+    let mut k = count(band.width(0));
+    for i in 1..n {
+        let ki = count(band.width(i));
+        if ki != k {
+            let edge = k.min(ki) as f64 * pass;
+            let r = cross_at(band, i - 1, edge);
+            cur.push(r);
+            out.push((Band { rungs: std::mem::take(&mut cur) }, k));
+            cur.push(r);
+            k = ki;
+        }
+        cur.push(band.rungs[i]);
+    }
+    out.push((Band { rungs: cur }, k));
+    out.into_iter()
+        .map(|(mut b, k)| {
+            b.rungs.dedup_by(|a, b| (a.0 - b.0).hypot() < 1e-9 && (a.1 - b.1).hypot() < 1e-9);
+            let k = (0..b.rungs.len()).map(|i| count(b.width(i))).max().unwrap_or(k);
+            (b, k)
+        })
+        .filter(|(b, _)| b.rungs.len() >= 2)
+        .collect()
+}
+
+/// Cumulative arc-length fractions of one side's points.
+fn fractions(pts: &[Point]) -> Vec<f64> {
+    let mut s = vec![0.0];
+    for w in pts.windows(2) {
+        s.push(s[s.len() - 1] + (w[1] - w[0]).hypot());
+    }
+    let total = s[s.len() - 1].max(1e-15);
+    s.iter().map(|v| v / total).collect()
+}
+
+/// Cut the band where equal-arc-length rungs would lean too far.
+fn by_lean(band: &Band) -> Vec<Band> {
+    let n = band.rungs.len();
+    if n < 3 {
+        return vec![band.clone()];
+    }
+    let l: Vec<Point> = band.rungs.iter().map(|r| r.0).collect();
+    let r: Vec<Point> = band.rungs.iter().map(|r| r.1).collect();
+    let (fl, fr) = (fractions(&l), fractions(&r));
+    let len_r = polyline_len(&r);
+    let len_l = polyline_len(&l);
+    let mut worst = (0.0, 0usize);
+    for i in 1..n - 1 {
+        let shift = (fl[i] - fr[i]).abs() * 0.5 * (len_l + len_r);
+        let lean = shift / band.width(i).max(1e-9);
+        if lean > worst.0 {
+            worst = (lean, i);
+        }
+    }
+    if worst.0 <= MAX_LEAN {
+        return vec![band.clone()];
+    }
+    let i = worst.1;
+    let mut out = by_lean(&Band {
+        rungs: band.rungs[..=i].to_vec(),
+    });
+    out.extend(by_lean(&Band {
+        rungs: band.rungs[i..].to_vec(),
+    }));
+    out
+}
+
+fn polyline_len(p: &[Point]) -> f64 {
+    p.windows(2).map(|w| (w[1] - w[0]).hypot()).sum()
+}
+
+/// The band as `n` parallel strips, left to right.
+fn strips(band: &Band, n: usize) -> Vec<Band> {
+    (0..n)
+        .map(|j| {
+            let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
+            Band {
+                rungs: band
+                    .rungs
+                    .iter()
+                    .map(|(a, b)| (a.lerp(*b, t0), a.lerp(*b, t1)))
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// Gun-on time of one strip: each tile at the film's rate over the width the
+/// fan covers (never less than its narrowest band), or the yaw joint's time
+/// to turn the fan, whichever is longer.
+fn predicted_time(s: &Band, lim: &Bands) -> f64 {
+    let mut paint = 0.0;
+    let mut yaw = 0.0;
+    for i in 0..s.rungs.len() - 1 {
+        let w = 0.5 * (s.width(i) + s.width(i + 1));
+        let cover = if w > 0.0 { lim.min_width_m.max(w) / w } else { 1.0 };
+        paint += s.tile(i) * cover / lim.k_m2ps;
+        let d0 = s.rungs[i].1 - s.rungs[i].0;
+        let d1 = s.rungs[i + 1].1 - s.rungs[i + 1].0;
+        yaw += d0.cross(d1).atan2(d0.dot(d1)).abs();
+    }
+    paint.max(yaw / lim.yaw_rate_rad_s)
+}
+
+fn edge(pts: impl Iterator<Item = Point>, origin: &str) -> Result<Edge, ShapeError> {
+    let mut v: Vec<Point> = vec![];
+    for p in pts {
+        if v.last().is_none_or(|q| (*q - p).hypot() > 2.0 * JOIN_TOLERANCE) {
+            v.push(p);
+        }
+    }
+    let segs = v.windows(2).map(|w| Segment::line(w[0], w[1])).collect();
+    Edge::new(segs).map_err(|e| {
+        ShapeError::invalid(origin, format!("a band edge could not be built ({e}); the outline is degenerate there"))
+    })
+}
+
+fn stroke(s: &Band, origin: &str) -> Result<Stroke, ShapeError> {
+    Ok(Stroke {
+        left: edge(s.rungs.iter().map(|r| r.0), origin)?,
+        right: edge(s.rungs.iter().map(|r| r.1), origin)?,
+    })
+}
