@@ -177,6 +177,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         args.period_s
     );
     let mut shape_font = None;
+    let mut shape_notes: Vec<String> = vec![];
     let mut letter_height = args.letter_height;
     let source = match (&args.message, &args.marking) {
         (None, None) if args.shape.is_some() => {
@@ -185,11 +186,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             let imported = basr::shape::import(path, args.shape_size.size(), &bands)?;
             shape_font = Some(imported.font(&path.display().to_string())?);
             letter_height = Some(imported.height_m);
-            if !global.quiet {
-                for l in basr::shape::report_lines(&imported.decomposition, &bands) {
-                    note!("shape {l}");
-                }
-            }
+            shape_notes = basr::shape::report_lines(&imported.decomposition, &bands);
             Source::Message(basr::shape::GLYPH.to_string())
         }
         (Some(m), None) => Source::Message(
@@ -233,7 +230,26 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         gun_lag_s: args.gun_lag_s,
         ..CompileRequest::message("")
     };
-    let job = compile_job(&req)?;
+    anyhow::ensure!(
+        args.shape.is_some()
+            || (args.shape_size.shape_height_m.is_none() && args.shape_size.shape_width_m.is_none()),
+        "--shape-height-m and --shape-width-m size a --shape FILE; give the shape too"
+    );
+    let mut job = compile_job(&req)?;
+    if !shape_notes.is_empty() {
+        // The job says how its shape was decomposed (per region: the method
+        // kept and the ones it beat; the narrow places).
+        for l in &shape_notes {
+            job.summary.warnings.push(basr::job::Warning {
+                kind: "shape".into(),
+                stroke: -1,
+                t_s: None,
+                factor: None,
+                message: format!("shape {l}"),
+            });
+        }
+        job.seal();
+    }
     let stem = match &args.shape {
         Some(p) => p
             .file_stem()

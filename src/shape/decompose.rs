@@ -13,7 +13,7 @@
 use kurbo::Point;
 
 use super::region::Region;
-use super::{ring, sweep, ShapeError};
+use super::{convex, ring, sweep, ShapeError};
 use crate::font::Stroke;
 use crate::geom::{Edge, Segment, JOIN_TOLERANCE};
 use crate::plan::knots::swept_area;
@@ -37,6 +37,11 @@ const MAX_LEAN: f64 = 0.577;
 /// lead-out, the air move to the next). assumed: 2 s, about what today's
 /// planner spends between the strokes of a letter.
 const STROKE_OVERHEAD_S: f64 = 2.0;
+/// Shortest piece a band is cut into (m). assumed: the nozzle needs about
+/// this long to reach painting speed from rest (0.16 m/s at about 1 m/s²
+/// takes 13 mm, but the tilt and base accelerate too); shorter pieces
+/// paint heavy film at their ends.
+const MIN_PIECE_M: f64 = 0.25;
 /// Strips with less area than this (m²) are float slivers. assumed: a
 /// square millimetre.
 const SLIVER_M2: f64 = 1e-6;
@@ -83,6 +88,8 @@ pub enum Method {
     Sweep { angle_rad: f64 },
     /// Bands following the ring around its hole.
     Ring,
+    /// Convex pieces, each swept along its own long axis.
+    Convex { pieces: usize },
 }
 
 impl std::fmt::Display for Method {
@@ -94,6 +101,9 @@ impl std::fmt::Display for Method {
                 angle_rad.to_degrees().rem_euclid(180.0)
             ),
             Method::Ring => write!(f, "ring-following bands"),
+            Method::Convex { pieces } => {
+                write!(f, "{pieces} convex pieces, each swept along its long axis")
+            }
         }
     }
 }
@@ -167,6 +177,17 @@ pub fn decompose(regions: &[Region], lim: &Bands, origin: &str) -> Result<Decomp
         if let Some(bands) = ring::bands(r, axis) {
             plans.push(plan(Method::Ring, &bands, area, lim, origin)?);
         }
+        let pieces = convex::pieces(r);
+        if pieces.len() > 1 {
+            let mut all = Painted::default();
+            for p in &pieces {
+                let own = paint(&convex::bands(p, None), lim, origin)?;
+                let axis = sweep::principal_angle(p) + std::f64::consts::FRAC_PI_2;
+                let across = paint(&convex::bands(p, Some(axis)), lim, origin)?;
+                all.append(if across.better_than(&own, p.area()) { across } else { own });
+            }
+            plans.push(all.into_plan(Method::Convex { pieces: pieces.len() }, area));
+        }
         let best_film = plans
             .iter()
             .map(|p| p.candidate.film_error)
@@ -191,16 +212,86 @@ pub fn decompose(regions: &[Region], lim: &Bands, origin: &str) -> Result<Decomp
     Ok(out)
 }
 
+/// What painting some bands takes.
+#[derive(Default)]
+struct Painted {
+    strokes: Vec<Stroke>,
+    narrow: Vec<Narrow>,
+    time_s: f64,
+    /// Area painted wrong: left bare, sprayed outside, or in strips too
+    /// short to reach painting speed (m²).
+    bad_m2: f64,
+}
+
+impl Painted {
+    fn append(&mut self, mut o: Painted) {
+        self.strokes.append(&mut o.strokes);
+        self.narrow.append(&mut o.narrow);
+        self.time_s += o.time_s;
+        self.bad_m2 += o.bad_m2;
+    }
+    fn into_plan(self, method: Method, area: f64) -> Plan {
+        Plan {
+            candidate: Candidate {
+                method,
+                strokes: self.strokes.len(),
+                time_s: self.time_s,
+                film_error: if area > 0.0 { self.bad_m2 / area } else { 0.0 },
+            },
+            strokes: self.strokes,
+            narrow: self.narrow,
+        }
+    }
+    /// Lower is better: the film first (within [`FILM_TIE`] of `area`), then time.
+    fn better_than(&self, o: &Painted, area: f64) -> bool {
+        if (self.bad_m2 - o.bad_m2).abs() > FILM_TIE * area {
+            self.bad_m2 < o.bad_m2
+        } else {
+            self.time_s < o.time_s
+        }
+    }
+}
+
 fn plan(method: Method, bands: &[Band], area: f64, lim: &Bands, origin: &str) -> Result<Plan, ShapeError> {
-    let mut strokes = vec![];
-    let mut narrow = vec![];
-    let mut time = 0.0;
-    let mut bad_area = 0.0;
+    let mut all = Painted::default();
+    for band in bands {
+        let mut best = paint(std::slice::from_ref(band), lim, origin)?;
+        if let Method::Sweep { .. } = method {
+            // A sweep cell may point elsewhere than the region (a star's
+            // arm): try it swept along its own axis and across it.
+            let cell = band_region(band);
+            let axis = sweep::principal_angle(&cell);
+            let cell_area = cell.area();
+            for angle in [axis, axis + std::f64::consts::FRAC_PI_2] {
+                let alt = paint(&sweep::bands(&cell, angle), lim, origin)?;
+                if alt.better_than(&best, cell_area) {
+                    best = alt;
+                }
+            }
+        }
+        all.append(best);
+    }
+    Ok(all.into_plan(method, area))
+}
+
+/// A band's outline as a region (right edge forward, left edge back: counter-clockwise).
+fn band_region(b: &Band) -> Region {
+    let mut outer: Vec<Point> = b.rungs.iter().map(|r| r.1).collect();
+    outer.extend(b.rungs.iter().rev().map(|r| r.0));
+    outer.dedup_by(|a, b| (*a - *b).hypot() < 2.0 * JOIN_TOLERANCE);
+    Region {
+        outer,
+        holes: vec![],
+    }
+}
+
+fn paint(bands: &[Band], lim: &Bands, origin: &str) -> Result<Painted, ShapeError> {
+    let mut out = Painted::default();
     let pass = lim.max_width_m * PASS_MARGIN;
     for band in bands {
         let (kept, mut nar) = trim(band, lim);
-        bad_area += nar.iter().map(|n| n.unpainted_m2 + n.overspray_m2).sum::<f64>();
-        narrow.append(&mut nar);
+        out.bad_m2 += nar.iter().map(|n| n.unpainted_m2 + n.overspray_m2).sum::<f64>();
+        out.narrow.append(&mut nar);
         for piece in kept {
             for (p, n) in by_passes(&piece, pass) {
                 for q in by_lean(&p) {
@@ -216,23 +307,17 @@ fn plan(method: Method, bands: &[Band], area: f64, lim: &Bands, origin: &str) ->
                         {
                             continue;
                         }
-                        time += predicted_time(&s, lim) + STROKE_OVERHEAD_S;
-                        strokes.push(stroke(&s, origin)?);
+                        if mid_len(&s) < MIN_PIECE_M {
+                            out.bad_m2 += area;
+                        }
+                        out.time_s += predicted_time(&s, lim) + STROKE_OVERHEAD_S;
+                        out.strokes.push(stroke(&s, origin)?);
                     }
                 }
             }
         }
     }
-    Ok(Plan {
-        candidate: Candidate {
-            method,
-            strokes: strokes.len(),
-            time_s: time,
-            film_error: if area > 0.0 { bad_area / area } else { 0.0 },
-        },
-        strokes,
-        narrow,
-    })
+    Ok(out)
 }
 
 fn lerp_rung(a: (Point, Point), b: (Point, Point), t: f64) -> (Point, Point) {
@@ -398,10 +483,11 @@ fn by_lean(band: &Band) -> Vec<Band> {
             worst = (lean, i);
         }
     }
-    if worst.0 <= MAX_LEAN {
+    let i = worst.1;
+    let short = |r: &[(Point, Point)]| mid_len(&Band { rungs: r.to_vec() }) < MIN_PIECE_M;
+    if worst.0 <= MAX_LEAN || short(&band.rungs[..=i]) || short(&band.rungs[i..]) {
         return vec![band.clone()];
     }
-    let i = worst.1;
     let mut out = by_lean(&Band {
         rungs: band.rungs[..=i].to_vec(),
     });
@@ -409,6 +495,11 @@ fn by_lean(band: &Band) -> Vec<Band> {
         rungs: band.rungs[i..].to_vec(),
     }));
     out
+}
+
+/// Length of a band's midline (m).
+fn mid_len(b: &Band) -> f64 {
+    polyline_len(&b.rungs.iter().map(|r| lerp_mid(*r)).collect::<Vec<_>>())
 }
 
 fn polyline_len(p: &[Point]) -> f64 {

@@ -9,6 +9,7 @@
 //! narrow places and of the method chosen per region) → [`font_toml`] (the
 //! strokes as a one-glyph font file, editable, that `--font` reads back).
 
+mod convex;
 mod decompose;
 mod dxf;
 mod region;
