@@ -295,7 +295,7 @@ fn paint(bands: &[Band], lim: &Bands, origin: &str) -> Result<Painted, ShapeErro
         for piece in kept {
             for (p, n) in by_passes(&piece, pass) {
                 for q in by_lean(&p) {
-                    for s in strips(&q, n) {
+                    for s in strips(&q, passes_for(&q, n, lim.max_width_m)) {
                         // A sliver between two outline vertices a float's
                         // width apart has no length to paint.
                         let side = |f: fn(&(Point, Point)) -> Point| {
@@ -506,6 +506,30 @@ fn polyline_len(p: &[Point]) -> f64 {
     p.windows(2).map(|w| (w[1] - w[0]).hypot()).sum()
 }
 
+/// The pass count, from `n` up, at which every rung the planner will cut
+/// (equal arc length on each edge, which may lean) is at most one pass wide.
+fn passes_for(q: &Band, n: usize, max_width_m: f64) -> usize {
+    let fits = |k: usize| {
+        strips(q, k).iter().all(|s| {
+            let l: Vec<Point> = s.rungs.iter().map(|r| r.0).collect();
+            let r: Vec<Point> = s.rungs.iter().map(|r| r.1).collect();
+            let (fl, fr) = (fractions(&l), fractions(&r));
+            (0..=128).all(|i| {
+                let t = i as f64 / 128.0;
+                (at_fraction(&r, &fr, t) - at_fraction(&l, &fl, t)).hypot() <= max_width_m
+            })
+        })
+    };
+    (n..n + 4).find(|&k| fits(k)).unwrap_or(n + 4)
+}
+
+/// The point at arc-length fraction `t` of a polyline with fractions `f`.
+fn at_fraction(p: &[Point], f: &[f64], t: f64) -> Point {
+    let i = f.partition_point(|&v| v < t).clamp(1, f.len() - 1);
+    let u = ((t - f[i - 1]) / (f[i] - f[i - 1]).max(1e-15)).clamp(0.0, 1.0);
+    p[i - 1].lerp(p[i], u)
+}
+
 /// The band as `n` parallel strips, left to right.
 fn strips(band: &Band, n: usize) -> Vec<Band> {
     (0..n)
@@ -557,4 +581,154 @@ fn stroke(s: &Band, origin: &str) -> Result<Stroke, ShapeError> {
         left: edge(s.rungs.iter().map(|r| r.0), origin)?,
         right: edge(s.rungs.iter().map(|r| r.1), origin)?,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::font::{overlap_area, DEFAULT_LIMITS};
+    use crate::shape::region::signed_area;
+    use proptest::prelude::*;
+
+    fn bands() -> Bands {
+        Bands::for_robot(&crate::robot::Robot::load_or_default(None).expect("embedded robot"))
+    }
+
+    /// Strokes tile the region: their areas plus what the tips leave bare
+    /// add up to the region, no rung is wider than a pass, none overlap.
+    fn assert_tiles(regions: &[Region]) {
+        let lim = bands();
+        let d = decompose(regions, &lim, "test").expect("decomposes");
+        let area: f64 = regions.iter().map(Region::area).sum();
+        let strokes: f64 = d.strokes.iter().map(|s| signed_area(&s.outline(400))).sum();
+        let bare: f64 = d.narrow.iter().map(|n| n.unpainted_m2).sum();
+        assert!(
+            ((strokes + bare) - area).abs() < 0.005 * area,
+            "strokes {strokes} + bare {bare} vs region {area}"
+        );
+        for s in &d.strokes {
+            for (a, b) in s.rungs(50) {
+                assert!((b - a).hypot() <= lim.max_width_m + 1e-9);
+            }
+        }
+        let fine = crate::font::Limits {
+            scan_step: 0.002,
+            overlap_area: 1e-5,
+            ..DEFAULT_LIMITS
+        };
+        for i in 0..d.strokes.len() {
+            for j in i + 1..d.strokes.len() {
+                let o = overlap_area(&d.strokes[i], &d.strokes[j], &fine);
+                assert!(o < 2e-4, "strokes {i} and {j} overlap by {o} m²");
+            }
+        }
+    }
+
+    fn square_ring(outer: f64, inner: f64) -> Region {
+        let sq = |h: f64| {
+            vec![
+                Point::new(-h, -h),
+                Point::new(h, -h),
+                Point::new(h, h),
+                Point::new(-h, h),
+            ]
+        };
+        let mut hole = sq(inner);
+        hole.reverse();
+        Region {
+            outer: sq(outer),
+            holes: vec![hole],
+        }
+    }
+
+    #[test]
+    fn a_square_frame_tiles() {
+        assert_tiles(&[square_ring(1.0, 0.75)]);
+    }
+
+    #[test]
+    fn a_wide_rectangle_is_split_into_passes() {
+        let r = Region {
+            outer: vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.0),
+                Point::new(1.0, 3.0),
+                Point::new(0.0, 3.0),
+            ],
+            holes: vec![],
+        };
+        let d = decompose(std::slice::from_ref(&r), &bands(), "test").expect("decomposes");
+        // 1 m across, passes of at most 0.95 × 0.41 m: three strips along its length.
+        assert_eq!(d.strokes.len(), 3);
+        assert!(d.narrow.is_empty());
+        assert_tiles(&[r]);
+    }
+
+    #[test]
+    fn a_pointed_tip_is_trimmed_and_reported_with_its_shortfall() {
+        // A band 0.3 m wide narrowing to a point over 2 m.
+        let band = Band {
+            rungs: vec![
+                (Point::new(0.0, 0.0), Point::new(0.3, 0.0)),
+                (Point::new(0.15, 2.0), Point::new(0.15, 2.0)),
+            ],
+        };
+        let lim = bands();
+        let (kept, narrow) = trim(&band, &lim);
+        assert_eq!(kept.len(), 1);
+        let end = kept[0].rungs.last().copied().expect("rungs");
+        let cut = (end.1 - end.0).hypot();
+        assert!((cut - CUT_FRACTION * lim.min_width_m).abs() < 1e-9, "cut at {cut}");
+        assert_eq!(narrow.len(), 1);
+        let tip = narrow[0];
+        assert!(tip.at.y > 1.99 && tip.width_m < 1e-9);
+        assert!((tip.shortfall_m - lim.min_width_m).abs() < 1e-9);
+        // Narrower than the fan's narrowest band over 2 m × 0.097 / 0.3.
+        let long = 2.0 * lim.min_width_m / 0.3;
+        assert!((tip.length_m - long).abs() < 0.01, "{} vs {long}", tip.length_m);
+        // Bare: the last half of that length, a triangle.
+        let bare = 0.5 * (0.5 * long) * (0.5 * lim.min_width_m);
+        assert!((tip.unpainted_m2 - bare).abs() < 0.05 * bare, "{} vs {bare}", tip.unpainted_m2);
+        assert!(tip.overspray_m2 > 0.0);
+    }
+
+    #[test]
+    fn a_round_ring_is_painted_as_ring_following_bands() {
+        let circle = |r: f64| -> Vec<Point> {
+            (0..128)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / 128.0;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect()
+        };
+        let mut hole = circle(0.7);
+        hole.reverse();
+        let r = Region {
+            outer: circle(1.0),
+            holes: vec![hole],
+        };
+        assert_tiles(std::slice::from_ref(&r));
+        let d = decompose(&[r], &bands(), "test").expect("decomposes");
+        assert_eq!(d.regions[0].chosen.method, Method::Ring);
+        assert_eq!(d.strokes.len(), 4);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+        /// Random star-shaped polygons (a radius per vertex) always tile.
+        #[test]
+        fn random_star_polygons_tile(radii in proptest::collection::vec(0.4f64..1.2, 5..14)) {
+            let n = radii.len();
+            let outer: Vec<Point> = radii
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    let a = std::f64::consts::TAU * i as f64 / n as f64;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect();
+            assert_tiles(&[Region { outer, holes: vec![] }]);
+        }
+    }
 }
