@@ -1,14 +1,16 @@
 //! Paint: the spray deposition model, the film raster and its metrics.
 //!
 //! `spray` says where a nozzle pose lays paint; `raster` integrates it along
-//! timed poses into a film-thickness grid; `metrics` judges the film against
-//! the letters' true outlines; `preview` ties them to a job and draws the SVG.
+//! timed poses into a film-thickness grid; `metrics` measures the film against
+//! the letters' true outlines, `verdict` judges those figures against
+//! documented thresholds; `preview` ties them to a job and draws the SVG.
 //! The simulator reuses `deposit` on its own trace (same pose columns).
 
 pub mod metrics;
 pub mod preview;
 pub mod raster;
 pub mod spray;
+pub mod verdict;
 
 pub use raster::{deposit, Bounds, Film, Grid};
 pub use spray::{planned_tip, Depth, Footprint, Pose, Profile, SprayModel};
@@ -28,4 +30,20 @@ pub enum PaintError {
     Pose(String),
     #[error("job: {0}")]
     Job(String),
+}
+
+/// A length in millimetres with four significant digits, trailing zeros
+/// dropped (`5`, `2.5`, `0.0125`): a cell of 0.01 mm is not "0.0 mm".
+pub fn mm_text(m: f64) -> String {
+    let mm = m * 1000.0;
+    if !(mm.is_finite() && mm > 0.0) {
+        return format!("{mm}");
+    }
+    let decimals = (3 - mm.log10().floor() as i64).clamp(0, 12) as usize;
+    let s = format!("{mm:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
 }

@@ -5,16 +5,24 @@
 //! The description is an immutable model (DESIGN: model apart from state);
 //! every computation takes it by reference.
 
+pub mod articulated;
+pub mod design;
 pub mod dynamics;
+pub mod envelope;
 pub mod fourbar;
+pub mod kind;
 pub mod kinematics;
+pub mod section;
+pub mod telescopic;
 pub mod workspace;
 
 mod describe;
+mod ranges;
 
 pub use describe::{check_source, RobotError};
 pub use dynamics::Dynamics;
 pub use fourbar::FourBar;
+pub use kind::{AnyRobot, ArmKind, Kind, ServoJoint, Q};
 pub use kinematics::{Actuators, Encoders, Joints, NozzlePose, RateViolation, Unreachable};
 pub use workspace::Region;
 
@@ -34,6 +42,9 @@ pub fn looks_like_robot(text: &str) -> bool {
 #[serde(deny_unknown_fields)]
 pub struct Robot {
     pub name: String,
+    /// Always BASR here (SPEC §8); other kinds are [`AnyRobot`]'s.
+    #[serde(default, skip_serializing_if = "Kind::is_basr")]
+    pub kind: Kind,
     pub arm: Arm,
     pub end_effector: EndEffector,
     pub paint: Paint,
@@ -115,17 +126,6 @@ impl Paint {
         match (self.height_law_c0_m, self.height_law_c1) {
             (Some(c0), Some(c1)) => c0 + c1 * width_m,
             _ => 0.5 * width_m / (0.5 * self.fan_angle_rad).tan(),
-        }
-    }
-
-    /// The job's `paint` object (SPEC §3).
-    pub fn job_paint(&self) -> crate::job::Paint {
-        crate::job::Paint {
-            fan_angle_rad: self.fan_angle_rad,
-            flow_m3ps: self.flow_m3ps,
-            transfer_efficiency: self.transfer_efficiency,
-            film_m: self.film_m,
-            k_m2ps: self.k_m2ps(),
         }
     }
 }
@@ -264,7 +264,17 @@ impl Robot {
 
     /// Parse and validate a description; `origin` names it in messages.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Robot, RobotError> {
-        describe::parse(text, origin)
+        match describe::kind_of(text, origin)? {
+            Kind::Basr => describe::parse(text, origin),
+            kind => Err(RobotError::Invalid {
+                origin: origin.to_string(),
+                problems: vec![format!(
+                    "{origin}: a robot of kind \"{}\": this command takes a BASR description so \
+                     far (docs/robot-kinds.md says which commands take every kind)",
+                    kind.name()
+                )],
+            }),
+        }
     }
 
     /// The description as TOML that reads back to an identical robot.
@@ -289,10 +299,10 @@ impl Robot {
         }
     }
 
-    /// SHA-256 of the description's canonical form (see `crate::job::canonical_json`).
+    /// SHA-256 of the description's canonical form (see `crate::canon::canonical_json`).
     pub fn sha256(&self) -> String {
         let v = serde_json::to_value(self).expect("robot serialises");
-        crate::io::sha256_hex(&crate::job::canonical_json(&v))
+        crate::io::sha256_hex(&crate::canon::canonical_json(&v))
     }
 
     /// What is wrong with a description already read (a job's embedded
@@ -367,9 +377,9 @@ mod tests {
         // values toml spells in unusual ways (exponents, -0.0, optional keys).
         let mut c = Robot::basr();
         c.name = "custom \"arm\"".into();
-        c.end_effector.mass_kg = 0.1 + 0.2;
+        c.end_effector.mass_kg = 35.0 + 0.1 + 0.2;
         c.dynamics.leakage_m3_per_s_pa = 1.234e-17;
-        c.hydraulics.supply_pa = 2.5e300;
+        c.hydraulics.supply_pa = 2.5e7 + 1.0 / 3.0; // within its range (ranges.rs)
         c.arm.a2_m = -0.0;
         c.paint.height_law_c0_m = Some(0.02);
         c.paint.height_law_c1 = Some(0.7);

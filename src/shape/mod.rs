@@ -9,6 +9,7 @@
 //! narrow places and of the method chosen per region) → [`font_toml`] (the
 //! strokes as a one-glyph font file, editable, that `--font` reads back).
 
+mod compile;
 mod convex;
 mod decompose;
 mod dxf;
@@ -23,6 +24,7 @@ use std::path::Path;
 use kurbo::BezPath;
 
 pub use decompose::{decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport};
+pub use compile::compile_shape;
 pub use region::{regions, Region};
 pub use write::{font_toml, GLYPH};
 
@@ -155,9 +157,9 @@ pub fn bounds(outline: &Outline) -> kurbo::Rect {
 
 impl Bands {
     /// The bands the robot's nozzle paints: narrowest from the lowest tip
-    /// height, widest from the highest (`plan::compile::paint_law`).
+    /// height, widest from the highest (`plan::passes::paint_law`).
     pub fn for_robot(robot: &crate::robot::Robot) -> Bands {
-        let law = crate::plan::compile::paint_law(robot);
+        let law = crate::plan::passes::paint_law(robot);
         Bands {
             min_width_m: law.width_at_height(law.min_height_m),
             max_width_m: law.max_width_m(),

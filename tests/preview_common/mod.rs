@@ -136,6 +136,10 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             paint_volume_m3: on * FLOW,
             warnings: vec![],
             balance: vec![],
+            lower_bound_s: 0.0,
+            bound_ratio: 0.0,
+            verified_max_error_m: None,
+            truck_moves_m: vec![],
         },
         sha256: String::new(),
     };
@@ -219,4 +223,18 @@ pub fn tilted_job(w: f64, len: f64, beta: f64) -> Job {
         }],
     };
     job_with("I", "trapezoid", &rungs, glyph)
+}
+
+/// `basr preview` ran to its verdict: exit 0 when the film passes, 1 when
+/// it fails (the metrics are printed either way); 2 would be bad input.
+pub fn ran_to_a_verdict(out: &std::process::Output) -> bool {
+    let code = out.status.code();
+    match serde_json::from_slice::<serde_json::Value>(&out.stdout) {
+        Ok(v) if v.is_object() => match v["verdict"].as_str() {
+            Some("pass") => code == Some(0),
+            Some("fail") => code == Some(1),
+            _ => false,
+        },
+        _ => matches!(code, Some(0 | 1)),
+    }
 }
