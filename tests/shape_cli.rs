@@ -42,13 +42,19 @@ fn every_test_shape_imports_checks_and_compiles() {
         basr().arg("check").arg(&toml).assert().success();
         let job = dir.path().join(format!("{name}.job.json"));
         let mut cmd = basr();
-        cmd.args(["compile", "--shape"]).arg(data(name)).arg("-o").arg(&job);
+        cmd.args(["compile", "--shape"])
+            .arg(data(name))
+            .arg("-o")
+            .arg(&job);
         if let Some(h) = size {
             cmd.args(["--shape-height-m", h]);
         }
         cmd.assert().success();
         let text = std::fs::read_to_string(&job).expect("job");
-        assert!(text.contains("\"kind\": \"shape\""), "{name}: the job names the method");
+        assert!(
+            text.contains("\"kind\": \"shape\""),
+            "{name}: the job names the method"
+        );
     }
 }
 
@@ -127,22 +133,37 @@ const H: [&str; 2] = ["--shape-height-m", "2"];
 #[test]
 fn bad_shapes_are_refused_with_the_element_and_the_fix() {
     let svg = |inner: &str| {
-        format!("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 100 100\">\n{inner}\n</svg>\n")
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 100 100\">\n{inner}\n</svg>\n"
+        )
     };
     let e = refused(
         "t.svg",
         &svg("<rect width=\"10\" height=\"10\"/>\n<text id=\"label\" x=\"5\" y=\"5\">HI</text>"),
         &H,
     );
-    assert!(e.contains("line 3") && e.contains("label") && e.contains("Object to Path"), "{e}");
+    assert!(
+        e.contains("line 3") && e.contains("label") && e.contains("Object to Path"),
+        "{e}"
+    );
     let e = refused(
         "s.svg",
         &svg("<path id=\"outline\" fill=\"none\" stroke=\"black\" d=\"M 0,0 L 50,50 L 0,50 Z\"/>"),
         &H,
     );
-    assert!(e.contains("outline") && e.contains("only stroked") && e.contains("Stroke to Path"), "{e}");
-    let e = refused("o.svg", &svg("<path id=\"hook\" d=\"M 0,0 L 50,50 L 0,50\"/>"), &H);
-    assert!(e.contains("hook") && e.contains("open subpath") && e.contains("Z"), "{e}");
+    assert!(
+        e.contains("outline") && e.contains("only stroked") && e.contains("Stroke to Path"),
+        "{e}"
+    );
+    let e = refused(
+        "o.svg",
+        &svg("<path id=\"hook\" d=\"M 0,0 L 50,50 L 0,50\"/>"),
+        &H,
+    );
+    assert!(
+        e.contains("hook") && e.contains("open subpath") && e.contains("Z"),
+        "{e}"
+    );
     let e = refused("e.svg", "", &H);
     assert!(e.contains("empty"), "{e}");
     let e = refused("n.svg", &svg(""), &H);
@@ -154,7 +175,11 @@ fn bad_shapes_are_refused_with_the_element_and_the_fix() {
         &H,
     );
     assert!(e.contains("twice") && e.contains("crosses itself"), "{e}");
-    let e = refused("b.svg", &svg("<rect width=\"10\" height=\"10\"/>"), &["--shape-height-m", "12"]);
+    let e = refused(
+        "b.svg",
+        &svg("<rect width=\"10\" height=\"10\"/>"),
+        &["--shape-height-m", "12"],
+    );
     assert!(e.contains("0.3–10 m"), "{e}");
     let e = refused("u.svg", &svg("<rect width=\"10\" height=\"10\"/>"), &[]);
     assert!(e.contains("--shape-height-m"), "{e}");
@@ -169,7 +194,10 @@ fn open_dxf_polyline_is_refused_by_handle() {
     let open = text.replacen("\n70\n1\n", "\n70\n0\n", 1);
     assert_ne!(open, text);
     let e = refused("a.dxf", &open, &[]);
-    assert!(e.contains("LWPOLYLINE (handle 2A)") && e.contains("PEDIT"), "{e}");
+    assert!(
+        e.contains("LWPOLYLINE (handle 2A)") && e.contains("PEDIT"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -266,7 +266,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     };
     anyhow::ensure!(
         args.shape.is_some()
-            || (args.shape_size.shape_height_m.is_none() && args.shape_size.shape_width_m.is_none()),
+            || (args.shape_size.shape_height_m.is_none()
+                && args.shape_size.shape_width_m.is_none()),
         "--shape-height-m and --shape-width-m size a --shape FILE; give the shape too"
     );
     let hints = feet_hints(&args);

@@ -11,7 +11,12 @@ use super::{Global, Outcome};
 #[derive(clap::Args, Clone, Debug)]
 pub struct SizeArgs {
     /// Height of the shape on the road, metres (0.3–10, like a letter).
-    #[arg(long, value_name = "H", conflicts_with = "shape_width_m", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "H",
+        conflicts_with = "shape_width_m",
+        allow_hyphen_values = true
+    )]
     pub shape_height_m: Option<f64>,
     /// Width of the shape on the road, metres (its height follows).
     #[arg(long, value_name = "W", allow_hyphen_values = true)]

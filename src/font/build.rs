@@ -206,8 +206,7 @@ pub fn build(text: &str, origin: &str) -> Built {
             }
         }
         if out.problems.len() == before {
-            out.problems
-                .extend(validate_glyph(&strokes, &limits));
+            out.problems.extend(validate_glyph(&strokes, &limits));
         }
         if out.problems.len() == before {
             let strokes = strokes.into_iter().map(|(_, s)| s).collect();

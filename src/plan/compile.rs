@@ -21,7 +21,9 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
         robot,
         font,
     } = inputs::read(req)?;
-    let laid_out = layout::place(&marking, |ch| font.glyph(ch).map(|g| glyph_box(g, font.grid_width)))?;
+    let laid_out = layout::place(&marking, |ch| {
+        font.glyph(ch).map(|g| glyph_box(g, font.grid_width))
+    })?;
     let strokes = PlacedStrokes::from_letters(&laid_out, &font);
     compile_strokes(req, &marking, &font, robot, &strokes)
 }

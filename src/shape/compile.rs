@@ -29,7 +29,9 @@ pub fn compile_shape(
     let font = imported
         .font(label)
         .map_err(|e| CompileError::Font(e.to_string()))?;
-    let laid = layout::place(&inputs.marking, |ch| font.glyph(ch).map(|g| glyph_box(g, font.grid_width)))?;
+    let laid = layout::place(&inputs.marking, |ch| {
+        font.glyph(ch).map(|g| glyph_box(g, font.grid_width))
+    })?;
     let mut strokes = PlacedStrokes::from_letters(&laid, &font);
     for it in &mut strokes.items {
         it.owner = Owner {

@@ -37,5 +37,8 @@ pub fn pieces(r: &Region) -> Vec<Region> {
 /// One piece's bands swept along `angle`, or along its own long axis when
 /// `angle` is `None` (a convex piece is one cell in any direction).
 pub fn bands(piece: &Region, angle: Option<f64>) -> Vec<Band> {
-    sweep::bands(piece, angle.unwrap_or_else(|| sweep::principal_angle(piece)))
+    sweep::bands(
+        piece,
+        angle.unwrap_or_else(|| sweep::principal_angle(piece)),
+    )
 }

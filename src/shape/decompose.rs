@@ -159,7 +159,11 @@ struct Plan {
 }
 
 /// Decompose every region; see the module docs.
-pub fn decompose(regions: &[Region], lim: &Bands, origin: &str) -> Result<Decomposition, ShapeError> {
+pub fn decompose(
+    regions: &[Region],
+    lim: &Bands,
+    origin: &str,
+) -> Result<Decomposition, ShapeError> {
     let mut out = Decomposition {
         strokes: vec![],
         regions: vec![],
@@ -172,7 +176,13 @@ pub fn decompose(regions: &[Region], lim: &Bands, origin: &str) -> Result<Decomp
         let mut plans: Vec<Plan> = vec![];
         for angle in [axis, axis + std::f64::consts::FRAC_PI_2] {
             let bands = sweep::bands(r, angle);
-            plans.push(plan(Method::Sweep { angle_rad: angle }, &bands, area, lim, origin)?);
+            plans.push(plan(
+                Method::Sweep { angle_rad: angle },
+                &bands,
+                area,
+                lim,
+                origin,
+            )?);
         }
         if let Some(bands) = ring::bands(r, axis) {
             plans.push(plan(Method::Ring, &bands, area, lim, origin)?);
@@ -184,9 +194,18 @@ pub fn decompose(regions: &[Region], lim: &Bands, origin: &str) -> Result<Decomp
                 let own = paint(&convex::bands(p, None), lim, origin)?;
                 let axis = sweep::principal_angle(p) + std::f64::consts::FRAC_PI_2;
                 let across = paint(&convex::bands(p, Some(axis)), lim, origin)?;
-                all.append(if across.better_than(&own, p.area()) { across } else { own });
+                all.append(if across.better_than(&own, p.area()) {
+                    across
+                } else {
+                    own
+                });
             }
-            plans.push(all.into_plan(Method::Convex { pieces: pieces.len() }, area));
+            plans.push(all.into_plan(
+                Method::Convex {
+                    pieces: pieces.len(),
+                },
+                area,
+            ));
         }
         let best_film = plans
             .iter()
@@ -252,7 +271,13 @@ impl Painted {
     }
 }
 
-fn plan(method: Method, bands: &[Band], area: f64, lim: &Bands, origin: &str) -> Result<Plan, ShapeError> {
+fn plan(
+    method: Method,
+    bands: &[Band],
+    area: f64,
+    lim: &Bands,
+    origin: &str,
+) -> Result<Plan, ShapeError> {
     let mut all = Painted::default();
     for band in bands {
         let mut best = paint(std::slice::from_ref(band), lim, origin)?;
@@ -290,7 +315,10 @@ fn paint(bands: &[Band], lim: &Bands, origin: &str) -> Result<Painted, ShapeErro
     let pass = lim.max_width_m * PASS_MARGIN;
     for band in bands {
         let (kept, mut nar) = trim(band, lim);
-        out.bad_m2 += nar.iter().map(|n| n.unpainted_m2 + n.overspray_m2).sum::<f64>();
+        out.bad_m2 += nar
+            .iter()
+            .map(|n| n.unpainted_m2 + n.overspray_m2)
+            .sum::<f64>();
         out.narrow.append(&mut nar);
         for piece in kept {
             for (p, n) in by_passes(&piece, pass) {
@@ -437,7 +465,12 @@ fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
             let edge = k.min(ki) as f64 * pass;
             let r = cross_at(band, i - 1, edge);
             cur.push(r);
-            out.push((Band { rungs: std::mem::take(&mut cur) }, k));
+            out.push((
+                Band {
+                    rungs: std::mem::take(&mut cur),
+                },
+                k,
+            ));
             cur.push(r);
             k = ki;
         }
@@ -446,8 +479,12 @@ fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
     out.push((Band { rungs: cur }, k));
     out.into_iter()
         .map(|(mut b, k)| {
-            b.rungs.dedup_by(|a, b| (a.0 - b.0).hypot() < 1e-9 && (a.1 - b.1).hypot() < 1e-9);
-            let k = (0..b.rungs.len()).map(|i| count(b.width(i))).max().unwrap_or(k);
+            b.rungs
+                .dedup_by(|a, b| (a.0 - b.0).hypot() < 1e-9 && (a.1 - b.1).hypot() < 1e-9);
+            let k = (0..b.rungs.len())
+                .map(|i| count(b.width(i)))
+                .max()
+                .unwrap_or(k);
             (b, k)
         })
         .filter(|(b, _)| b.rungs.len() >= 2)
@@ -554,7 +591,11 @@ fn predicted_time(s: &Band, lim: &Bands) -> f64 {
     let mut yaw = 0.0;
     for i in 0..s.rungs.len() - 1 {
         let w = 0.5 * (s.width(i) + s.width(i + 1));
-        let cover = if w > 0.0 { lim.min_width_m.max(w) / w } else { 1.0 };
+        let cover = if w > 0.0 {
+            lim.min_width_m.max(w) / w
+        } else {
+            1.0
+        };
         paint += s.tile(i) * cover / lim.k_m2ps;
         let d0 = s.rungs[i].1 - s.rungs[i].0;
         let d1 = s.rungs[i + 1].1 - s.rungs[i + 1].0;
@@ -566,13 +607,18 @@ fn predicted_time(s: &Band, lim: &Bands) -> f64 {
 fn edge(pts: impl Iterator<Item = Point>, origin: &str) -> Result<Edge, ShapeError> {
     let mut v: Vec<Point> = vec![];
     for p in pts {
-        if v.last().is_none_or(|q| (*q - p).hypot() > 2.0 * JOIN_TOLERANCE) {
+        if v.last()
+            .is_none_or(|q| (*q - p).hypot() > 2.0 * JOIN_TOLERANCE)
+        {
             v.push(p);
         }
     }
     let segs = v.windows(2).map(|w| Segment::line(w[0], w[1])).collect();
     Edge::new(segs).map_err(|e| {
-        ShapeError::invalid(origin, format!("a band edge could not be built ({e}); the outline is degenerate there"))
+        ShapeError::invalid(
+            origin,
+            format!("a band edge could not be built ({e}); the outline is degenerate there"),
+        )
     })
 }
 
@@ -678,17 +724,28 @@ mod tests {
         assert_eq!(kept.len(), 1);
         let end = kept[0].rungs.last().copied().expect("rungs");
         let cut = (end.1 - end.0).hypot();
-        assert!((cut - CUT_FRACTION * lim.min_width_m).abs() < 1e-9, "cut at {cut}");
+        assert!(
+            (cut - CUT_FRACTION * lim.min_width_m).abs() < 1e-9,
+            "cut at {cut}"
+        );
         assert_eq!(narrow.len(), 1);
         let tip = narrow[0];
         assert!(tip.at.y > 1.99 && tip.width_m < 1e-9);
         assert!((tip.shortfall_m - lim.min_width_m).abs() < 1e-9);
         // Narrower than the fan's narrowest band over 2 m × 0.097 / 0.3.
         let long = 2.0 * lim.min_width_m / 0.3;
-        assert!((tip.length_m - long).abs() < 0.01, "{} vs {long}", tip.length_m);
+        assert!(
+            (tip.length_m - long).abs() < 0.01,
+            "{} vs {long}",
+            tip.length_m
+        );
         // Bare: the last half of that length, a triangle.
         let bare = 0.5 * (0.5 * long) * (0.5 * lim.min_width_m);
-        assert!((tip.unpainted_m2 - bare).abs() < 0.05 * bare, "{} vs {bare}", tip.unpainted_m2);
+        assert!(
+            (tip.unpainted_m2 - bare).abs() < 0.05 * bare,
+            "{} vs {bare}",
+            tip.unpainted_m2
+        );
         assert!(tip.overspray_m2 > 0.0);
     }
 

@@ -130,7 +130,12 @@ fn metres_per_unit(u: Units) -> Option<f64> {
 
 /// A closed polyline with bulges (bulge = tan(θ/4) of the arc to the next
 /// vertex, positive counter-clockwise: the DXF reference's definition).
-fn closed(pts: &[(Point, f64)], is_closed: bool, name: &str, origin: &str) -> Result<BezPath, ShapeError> {
+fn closed(
+    pts: &[(Point, f64)],
+    is_closed: bool,
+    name: &str,
+    origin: &str,
+) -> Result<BezPath, ShapeError> {
     let n = pts.len();
     let first_last_meet = n > 1 && (pts[0].0 - pts[n - 1].0).hypot() < 1e-9;
     if !(is_closed || first_last_meet) || n < 3 {
@@ -184,14 +189,20 @@ fn ellipse(el: &dxf::entities::Ellipse, name: &str, origin: &str) -> Result<BezP
     let major = Vec2::new(el.major_axis.x, el.major_axis.y);
     let rx = major.hypot();
     let m = Affine::translate((el.center.x, el.center.y)) * Affine::rotate(major.atan2());
-    Ok(m * kurbo::Ellipse::new((0.0, 0.0), (rx, rx * el.minor_axis_ratio), 0.0)
-        .to_path(ARC_TOLERANCE))
+    Ok(
+        m * kurbo::Ellipse::new((0.0, 0.0), (rx, rx * el.minor_axis_ratio), 0.0)
+            .to_path(ARC_TOLERANCE),
+    )
 }
 
 /// A closed B-spline (possibly rational) sampled by de Boor's algorithm.
 fn spline(s: &dxf::entities::Spline, name: &str, origin: &str) -> Result<BezPath, ShapeError> {
     let p = s.degree_of_curve.max(1) as usize;
-    let cps: Vec<Point> = s.control_points.iter().map(|c| Point::new(c.x, c.y)).collect();
+    let cps: Vec<Point> = s
+        .control_points
+        .iter()
+        .map(|c| Point::new(c.x, c.y))
+        .collect();
     let pts: Vec<Point> = if cps.len() > p && s.knot_values.len() == cps.len() + p + 1 {
         let w: Vec<f64> = if s.weight_values.len() == cps.len() {
             s.weight_values.clone()
@@ -248,7 +259,11 @@ fn de_boor(k: usize, t: f64, p: usize, knots: &[f64], c: &[Point], w: &[f64]) ->
         for j in (r..=p).rev() {
             let i = j + k - p;
             let den = knots[i + 1 + p - r] - knots[i];
-            let a = if den.abs() < 1e-300 { 0.0 } else { (t - knots[i]) / den };
+            let a = if den.abs() < 1e-300 {
+                0.0
+            } else {
+                (t - knots[i]) / den
+            };
             d[j] = (
                 (1.0 - a) * d[j - 1].0 + a * d[j].0,
                 (1.0 - a) * d[j - 1].1 + a * d[j].1,

@@ -23,8 +23,8 @@ use std::path::Path;
 
 use kurbo::BezPath;
 
-pub use decompose::{decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport};
 pub use compile::compile_shape;
+pub use decompose::{decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport};
 pub use region::{regions, Region};
 pub use write::{font_toml, GLYPH};
 
@@ -130,7 +130,7 @@ pub fn scale_for(outline: &Outline, size: Size) -> Result<f64, ShapeError> {
         },
     };
     let height = h * scale;
-    if !(scale.is_finite() && scale > 0.0) || !(MIN_SIZE_M..=MAX_SIZE_M).contains(&height) {
+    if !(scale.is_finite() && scale > 0.0 && (MIN_SIZE_M..=MAX_SIZE_M).contains(&height)) {
         return Err(ShapeError::invalid(
             origin,
             format!(
@@ -183,8 +183,12 @@ pub struct Imported {
 impl Imported {
     /// The font `toml` describes, as `--font` would load it.
     pub fn font(&self, origin: &str) -> Result<crate::font::Font, ShapeError> {
-        crate::font::Font::from_toml_str(&self.toml, origin)
-            .map_err(|e| ShapeError::invalid(origin, format!("the decomposition is not a valid font: {e}")))
+        crate::font::Font::from_toml_str(&self.toml, origin).map_err(|e| {
+            ShapeError::invalid(
+                origin,
+                format!("the decomposition is not a valid font: {e}"),
+            )
+        })
     }
 }
 
@@ -195,7 +199,11 @@ pub fn import(path: &Path, size: Size, bands: &Bands) -> Result<Imported, ShapeE
 }
 
 /// [`import`] of an outline already read.
-pub fn import_outline(outline: &Outline, size: Size, bands: &Bands) -> Result<Imported, ShapeError> {
+pub fn import_outline(
+    outline: &Outline,
+    size: Size,
+    bands: &Bands,
+) -> Result<Imported, ShapeError> {
     let scale = scale_for(outline, size)?;
     let bb = bounds(outline);
     let (width_m, height_m) = (bb.width() * scale, bb.height() * scale);

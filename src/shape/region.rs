@@ -122,10 +122,12 @@ fn flatten(path: &kurbo::BezPath) -> Vec<Vec<[f64; 2]>> {
             }
             cur = vec![[p.x, p.y]];
         }
-        PathEl::LineTo(p) => {
-            if cur.last().is_none_or(|q| (q[0] - p.x).hypot(q[1] - p.y) > 1e-9) {
-                cur.push([p.x, p.y]);
-            }
+        PathEl::LineTo(p)
+            if cur
+                .last()
+                .is_none_or(|q| (q[0] - p.x).hypot(q[1] - p.y) > 1e-9) =>
+        {
+            cur.push([p.x, p.y]);
         }
         PathEl::ClosePath => {
             if cur.len() >= 3 {

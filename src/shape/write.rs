@@ -32,7 +32,13 @@ fn vertices(e: &crate::geom::Edge) -> Vec<Point> {
     for seg in e.segments() {
         match seg {
             crate::geom::Segment::Line(l) => v.push(l.p1),
-            other => v.extend(crate::geom::Edge::new(vec![other.clone()]).map(|e| e.sample(17)).unwrap_or_default().into_iter().skip(1)),
+            other => v.extend(
+                crate::geom::Edge::new(vec![other.clone()])
+                    .map(|e| e.sample(17))
+                    .unwrap_or_default()
+                    .into_iter()
+                    .skip(1),
+            ),
         }
     }
     v
@@ -45,8 +51,7 @@ fn units(pts: &[Point], per_m: f64) -> Vec<[f64; 2]> {
         let q = [round(p.x * per_m), round(p.y * per_m)];
         // Points closer than the edge's join tolerance would make a
         // degenerate segment.
-        if v
-            .last()
+        if v.last()
             .is_none_or(|l| (l[0] - q[0]).hypot(l[1] - q[1]) > 2.0 * crate::geom::JOIN_TOLERANCE)
         {
             v.push(q);
@@ -74,7 +79,10 @@ pub fn font_toml(d: &Decomposition, width_m: f64, height_m: f64, source: &str) -
     let per_m = GRID_HEIGHT / height_m;
     let width = round(width_m * per_m);
     let mut s = String::new();
-    let _ = writeln!(s, "# basr shape: {source}, decomposed into strokes by `basr import`.");
+    let _ = writeln!(
+        s,
+        "# basr shape: {source}, decomposed into strokes by `basr import`."
+    );
     let _ = writeln!(
         s,
         "# Compile it with:  basr compile {GLYPH} --font THIS_FILE --letter-height {}",
