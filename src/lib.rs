@@ -18,5 +18,6 @@ pub mod plan;
 pub mod plot;
 pub mod report;
 pub mod robot;
+pub mod shape;
 pub mod sim;
 pub mod units;

@@ -41,6 +41,7 @@ Examples:
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
   basr symbols --svg symbols.svg         # the symbol library, drawn
   basr compile --symbol arrow-left       # one symbol alone
+  basr compile --shape logo.svg --shape-height-m 2   # any filled outline
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
   basr completions bash > basr.bash      # shell completions
 
@@ -71,6 +72,7 @@ enum Command {
     Compile(cmd::compile::Args),
     Glyphs(cmd::glyphs::Args),
     Symbols(cmd::symbols::Args),
+    Import(cmd::import::Args),
     Preview(cmd::preview::Args),
     Report(cmd::report::Args),
     Simulate(cmd::simulate::Args),
@@ -127,6 +129,7 @@ fn main() -> ExitCode {
         Command::Compile(a) => cmd::compile::run(a, &global),
         Command::Glyphs(a) => cmd::glyphs::run(a, &global),
         Command::Symbols(a) => cmd::symbols::run(a, &global),
+        Command::Import(a) => cmd::import::run(a, &global),
         Command::Preview(a) => cmd::preview::run(a, &global),
         Command::Report(a) => cmd::report::run(a, &global),
         Command::Simulate(a) => cmd::simulate::run(a, &global),

@@ -35,26 +35,33 @@ Examples:
   basr compile --marking markings/school_xing.toml --adept school.v2
   basr compile BUS --letter-height 1.83 --tilt none --json
   basr compile --symbol arrow-left                # writes arrow-left.job.json
-  basr compile --marking markings/stop_line.toml  # a scene: stop line and STOP")]
+  basr compile --marking markings/stop_line.toml  # a scene: stop line and STOP
+  basr compile --shape logo.svg --shape-height-m 2 -o logo.job.json")]
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
     // Taken as raw bytes and checked in `run`, so a missing message or one
     // that is not UTF-8 gets our message naming --marking and the letters.
-    #[arg(conflicts_with = "marking", value_parser = clap::value_parser!(std::ffi::OsString))]
+    #[arg(conflicts_with_all = ["marking", "shape"], value_parser = clap::value_parser!(std::ffi::OsString))]
     pub message: Option<std::ffi::OsString>,
     /// A marking file (TOML, see markings/): `lines` of words, or a scene of
     /// `[[item]]`s (words and symbols placed in the lane).
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "shape")]
     pub marking: Option<PathBuf>,
     /// One library symbol alone at its standard size, centred in the lane
     /// with its near end at the anchor (`basr symbols` lists the names).
-    #[arg(long, value_name = "NAME", conflicts_with_all = ["message", "marking"])]
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["message", "marking", "shape"])]
     pub symbol: Option<String>,
     /// The operating speed is below 25 mph: letters down to 4.5 ft and
     /// symbols down to 75 % pass the MUTCD checks (11th §3B.20 ¶11).
     #[arg(long)]
     pub low_speed: bool,
+    /// A filled outline to paint (SVG or DXF), decomposed into strokes as
+    /// `basr import` does; centred in the lane, its near edge at the anchor.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["font", "letter_height"])]
+    pub shape: Option<PathBuf>,
+    #[command(flatten)]
+    pub shape_size: super::import::SizeArgs,
     /// Job file to write [default: <MESSAGE>.job.json].
     #[arg(short, long, value_name = "JOB")]
     pub output: Option<PathBuf>,
@@ -180,6 +187,9 @@ fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
     if let Some(p) = &args.marking {
         inputs.push(("the marking file (--marking)", p));
     }
+    if let Some(p) = &args.shape {
+        inputs.push(("the shape file (--shape)", p));
+    }
     if let Some(p) = &args.robot {
         inputs.push(("the robot file (--robot)", p));
     }
@@ -216,8 +226,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
          which would never read the extra setpoints: give at least {MIN_PERIOD_S}",
         args.period_s
     );
+    let mut shape = None;
     let source = match (&args.message, &args.marking) {
         _ if args.symbol.is_some() => Source::Symbol(args.symbol.clone().unwrap_or_default()),
+        (None, None) if args.shape.is_some() => {
+            let path = args.shape.as_deref().unwrap_or(Path::new(""));
+            let bands = super::import::bands_of(args.robot.as_deref())?;
+            let imported = basr::shape::import(path, args.shape_size.size(), &bands)?;
+            shape = Some((imported, bands));
+            Source::Message(basr::shape::GLYPH.to_string())
+        }
         (Some(m), None) => Source::Message(
             m.to_str()
                 .ok_or_else(|| {
@@ -259,6 +277,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         gun_lag_s: args.gun_lag_s,
         ..CompileRequest::message("")
     };
+    anyhow::ensure!(
+        args.shape.is_some()
+            || (args.shape_size.shape_height_m.is_none()
+                && args.shape_size.shape_width_m.is_none()),
+        "--shape-height-m and --shape-width-m size a --shape FILE; give the shape too"
+    );
     let hints = feet_hints(&args);
     if !global.quiet {
         for h in &hints {
@@ -267,17 +291,32 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     let scene_file =
         matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
-    let job = compile_job(&req).map_err(|e| {
+    let compiled = match (&shape, &args.shape) {
+        (Some((imported, bands)), Some(path)) => {
+            let label = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().to_string())
+                .unwrap_or_else(|| "shape".into());
+            basr::shape::compile_shape(&req, imported, bands, &label)
+        }
+        _ => compile_job(&req),
+    };
+    let job = compiled.map_err(|e| {
         let e = anyhow::Error::from(e);
         match hints.is_empty() {
             true => e,
             false => anyhow::anyhow!("{e:#}\n  hint: {}", hints.join("\n  hint: ")),
         }
     })?;
-    // A symbol's job is named after it, a scene's after its file.
-    let stem = match (&args.symbol, &args.marking) {
-        (Some(name), _) => stem_of(name),
-        (None, Some(path)) if scene_file => path
+    // A shape's job is named after its file, a symbol's after the symbol,
+    // a scene's after its file.
+    let stem = match (&args.shape, &args.symbol, &args.marking) {
+        (Some(p), _, _) => p
+            .file_stem()
+            .map(|s| stem_of(&s.to_string_lossy()))
+            .unwrap_or_else(|| "shape".into()),
+        (None, Some(name), _) => stem_of(name),
+        (None, None, Some(path)) if scene_file => path
             .file_stem()
             .map_or_else(|| stem_of(&job.message), |s| stem_of(&s.to_string_lossy())),
         _ => stem_of(&job.message),

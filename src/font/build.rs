@@ -13,6 +13,8 @@ use crate::geom::{Cardinal, Conic, Edge, GeomError, Segment};
 /// What building found: the glyphs that built, and every problem.
 pub struct Built {
     pub name: String,
+    /// The grid's width (units): 4 for letters.
+    pub grid_width: f64,
     pub glyphs: BTreeMap<char, Glyph>,
     pub problems: Vec<String>,
 }
@@ -51,11 +53,15 @@ impl Locator<'_> {
 /// Coordinates beyond this (in the units a segment is written in) are a typo,
 /// not a drawing: no font needs them, and near 1e154 lengths overflow.
 const FAR_OFF: f64 = 1e6;
+/// Widest grid a shape may have (units of a 25th of its height). assumed:
+/// 40 heights, far wider than any lane holds at the smallest height.
+const MAX_GRID_WIDTH: f64 = 1000.0;
 
 pub fn build(text: &str, origin: &str) -> Built {
     let loc = Locator { text, origin };
     let mut out = Built {
         name: String::new(),
+        grid_width: GRID_WIDTH,
         glyphs: BTreeMap::new(),
         problems: vec![],
     };
@@ -93,14 +99,31 @@ pub fn build(text: &str, origin: &str) -> Built {
         ));
     }
     let grid = spec.grid.get_ref();
-    if grid.width != GRID_WIDTH || grid.height != GRID_HEIGHT {
+    let mut limits = DEFAULT_LIMITS;
+    // Letters use 4 × 25; an imported shape keeps the height of 25 (so the
+    // letter height sizes it) and its own width.
+    let width_ok = grid.width == GRID_WIDTH
+        || (grid.width.is_finite() && grid.width > 0.0 && grid.width <= MAX_GRID_WIDTH);
+    if !width_ok || grid.height != GRID_HEIGHT {
         out.problems.push(format!(
             "{}: grid is {} × {}; basr letters use the 4 × 25 grid of 001 §2.3 \
-             (write `grid = {{ width = 4, height = 25 }}`)",
+             (write `grid = {{ width = 4, height = 25 }}`; an imported shape keeps height 25 \
+             and a width of at most {MAX_GRID_WIDTH})",
             loc.at(spec.grid.span().start),
             grid.width,
             grid.height
         ));
+    } else {
+        out.grid_width = grid.width;
+        limits.frame = Some([grid.width, GRID_HEIGHT]);
+    }
+    match grid.min_rung {
+        Some(r) if r.is_finite() && r > 0.0 => limits.min_rung = r,
+        Some(r) => out.problems.push(format!(
+            "{}: grid `min_rung = {r}` must be a positive number of units",
+            loc.at(spec.grid.span().start)
+        )),
+        None => {}
     }
 
     let primitives = build_primitives(&spec.primitives, &loc, &mut out.problems);
@@ -183,8 +206,7 @@ pub fn build(text: &str, origin: &str) -> Built {
             }
         }
         if out.problems.len() == before {
-            out.problems
-                .extend(validate_glyph(&strokes, &DEFAULT_LIMITS));
+            out.problems.extend(validate_glyph(&strokes, &limits));
         }
         if out.problems.len() == before {
             let strokes = strokes.into_iter().map(|(_, s)| s).collect();

@@ -116,6 +116,8 @@ pub struct Font {
     pub origin: String,
     /// Whether this is the font built into the binary.
     pub embedded: bool,
+    /// The grid's width (units): [`GRID_WIDTH`] for letters, a shape's own.
+    pub grid_width: f64,
     glyphs: BTreeMap<char, Glyph>,
 }
 
@@ -187,6 +189,7 @@ impl Font {
             sha256: crate::io::sha256_hex(text.as_bytes()),
             origin: origin.to_string(),
             embedded: false,
+            grid_width: built.grid_width,
             glyphs: built.glyphs,
         })
     }

@@ -24,8 +24,15 @@ pub struct FontSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GridSpec {
+    /// 4 for letters; a shape imported by `basr import` is as wide as it is
+    /// (in units of a 25th of its height).
     pub width: f64,
     pub height: f64,
+    /// Shortest rung allowed (units); default 0.5, half a letter's stroke.
+    /// A shape's decomposition trims its tips at the fan's physical limit
+    /// itself and writes its own.
+    #[serde(default)]
+    pub min_rung: Option<f64>,
 }
 
 /// A reusable stroke template (one of the five primitives of 001 fig. 2.4).

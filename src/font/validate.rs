@@ -118,8 +118,8 @@ pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
     if let Some(p) = l.iter().chain(r.iter()).find(|p| !p.is_finite() || off(p)) {
         if p.is_finite() {
             out.push(format!(
-                "{ctx}: reaches ({:.2}, {:.2}), off the 4 × 25 grid (allowed margin {m})",
-                p.x, p.y
+                "{ctx}: reaches ({:.2}, {:.2}), off the {} × {} grid (allowed margin {m})",
+                p.x, p.y, fw, fh
             ));
         } else {
             out.push(format!(

@@ -43,7 +43,9 @@ pub struct Laid {
 
 /// Lay out a message or a `lines` marking file.
 pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, LayoutError> {
-    let placed = place(m, |ch| font.glyph(ch).map(glyph_box))?;
+    let placed = place(m, |ch| {
+        font.glyph(ch).map(|g| glyph_box(g, font.grid_width))
+    })?;
     let mut marks = vec![];
     for l in &placed.letters {
         let Some(g) = font.glyph(l.ch) else {
@@ -282,9 +284,9 @@ fn extent<'a>(marks: impl Iterator<Item = &'a PlacedMark>) -> (Point, Point) {
     }
 }
 
-/// A glyph's extent on the grid: the grid's width, and the lowest and
-/// highest points of its strokes' edges.
-pub fn glyph_box(g: &Glyph) -> GlyphBox {
+/// A glyph's extent on the grid: the font's grid width (4 for letters, an
+/// imported shape's own), and the lowest and highest points of its strokes' edges.
+pub fn glyph_box(g: &Glyph, width: f64) -> GlyphBox {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for s in &g.strokes {
         for e in [&s.left, &s.right] {
@@ -298,7 +300,7 @@ pub fn glyph_box(g: &Glyph) -> GlyphBox {
         return GlyphBox::GRID;
     }
     GlyphBox {
-        width: crate::font::GRID_WIDTH,
+        width,
         y_min: lo,
         y_max: hi,
     }

@@ -1,0 +1,791 @@
+//! Regions → strokes. Each region is cut into bands (a run of rungs, each
+//! joining a point on the left boundary to one on the right) by two
+//! methods: boustrophedon cells swept along the region's long axis or
+//! across it (`sweep`), and ring-following bands around a hole (`ring`).
+//! A band is then made paintable: its ends are trimmed where it is
+//! narrower than the fan can usefully paint, it is cut where the number of
+//! passes its width needs changes, cut again where its rungs would lean
+//! too far, and each piece is split into parallel strips at most one pass
+//! wide. Pieces and strips share their cut rungs and edges, so the strokes
+//! tile the band: no overlap, no gap. The method with the better predicted
+//! film (then time) is kept per region and reported.
+
+use kurbo::Point;
+
+use super::region::Region;
+use super::{convex, ring, sweep, ShapeError};
+use crate::font::Stroke;
+use crate::geom::{Edge, Segment, JOIN_TOLERANCE};
+use crate::plan::knots::swept_area;
+
+/// Ends of a band narrower than this fraction of the narrowest fan band are
+/// left unpainted; between it and the narrowest band the fan paints its
+/// narrowest band, wider than the shape. assumed: half, which about
+/// balances the area left bare against the area sprayed outside on a
+/// straight-sided tip (both grow with the square of the cut width).
+const CUT_FRACTION: f64 = 0.5;
+/// Passes are planned this much narrower than the widest band the nozzle
+/// height allows. assumed: 5 % keeps a pass inside the reach after the
+/// tilt's height compensation.
+const PASS_MARGIN: f64 = 0.95;
+/// A piece is cut again where a rung would lean more than this from the
+/// partner its arc-length position gives on the other edge (tan of the
+/// angle). assumed: 30°; `plan::knots::pace` keeps the film on leaning
+/// rungs, the cut keeps the fan's footprint close to square to the travel.
+const MAX_LEAN: f64 = 0.577;
+/// Time a stroke costs besides its painting (gun on and off, lead-in and
+/// lead-out, the air move to the next). assumed: 2 s, about what today's
+/// planner spends between the strokes of a letter.
+const STROKE_OVERHEAD_S: f64 = 2.0;
+/// Shortest piece a band is cut into (m). assumed: the nozzle needs about
+/// this long to reach painting speed from rest (0.16 m/s at about 1 m/s²
+/// takes 13 mm, but the tilt and base accelerate too); shorter pieces
+/// paint heavy film at their ends.
+const MIN_PIECE_M: f64 = 0.25;
+/// Strips with less area than this (m²) are float slivers. assumed: a
+/// square millimetre.
+const SLIVER_M2: f64 = 1e-6;
+/// Rung spacing of the narrow-place analysis (m). assumed: 5 mm, a
+/// quarter of the default rung spacing.
+const REPORT_STEP_M: f64 = 0.005;
+/// Films within this fraction of the area are equally good; time decides.
+/// assumed: 1 % of the area.
+const FILM_TIE: f64 = 0.01;
+
+/// The fan's limits and rates the decomposition plans for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bands {
+    /// Narrowest band: what the fan paints from the lowest nozzle height (m).
+    pub min_width_m: f64,
+    /// Widest band one pass paints, from the highest nozzle height (m).
+    pub max_width_m: f64,
+    /// Paint rate: speed × width (m²/s, SPEC §3).
+    pub k_m2ps: f64,
+    /// End-effector yaw rate limit (rad/s).
+    pub yaw_rate_rad_s: f64,
+}
+
+/// A run of rungs (left point, right point) in travel order (m).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Band {
+    pub rungs: Vec<(Point, Point)>,
+}
+
+impl Band {
+    fn width(&self, i: usize) -> f64 {
+        (self.rungs[i].1 - self.rungs[i].0).hypot()
+    }
+    fn tile(&self, i: usize) -> f64 {
+        let ((a, b), (c, d)) = (self.rungs[i], self.rungs[i + 1]);
+        swept_area(a, b, c, d)
+    }
+}
+
+/// How a region was cut.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Boustrophedon cells swept along this road angle (rad).
+    Sweep { angle_rad: f64 },
+    /// Bands following the ring around its hole.
+    Ring,
+    /// Convex pieces, each swept along its own long axis.
+    Convex { pieces: usize },
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Method::Sweep { angle_rad } => write!(
+                f,
+                "boustrophedon cells swept at {:.1}°",
+                angle_rad.to_degrees().rem_euclid(180.0)
+            ),
+            Method::Ring => write!(f, "ring-following bands"),
+            Method::Convex { pieces } => {
+                write!(f, "{pieces} convex pieces, each swept along its long axis")
+            }
+        }
+    }
+}
+
+/// A place narrower than the fan's narrowest band.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Narrow {
+    /// Where it is narrowest (m, shape frame: lower-left corner at the origin).
+    pub at: Point,
+    /// Its narrowest width (m).
+    pub width_m: f64,
+    /// How much narrower than the fan's narrowest band (m).
+    pub shortfall_m: f64,
+    /// Length of the narrow stretch along the band (m).
+    pub length_m: f64,
+    /// Area left bare where it is narrower than the cut (m²).
+    pub unpainted_m2: f64,
+    /// Area the narrowest band sprays outside the shape (m²).
+    pub overspray_m2: f64,
+}
+
+/// What one region's candidates predicted, and which was kept.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Candidate {
+    pub method: Method,
+    pub strokes: usize,
+    /// Predicted gun-on time plus the per-stroke overhead (s).
+    pub time_s: f64,
+    /// (Unpainted + oversprayed area) / region area.
+    pub film_error: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegionReport {
+    pub area_m2: f64,
+    pub chosen: Candidate,
+    pub others: Vec<Candidate>,
+}
+
+/// The strokes (m, shape frame) and what was decided.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Decomposition {
+    pub strokes: Vec<Stroke>,
+    pub regions: Vec<RegionReport>,
+    pub narrow: Vec<Narrow>,
+    pub area_m2: f64,
+}
+
+struct Plan {
+    candidate: Candidate,
+    strokes: Vec<Stroke>,
+    narrow: Vec<Narrow>,
+}
+
+/// Decompose every region; see the module docs.
+pub fn decompose(
+    regions: &[Region],
+    lim: &Bands,
+    origin: &str,
+) -> Result<Decomposition, ShapeError> {
+    let mut out = Decomposition {
+        strokes: vec![],
+        regions: vec![],
+        narrow: vec![],
+        area_m2: 0.0,
+    };
+    for r in regions {
+        let area = r.area();
+        let axis = sweep::principal_angle(r);
+        let mut plans: Vec<Plan> = vec![];
+        for angle in [axis, axis + std::f64::consts::FRAC_PI_2] {
+            let bands = sweep::bands(r, angle);
+            plans.push(plan(
+                Method::Sweep { angle_rad: angle },
+                &bands,
+                area,
+                lim,
+                origin,
+            )?);
+        }
+        if let Some(bands) = ring::bands(r, axis) {
+            plans.push(plan(Method::Ring, &bands, area, lim, origin)?);
+        }
+        let pieces = convex::pieces(r);
+        if pieces.len() > 1 {
+            let mut all = Painted::default();
+            for p in &pieces {
+                let own = paint(&convex::bands(p, None), lim, origin)?;
+                let axis = sweep::principal_angle(p) + std::f64::consts::FRAC_PI_2;
+                let across = paint(&convex::bands(p, Some(axis)), lim, origin)?;
+                all.append(if across.better_than(&own, p.area()) {
+                    across
+                } else {
+                    own
+                });
+            }
+            plans.push(all.into_plan(
+                Method::Convex {
+                    pieces: pieces.len(),
+                },
+                area,
+            ));
+        }
+        let best_film = plans
+            .iter()
+            .map(|p| p.candidate.film_error)
+            .fold(f64::INFINITY, f64::min);
+        let pick = plans
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.candidate.film_error <= best_film + FILM_TIE)
+            .min_by(|a, b| a.1.candidate.time_s.total_cmp(&b.1.candidate.time_s))
+            .map(|(i, _)| i)
+            .unwrap_or(0);
+        let chosen = plans.swap_remove(pick);
+        out.strokes.extend(chosen.strokes);
+        out.narrow.extend(chosen.narrow);
+        out.regions.push(RegionReport {
+            area_m2: area,
+            chosen: chosen.candidate,
+            others: plans.into_iter().map(|p| p.candidate).collect(),
+        });
+        out.area_m2 += area;
+    }
+    Ok(out)
+}
+
+/// What painting some bands takes.
+#[derive(Default)]
+struct Painted {
+    strokes: Vec<Stroke>,
+    narrow: Vec<Narrow>,
+    time_s: f64,
+    /// Area painted wrong: left bare, sprayed outside, or in strips too
+    /// short to reach painting speed (m²).
+    bad_m2: f64,
+}
+
+impl Painted {
+    fn append(&mut self, mut o: Painted) {
+        self.strokes.append(&mut o.strokes);
+        self.narrow.append(&mut o.narrow);
+        self.time_s += o.time_s;
+        self.bad_m2 += o.bad_m2;
+    }
+    fn into_plan(self, method: Method, area: f64) -> Plan {
+        Plan {
+            candidate: Candidate {
+                method,
+                strokes: self.strokes.len(),
+                time_s: self.time_s,
+                film_error: if area > 0.0 { self.bad_m2 / area } else { 0.0 },
+            },
+            strokes: self.strokes,
+            narrow: self.narrow,
+        }
+    }
+    /// Lower is better: the film first (within [`FILM_TIE`] of `area`), then time.
+    fn better_than(&self, o: &Painted, area: f64) -> bool {
+        if (self.bad_m2 - o.bad_m2).abs() > FILM_TIE * area {
+            self.bad_m2 < o.bad_m2
+        } else {
+            self.time_s < o.time_s
+        }
+    }
+}
+
+fn plan(
+    method: Method,
+    bands: &[Band],
+    area: f64,
+    lim: &Bands,
+    origin: &str,
+) -> Result<Plan, ShapeError> {
+    let mut all = Painted::default();
+    for band in bands {
+        let mut best = paint(std::slice::from_ref(band), lim, origin)?;
+        if let Method::Sweep { .. } = method {
+            // A sweep cell may point elsewhere than the region (a star's
+            // arm): try it swept along its own axis and across it.
+            let cell = band_region(band);
+            let axis = sweep::principal_angle(&cell);
+            let cell_area = cell.area();
+            for angle in [axis, axis + std::f64::consts::FRAC_PI_2] {
+                let alt = paint(&sweep::bands(&cell, angle), lim, origin)?;
+                if alt.better_than(&best, cell_area) {
+                    best = alt;
+                }
+            }
+        }
+        all.append(best);
+    }
+    Ok(all.into_plan(method, area))
+}
+
+/// A band's outline as a region (right edge forward, left edge back: counter-clockwise).
+fn band_region(b: &Band) -> Region {
+    let mut outer: Vec<Point> = b.rungs.iter().map(|r| r.1).collect();
+    outer.extend(b.rungs.iter().rev().map(|r| r.0));
+    outer.dedup_by(|a, b| (*a - *b).hypot() < 2.0 * JOIN_TOLERANCE);
+    Region {
+        outer,
+        holes: vec![],
+    }
+}
+
+fn paint(bands: &[Band], lim: &Bands, origin: &str) -> Result<Painted, ShapeError> {
+    let mut out = Painted::default();
+    let pass = lim.max_width_m * PASS_MARGIN;
+    for band in bands {
+        let (kept, mut nar) = trim(band, lim);
+        out.bad_m2 += nar
+            .iter()
+            .map(|n| n.unpainted_m2 + n.overspray_m2)
+            .sum::<f64>();
+        out.narrow.append(&mut nar);
+        for piece in kept {
+            for (p, n) in by_passes(&piece, pass) {
+                for q in by_lean(&p) {
+                    for s in strips(&q, passes_for(&q, n, lim.max_width_m)) {
+                        // A sliver between two outline vertices a float's
+                        // width apart has no length to paint.
+                        let side = |f: fn(&(Point, Point)) -> Point| {
+                            polyline_len(&s.rungs.iter().map(f).collect::<Vec<_>>())
+                        };
+                        let area: f64 = (0..s.rungs.len() - 1).map(|i| s.tile(i)).sum();
+                        if side(|r| r.0).min(side(|r| r.1)) <= 4.0 * JOIN_TOLERANCE
+                            || area <= SLIVER_M2
+                        {
+                            continue;
+                        }
+                        if mid_len(&s) < MIN_PIECE_M {
+                            out.bad_m2 += area;
+                        }
+                        out.time_s += predicted_time(&s, lim) + STROKE_OVERHEAD_S;
+                        out.strokes.push(stroke(&s, origin)?);
+                    }
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn lerp_rung(a: (Point, Point), b: (Point, Point), t: f64) -> (Point, Point) {
+    (a.0.lerp(b.0, t), a.1.lerp(b.1, t))
+}
+
+/// Where between rungs i and i+1 the width crosses `w` (linear in width).
+fn cross_at(band: &Band, i: usize, w: f64) -> (Point, Point) {
+    let (w0, w1) = (band.width(i), band.width(i + 1));
+    let t = if (w1 - w0).abs() < 1e-15 {
+        0.5
+    } else {
+        ((w - w0) / (w1 - w0)).clamp(0.0, 1.0)
+    };
+    lerp_rung(band.rungs[i], band.rungs[i + 1], t)
+}
+
+/// Cut the band where it is narrower than the cut width, and list every
+/// stretch narrower than the fan's narrowest band.
+fn trim(band: &Band, lim: &Bands) -> (Vec<Band>, Vec<Narrow>) {
+    let cut = lim.min_width_m * CUT_FRACTION;
+    let n = band.rungs.len();
+    let mut kept = vec![];
+    let mut cur: Vec<(Point, Point)> = vec![];
+    for i in 0..n {
+        let w = band.width(i);
+        if w >= cut {
+            if cur.is_empty() && i > 0 {
+                cur.push(cross_at(band, i - 1, cut));
+            }
+            cur.push(band.rungs[i]);
+        } else if !cur.is_empty() {
+            cur.push(cross_at(band, i - 1, cut));
+            kept.push(Band {
+                rungs: std::mem::take(&mut cur),
+            });
+        }
+    }
+    if cur.len() >= 2 {
+        kept.push(Band { rungs: cur });
+    }
+    kept.retain(|b| b.rungs.len() >= 2);
+    // Narrow stretches, tile by tile on a finer copy (a sweep cell's rungs
+    // are only at the outline's vertices; its width is linear between them).
+    let band = &refined(band, REPORT_STEP_M);
+    let n = band.rungs.len();
+    let mut narrow: Vec<Narrow> = vec![];
+    let mut open: Option<Narrow> = None;
+    for i in 0..n.saturating_sub(1) {
+        let (w0, w1) = (band.width(i), band.width(i + 1));
+        let wm = 0.5 * (w0 + w1);
+        if wm < lim.min_width_m {
+            let tile = band.tile(i);
+            let len = (lerp_mid(band.rungs[i + 1]) - lerp_mid(band.rungs[i])).hypot();
+            let nr = open.get_or_insert(Narrow {
+                at: lerp_mid(band.rungs[i]),
+                width_m: f64::INFINITY,
+                shortfall_m: 0.0,
+                length_m: 0.0,
+                unpainted_m2: 0.0,
+                overspray_m2: 0.0,
+            });
+            let wmin = w0.min(w1);
+            if wmin < nr.width_m {
+                nr.width_m = wmin;
+                nr.at = if w0 < w1 {
+                    lerp_mid(band.rungs[i])
+                } else {
+                    lerp_mid(band.rungs[i + 1])
+                };
+            }
+            nr.length_m += len;
+            if wm < cut {
+                nr.unpainted_m2 += tile;
+            } else if wm > 0.0 {
+                nr.overspray_m2 += tile * (lim.min_width_m / wm - 1.0);
+            }
+        } else if let Some(nr) = open.take() {
+            narrow.push(nr);
+        }
+    }
+    narrow.extend(open);
+    for nr in &mut narrow {
+        nr.shortfall_m = lim.min_width_m - nr.width_m;
+    }
+    (kept, narrow)
+}
+
+/// Rungs at most `step` apart (midpoint travel), by linear interpolation.
+fn refined(band: &Band, step: f64) -> Band {
+    let mut rungs = vec![band.rungs[0]];
+    for w in band.rungs.windows(2) {
+        let d = (lerp_mid(w[1]) - lerp_mid(w[0])).hypot();
+        let k = ((d / step).ceil() as usize).clamp(1, 10_000);
+        for j in 1..=k {
+            rungs.push(lerp_rung(w[0], w[1], j as f64 / k as f64));
+        }
+    }
+    Band { rungs }
+}
+
+fn lerp_mid(r: (Point, Point)) -> Point {
+    r.0.midpoint(r.1)
+}
+
+/// Cut where the number of passes the width needs changes; each piece with
+/// its pass count (the most any of its rungs needs).
+fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
+    let count = |w: f64| ((w / pass).ceil() as usize).max(1);
+    let n = band.rungs.len();
+    let mut out = vec![];
+    let mut cur = vec![band.rungs[0]];
+    let mut k = count(band.width(0));
+    for i in 1..n {
+        let ki = count(band.width(i));
+        if ki != k {
+            let edge = k.min(ki) as f64 * pass;
+            let r = cross_at(band, i - 1, edge);
+            cur.push(r);
+            out.push((
+                Band {
+                    rungs: std::mem::take(&mut cur),
+                },
+                k,
+            ));
+            cur.push(r);
+            k = ki;
+        }
+        cur.push(band.rungs[i]);
+    }
+    out.push((Band { rungs: cur }, k));
+    out.into_iter()
+        .map(|(mut b, k)| {
+            b.rungs
+                .dedup_by(|a, b| (a.0 - b.0).hypot() < 1e-9 && (a.1 - b.1).hypot() < 1e-9);
+            let k = (0..b.rungs.len())
+                .map(|i| count(b.width(i)))
+                .max()
+                .unwrap_or(k);
+            (b, k)
+        })
+        .filter(|(b, _)| b.rungs.len() >= 2)
+        .collect()
+}
+
+/// Cumulative arc-length fractions of one side's points.
+fn fractions(pts: &[Point]) -> Vec<f64> {
+    let mut s = vec![0.0];
+    for w in pts.windows(2) {
+        s.push(s[s.len() - 1] + (w[1] - w[0]).hypot());
+    }
+    let total = s[s.len() - 1].max(1e-15);
+    s.iter().map(|v| v / total).collect()
+}
+
+/// Cut the band where equal-arc-length rungs would lean too far.
+fn by_lean(band: &Band) -> Vec<Band> {
+    let n = band.rungs.len();
+    if n < 3 {
+        return vec![band.clone()];
+    }
+    let l: Vec<Point> = band.rungs.iter().map(|r| r.0).collect();
+    let r: Vec<Point> = band.rungs.iter().map(|r| r.1).collect();
+    let (fl, fr) = (fractions(&l), fractions(&r));
+    let len_r = polyline_len(&r);
+    let len_l = polyline_len(&l);
+    let mut worst = (0.0, 0usize);
+    for i in 1..n - 1 {
+        let shift = (fl[i] - fr[i]).abs() * 0.5 * (len_l + len_r);
+        let lean = shift / band.width(i).max(1e-9);
+        if lean > worst.0 {
+            worst = (lean, i);
+        }
+    }
+    let i = worst.1;
+    let short = |r: &[(Point, Point)]| mid_len(&Band { rungs: r.to_vec() }) < MIN_PIECE_M;
+    if worst.0 <= MAX_LEAN || short(&band.rungs[..=i]) || short(&band.rungs[i..]) {
+        return vec![band.clone()];
+    }
+    let mut out = by_lean(&Band {
+        rungs: band.rungs[..=i].to_vec(),
+    });
+    out.extend(by_lean(&Band {
+        rungs: band.rungs[i..].to_vec(),
+    }));
+    out
+}
+
+/// Length of a band's midline (m).
+fn mid_len(b: &Band) -> f64 {
+    polyline_len(&b.rungs.iter().map(|r| lerp_mid(*r)).collect::<Vec<_>>())
+}
+
+fn polyline_len(p: &[Point]) -> f64 {
+    p.windows(2).map(|w| (w[1] - w[0]).hypot()).sum()
+}
+
+/// The pass count, from `n` up, at which every rung the planner will cut
+/// (equal arc length on each edge, which may lean) is at most one pass wide.
+fn passes_for(q: &Band, n: usize, max_width_m: f64) -> usize {
+    let fits = |k: usize| {
+        strips(q, k).iter().all(|s| {
+            let l: Vec<Point> = s.rungs.iter().map(|r| r.0).collect();
+            let r: Vec<Point> = s.rungs.iter().map(|r| r.1).collect();
+            let (fl, fr) = (fractions(&l), fractions(&r));
+            (0..=128).all(|i| {
+                let t = i as f64 / 128.0;
+                (at_fraction(&r, &fr, t) - at_fraction(&l, &fl, t)).hypot() <= max_width_m
+            })
+        })
+    };
+    (n..n + 4).find(|&k| fits(k)).unwrap_or(n + 4)
+}
+
+/// The point at arc-length fraction `t` of a polyline with fractions `f`.
+fn at_fraction(p: &[Point], f: &[f64], t: f64) -> Point {
+    let i = f.partition_point(|&v| v < t).clamp(1, f.len() - 1);
+    let u = ((t - f[i - 1]) / (f[i] - f[i - 1]).max(1e-15)).clamp(0.0, 1.0);
+    p[i - 1].lerp(p[i], u)
+}
+
+/// The band as `n` parallel strips, left to right.
+fn strips(band: &Band, n: usize) -> Vec<Band> {
+    (0..n)
+        .map(|j| {
+            let (t0, t1) = (j as f64 / n as f64, (j + 1) as f64 / n as f64);
+            Band {
+                rungs: band
+                    .rungs
+                    .iter()
+                    .map(|(a, b)| (a.lerp(*b, t0), a.lerp(*b, t1)))
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// Gun-on time of one strip: each tile at the film's rate over the width the
+/// fan covers (never less than its narrowest band), or the yaw joint's time
+/// to turn the fan, whichever is longer.
+fn predicted_time(s: &Band, lim: &Bands) -> f64 {
+    let mut paint = 0.0;
+    let mut yaw = 0.0;
+    for i in 0..s.rungs.len() - 1 {
+        let w = 0.5 * (s.width(i) + s.width(i + 1));
+        let cover = if w > 0.0 {
+            lim.min_width_m.max(w) / w
+        } else {
+            1.0
+        };
+        paint += s.tile(i) * cover / lim.k_m2ps;
+        let d0 = s.rungs[i].1 - s.rungs[i].0;
+        let d1 = s.rungs[i + 1].1 - s.rungs[i + 1].0;
+        yaw += d0.cross(d1).atan2(d0.dot(d1)).abs();
+    }
+    paint.max(yaw / lim.yaw_rate_rad_s)
+}
+
+fn edge(pts: impl Iterator<Item = Point>, origin: &str) -> Result<Edge, ShapeError> {
+    let mut v: Vec<Point> = vec![];
+    for p in pts {
+        if v.last()
+            .is_none_or(|q| (*q - p).hypot() > 2.0 * JOIN_TOLERANCE)
+        {
+            v.push(p);
+        }
+    }
+    let segs = v.windows(2).map(|w| Segment::line(w[0], w[1])).collect();
+    Edge::new(segs).map_err(|e| {
+        ShapeError::invalid(
+            origin,
+            format!("a band edge could not be built ({e}); the outline is degenerate there"),
+        )
+    })
+}
+
+fn stroke(s: &Band, origin: &str) -> Result<Stroke, ShapeError> {
+    Ok(Stroke {
+        left: edge(s.rungs.iter().map(|r| r.0), origin)?,
+        right: edge(s.rungs.iter().map(|r| r.1), origin)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::font::{overlap_area, DEFAULT_LIMITS};
+    use crate::shape::region::signed_area;
+    use proptest::prelude::*;
+
+    fn bands() -> Bands {
+        Bands::for_robot(&crate::robot::Robot::load_or_default(None).expect("embedded robot"))
+    }
+
+    /// Strokes tile the region: their areas plus what the tips leave bare
+    /// add up to the region, no rung is wider than a pass, none overlap.
+    fn assert_tiles(regions: &[Region]) {
+        let lim = bands();
+        let d = decompose(regions, &lim, "test").expect("decomposes");
+        let area: f64 = regions.iter().map(Region::area).sum();
+        let strokes: f64 = d.strokes.iter().map(|s| signed_area(&s.outline(400))).sum();
+        let bare: f64 = d.narrow.iter().map(|n| n.unpainted_m2).sum();
+        assert!(
+            ((strokes + bare) - area).abs() < 0.005 * area,
+            "strokes {strokes} + bare {bare} vs region {area}"
+        );
+        for s in &d.strokes {
+            for (a, b) in s.rungs(50) {
+                assert!((b - a).hypot() <= lim.max_width_m + 1e-9);
+            }
+        }
+        let fine = crate::font::Limits {
+            scan_step: 0.002,
+            overlap_area: 1e-5,
+            ..DEFAULT_LIMITS
+        };
+        for i in 0..d.strokes.len() {
+            for j in i + 1..d.strokes.len() {
+                let o = overlap_area(&d.strokes[i], &d.strokes[j], &fine);
+                assert!(o < 2e-4, "strokes {i} and {j} overlap by {o} m²");
+            }
+        }
+    }
+
+    fn square_ring(outer: f64, inner: f64) -> Region {
+        let sq = |h: f64| {
+            vec![
+                Point::new(-h, -h),
+                Point::new(h, -h),
+                Point::new(h, h),
+                Point::new(-h, h),
+            ]
+        };
+        let mut hole = sq(inner);
+        hole.reverse();
+        Region {
+            outer: sq(outer),
+            holes: vec![hole],
+        }
+    }
+
+    #[test]
+    fn a_square_frame_tiles() {
+        assert_tiles(&[square_ring(1.0, 0.75)]);
+    }
+
+    #[test]
+    fn a_wide_rectangle_is_split_into_passes() {
+        let r = Region {
+            outer: vec![
+                Point::new(0.0, 0.0),
+                Point::new(1.0, 0.0),
+                Point::new(1.0, 3.0),
+                Point::new(0.0, 3.0),
+            ],
+            holes: vec![],
+        };
+        let d = decompose(std::slice::from_ref(&r), &bands(), "test").expect("decomposes");
+        // 1 m across, passes of at most 0.95 × 0.41 m: three strips along its length.
+        assert_eq!(d.strokes.len(), 3);
+        assert!(d.narrow.is_empty());
+        assert_tiles(&[r]);
+    }
+
+    #[test]
+    fn a_pointed_tip_is_trimmed_and_reported_with_its_shortfall() {
+        // A band 0.3 m wide narrowing to a point over 2 m.
+        let band = Band {
+            rungs: vec![
+                (Point::new(0.0, 0.0), Point::new(0.3, 0.0)),
+                (Point::new(0.15, 2.0), Point::new(0.15, 2.0)),
+            ],
+        };
+        let lim = bands();
+        let (kept, narrow) = trim(&band, &lim);
+        assert_eq!(kept.len(), 1);
+        let end = kept[0].rungs.last().copied().expect("rungs");
+        let cut = (end.1 - end.0).hypot();
+        assert!(
+            (cut - CUT_FRACTION * lim.min_width_m).abs() < 1e-9,
+            "cut at {cut}"
+        );
+        assert_eq!(narrow.len(), 1);
+        let tip = narrow[0];
+        assert!(tip.at.y > 1.99 && tip.width_m < 1e-9);
+        assert!((tip.shortfall_m - lim.min_width_m).abs() < 1e-9);
+        // Narrower than the fan's narrowest band over 2 m × 0.097 / 0.3.
+        let long = 2.0 * lim.min_width_m / 0.3;
+        assert!(
+            (tip.length_m - long).abs() < 0.01,
+            "{} vs {long}",
+            tip.length_m
+        );
+        // Bare: the last half of that length, a triangle.
+        let bare = 0.5 * (0.5 * long) * (0.5 * lim.min_width_m);
+        assert!(
+            (tip.unpainted_m2 - bare).abs() < 0.05 * bare,
+            "{} vs {bare}",
+            tip.unpainted_m2
+        );
+        assert!(tip.overspray_m2 > 0.0);
+    }
+
+    #[test]
+    fn a_round_ring_is_painted_as_ring_following_bands() {
+        let circle = |r: f64| -> Vec<Point> {
+            (0..128)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / 128.0;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect()
+        };
+        let mut hole = circle(0.7);
+        hole.reverse();
+        let r = Region {
+            outer: circle(1.0),
+            holes: vec![hole],
+        };
+        assert_tiles(std::slice::from_ref(&r));
+        let d = decompose(&[r], &bands(), "test").expect("decomposes");
+        assert_eq!(d.regions[0].chosen.method, Method::Ring);
+        assert_eq!(d.strokes.len(), 4);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+        /// Random star-shaped polygons (a radius per vertex) always tile.
+        #[test]
+        fn random_star_polygons_tile(radii in proptest::collection::vec(0.4f64..1.2, 5..14)) {
+            let n = radii.len();
+            let outer: Vec<Point> = radii
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    let a = std::f64::consts::TAU * i as f64 / n as f64;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect();
+            assert_tiles(&[Region { outer, holes: vec![] }]);
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! End-to-end: `basr import` and `basr compile --shape` on the test shapes
+//! in tests/data/shapes, the round trip through the font file, and every
+//! refused input (exit 2, the element named, nothing written).
+
+use assert_cmd::Command;
+use std::path::{Path, PathBuf};
+
+fn basr() -> Command {
+    Command::cargo_bin("basr").expect("binary built")
+}
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/shapes")
+        .join(name)
+}
+
+/// The setpoint arrays of a job (its `samples`), as JSON.
+fn samples(job: &Path) -> serde_json::Value {
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(job).expect("job")).expect("json");
+    v["samples"].clone()
+}
+
+#[test]
+fn every_test_shape_imports_checks_and_compiles() {
+    let dir = tempfile::tempdir().expect("tmp");
+    for (name, size) in [
+        ("star.svg", Some("2.4")),
+        ("ring.svg", Some("2")),
+        ("heart.svg", Some("2")),
+        ("arch.svg", Some("2")),
+        ("arrow.dxf", None),
+    ] {
+        let toml = dir.path().join(format!("{name}.toml"));
+        let mut cmd = basr();
+        cmd.arg("import").arg(data(name)).arg("-o").arg(&toml);
+        if let Some(h) = size {
+            cmd.args(["--shape-height-m", h]);
+        }
+        cmd.assert().success();
+        basr().arg("check").arg(&toml).assert().success();
+        let job = dir.path().join(format!("{name}.job.json"));
+        let mut cmd = basr();
+        cmd.args(["compile", "--shape"])
+            .arg(data(name))
+            .arg("-o")
+            .arg(&job);
+        if let Some(h) = size {
+            cmd.args(["--shape-height-m", h]);
+        }
+        cmd.assert().success();
+        let text = std::fs::read_to_string(&job).expect("job");
+        assert!(
+            text.contains("\"kind\": \"shape\""),
+            "{name}: the job names the method"
+        );
+    }
+}
+
+#[test]
+fn imported_ring_compiles_to_the_same_setpoints_as_shape() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let toml = dir.path().join("ring.toml");
+    basr()
+        .arg("import")
+        .arg(data("ring.svg"))
+        .args(["--shape-height-m", "2", "-o"])
+        .arg(&toml)
+        .assert()
+        .success();
+    let a = dir.path().join("a.job.json");
+    basr()
+        .args(["compile", "--shape"])
+        .arg(data("ring.svg"))
+        .args(["--shape-height-m", "2", "-o"])
+        .arg(&a)
+        .assert()
+        .success();
+    let b = dir.path().join("b.job.json");
+    basr()
+        .args(["compile", "S", "--font"])
+        .arg(&toml)
+        .args(["--letter-height", "2", "-o"])
+        .arg(&b)
+        .assert()
+        .success();
+    let (sa, sb) = (samples(&a), samples(&b));
+    assert!(sa["t_s"].as_array().is_some_and(|t| t.len() > 100));
+    assert_eq!(sa, sb, "the font file holds the decomposition exactly");
+}
+
+#[test]
+fn ring_is_painted_as_ring_following_bands() {
+    let out = basr()
+        .arg("import")
+        .arg(data("ring.svg"))
+        .args(["--shape-height-m", "2", "--json", "-o"])
+        .arg(tempfile::tempdir().expect("tmp").path().join("r.toml"))
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(v["regions"][0]["method"], "ring-following bands");
+    assert_eq!(v["strokes"], 4, "a quarter turn per band");
+}
+
+/// Import `body` as `name`: exit 2, stderr returned, no output left.
+fn refused(name: &str, body: &str, extra: &[&str]) -> String {
+    let dir = tempfile::tempdir().expect("tmp");
+    let input = dir.path().join(name);
+    std::fs::write(&input, body).expect("write");
+    let out_path = dir.path().join("out.toml");
+    let out = basr()
+        .arg("import")
+        .arg(&input)
+        .arg("-o")
+        .arg(&out_path)
+        .args(extra)
+        .assert()
+        .code(2)
+        .get_output()
+        .clone();
+    assert!(!out_path.exists(), "{name}: nothing is written");
+    let listing: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").collect();
+    assert_eq!(listing.len(), 1, "{name}: no temporary file left");
+    String::from_utf8_lossy(&out.stderr).to_string()
+}
+
+const H: [&str; 2] = ["--shape-height-m", "2"];
+
+#[test]
+fn bad_shapes_are_refused_with_the_element_and_the_fix() {
+    let svg = |inner: &str| {
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 100 100\">\n{inner}\n</svg>\n"
+        )
+    };
+    let e = refused(
+        "t.svg",
+        &svg("<rect width=\"10\" height=\"10\"/>\n<text id=\"label\" x=\"5\" y=\"5\">HI</text>"),
+        &H,
+    );
+    assert!(
+        e.contains("line 3") && e.contains("label") && e.contains("Object to Path"),
+        "{e}"
+    );
+    let e = refused(
+        "s.svg",
+        &svg("<path id=\"outline\" fill=\"none\" stroke=\"black\" d=\"M 0,0 L 50,50 L 0,50 Z\"/>"),
+        &H,
+    );
+    assert!(
+        e.contains("outline") && e.contains("only stroked") && e.contains("Stroke to Path"),
+        "{e}"
+    );
+    let e = refused(
+        "o.svg",
+        &svg("<path id=\"hook\" d=\"M 0,0 L 50,50 L 0,50\"/>"),
+        &H,
+    );
+    assert!(
+        e.contains("hook") && e.contains("open subpath") && e.contains("Z"),
+        "{e}"
+    );
+    let e = refused("e.svg", "", &H);
+    assert!(e.contains("empty"), "{e}");
+    let e = refused("n.svg", &svg(""), &H);
+    assert!(e.contains("no filled shape"), "{e}");
+    // The same square twice under even-odd: nothing is left filled.
+    let e = refused(
+        "x.svg",
+        &svg("<path id=\"twice\" fill-rule=\"evenodd\" d=\"M 0,0 H 50 V 50 H 0 Z M 0,0 H 50 V 50 H 0 Z\"/>"),
+        &H,
+    );
+    assert!(e.contains("twice") && e.contains("crosses itself"), "{e}");
+    let e = refused(
+        "b.svg",
+        &svg("<rect width=\"10\" height=\"10\"/>"),
+        &["--shape-height-m", "12"],
+    );
+    assert!(e.contains("0.3–10 m"), "{e}");
+    let e = refused("u.svg", &svg("<rect width=\"10\" height=\"10\"/>"), &[]);
+    assert!(e.contains("--shape-height-m"), "{e}");
+    let e = refused("w.txt", "hello", &H);
+    assert!(e.contains(".svg") && e.contains(".dxf"), "{e}");
+}
+
+#[test]
+fn open_dxf_polyline_is_refused_by_handle() {
+    let text = std::fs::read_to_string(data("arrow.dxf")).expect("arrow");
+    // Clear the closed flag (group 70 = 1 → 0) of the one polyline.
+    let open = text.replacen("\n70\n1\n", "\n70\n0\n", 1);
+    assert_ne!(open, text);
+    let e = refused("a.dxf", &open, &[]);
+    assert!(
+        e.contains("LWPOLYLINE (handle 2A)") && e.contains("PEDIT"),
+        "{e}"
+    );
+}
+
+#[test]
+fn compile_refuses_a_size_without_a_shape() {
+    basr()
+        .args(["compile", "STOP", "--shape-height-m", "2"])
+        .assert()
+        .code(2);
+}
