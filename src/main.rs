@@ -2,7 +2,7 @@
 //!
 //! Each subcommand lives in `src/cmd/<name>.rs` with its own `Args` and `run`.
 //! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage,
-//! 130 interrupted (Ctrl-C).
+//! 128 + signal interrupted (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP, 131 SIGQUIT).
 
 // println!/eprintln! panic when the reader has gone (`| head`): machine
 // output goes through basr::io::print_stdout, human text through note!.
@@ -39,10 +39,12 @@ Examples:
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
+  basr keygen -o crew.key                # a key pair; then compile --sign crew.key
   basr completions bash > basr.bash      # shell completions
 
 Exit codes: 0 success, 1 verdict negative (simulate over tolerance, check found
-problems), 2 bad input or usage, 130 interrupted (no output file is left).
+problems), 2 bad input or usage, 128 + signal when interrupted (130 Ctrl-C,
+143 SIGTERM, 129 SIGHUP, 131 SIGQUIT; no output file is left).
 A reader that stops early (`basr glyphs --json | head`) is not an error.";
 
 /// Offline trajectory-planning compiler for the Big Articulated Stenciling Robot.
@@ -73,6 +75,7 @@ enum Command {
     Workspace(cmd::workspace::Args),
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
+    Keygen(cmd::keygen::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Examples:
   basr completions bash > ~/.local/share/bash-completion/completions/basr
@@ -98,6 +101,7 @@ fn main() -> ExitCode {
         Command::Workspace(a) => cmd::workspace::run(a, &global),
         Command::Pose(a) => cmd::pose::run(a, &global),
         Command::Check(a) => cmd::check::run(a, &global),
+        Command::Keygen(a) => cmd::keygen::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;
             // Generated into memory: clap_complete panics on a failed write,

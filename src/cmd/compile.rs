@@ -32,7 +32,8 @@ Examples:
   basr compile STOP                               # writes STOP.job.json
   basr compile \"STOP AHEAD\" --csv sa.csv          # also the setpoint CSV
   basr compile --marking markings/school_xing.toml --adept school.v2
-  basr compile BUS --letter-height 1.83 --tilt none --json")]
+  basr compile BUS --letter-height 1.83 --tilt none --json
+  basr compile STOP --sign crew.key --csv stop.csv # signed; stop.csv bound to it")]
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
@@ -98,6 +99,10 @@ pub struct Args {
         default_value_t = 0.0
     )]
     pub gun_lag_s: f64,
+    /// Sign the job with this secret key (written by `basr keygen -o NAME`),
+    /// so readers under `--trust NAME.pub` accept it.
+    #[arg(long, value_name = "NAME")]
+    pub sign: Option<PathBuf>,
     /// Print the summary as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -207,19 +212,39 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         gun_lag_s: args.gun_lag_s,
         ..CompileRequest::message("")
     };
-    let job = compile_job(&req)?;
+    // Every output path and the key are checked before the work, which
+    // can take minutes.
+    let key = args
+        .sign
+        .as_deref()
+        .map(basr::job::trust::SecretKey::load)
+        .transpose()?;
+    for p in [&args.output, &args.csv, &args.adept].into_iter().flatten() {
+        basr::io::check_writable(p)?;
+    }
+    let mut job = compile_job(&req)?;
     let out = args
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
     refuse_clashing_paths(&args, &out)?;
+    basr::io::check_writable(&out)?;
     // main renames all three into place together when the run succeeds, and
-    // drops them all when any fails or the run is interrupted.
+    // drops them all when any fails or the run is interrupted; the job,
+    // written last, is renamed last.
     if let Some(csv) = &args.csv {
-        basr::job::csv::write(&job.samples, csv)?;
+        let sha256 = basr::job::csv::write(&job.samples, csv)?;
+        job.bind_output("csv", csv, sha256);
     }
     if let Some(adept) = &args.adept {
-        basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+        let sha256 = basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+        job.bind_output("adept", adept, sha256);
+    }
+    if !job.outputs.is_empty() {
+        job.seal();
+    }
+    if let Some(key) = &key {
+        job.sign(key);
     }
     // WriteError names the path and the OS reason.
     job.write(&out)?;
@@ -235,6 +260,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "control_period_s": job.control_period_s,
             "summary": s,
             "sha256": job.sha256,
+            "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
         });
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
@@ -294,6 +320,9 @@ fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
     }
     if let Some(a) = &args.adept {
         note!("  Adept V+ program: {}", a.display());
+    }
+    if let Some(sig) = &job.signature {
+        note!("  signed by key {}", sig.key_id);
     }
     if !s.warnings.is_empty() {
         note!("  {} warning(s):", s.warnings.len());

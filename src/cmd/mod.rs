@@ -4,6 +4,7 @@
 pub mod check;
 pub mod compile;
 pub mod glyphs;
+pub mod keygen;
 pub mod pose;
 pub mod preview;
 pub mod robot;

@@ -35,6 +35,9 @@ pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
 
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
+
     /// SVG to write (default: the job's name with .svg, in the current folder).
     #[arg(short, long, value_name = "SVG")]
     pub output: Option<PathBuf>,
@@ -214,7 +217,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         inputs.push(("the font file (--font)", std::path::Path::new(f)));
     }
     super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
-    let job = Job::read(&args.job)?;
+    basr::io::check_writable(&out)?;
+    let job = args.trust.read_job(&args.job)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {

@@ -49,6 +49,9 @@ pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
 
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
+
     /// Controller program to run.
     #[arg(long, value_enum, default_value = "sjct")]
     pub controller: ControllerArg,
@@ -97,7 +100,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         inputs.push(("the robot file (--robot)", p));
     }
     super::refuse_clashes(&outputs, &inputs)?;
-    let job = basr::job::Job::read(&args.job)?;
+    for (_, p) in &outputs {
+        basr::io::check_writable(p)?;
+    }
+    let job = args.trust.read_job(&args.job)?;
     let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {

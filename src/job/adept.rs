@@ -112,14 +112,15 @@ fn wrap_deg(d: f64) -> f64 {
     }
 }
 
-/// Write the program atomically to `path`.
+/// Write the program atomically to `path`; the SHA-256 of its bytes.
 pub fn write(
     message: &str,
     samples: &Samples,
     stations: &[Station],
     path: &Path,
-) -> Result<(), crate::io::WriteError> {
-    crate::io::write_atomic(path, program(message, samples, stations).as_bytes())
+) -> Result<String, crate::io::WriteError> {
+    let text = program(message, samples, stations);
+    crate::io::write_output(path, None, |w| w.write_all(text.as_bytes()))
 }
 
 #[cfg(test)]

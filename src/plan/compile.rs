@@ -504,7 +504,9 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
         stations: splan.stations,
         samples,
         summary,
+        outputs: Default::default(),
         sha256: String::new(),
+        signature: None,
     };
     job.seal();
     Ok(job)

@@ -248,7 +248,9 @@ fn sealed(
             warnings: vec![],
             balance: vec![],
         },
+        outputs: Default::default(),
         sha256: String::new(),
+        signature: None,
     };
     job.seal();
     job
