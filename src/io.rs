@@ -583,17 +583,22 @@ pub fn shown_name(path: &Path) -> String {
 /// `bytes` as UTF-8 text, or an error at `name:line:col` of the first
 /// invalid byte.
 pub fn utf8_text(bytes: Vec<u8>, name: &str) -> anyhow::Result<String> {
-    String::from_utf8(bytes).map_err(|e| {
-        let at = e.utf8_error().valid_up_to();
-        let bytes = e.as_bytes();
-        // Everything before `at` is valid UTF-8 by definition.
-        let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
-        let (line, col) = line_col(before, at);
-        anyhow::anyhow!(
-            "{name}:{line}:{col}: not UTF-8 text (invalid byte 0x{:02x}); save the file as UTF-8",
-            bytes[at]
-        )
-    })
+    String::from_utf8(bytes)
+        .map_err(|e| anyhow::anyhow!(utf8_problem(e.as_bytes(), name).unwrap_or_default()))
+}
+
+/// Where `bytes` stop being UTF-8, as `name:line:col: not UTF-8 text …`,
+/// or `None` when they are UTF-8 throughout.
+pub fn utf8_problem(bytes: &[u8], name: &str) -> Option<String> {
+    let e = std::str::from_utf8(bytes).err()?;
+    let at = e.valid_up_to();
+    // Everything before `at` is valid UTF-8 by definition.
+    let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
+    let (line, col) = line_col(before, at);
+    Some(format!(
+        "{name}:{line}:{col}: not UTF-8 text (invalid byte 0x{:02x}); save the file as UTF-8",
+        bytes[at]
+    ))
 }
 
 /// A parser's message on one line: toml spreads some over several

@@ -43,8 +43,8 @@ Examples:
   basr completions bash > basr.bash      # shell completions
 
 Exit codes: 0 success, 1 verdict negative (simulate over tolerance, check found
-problems), 2 bad input or usage, 128 + signal when interrupted (130 Ctrl-C,
-143 SIGTERM, 129 SIGHUP, 131 SIGQUIT; no output file is left).
+problems), 2 bad input or usage, 130 interrupted by Ctrl-C (128 + the signal:
+143 SIGTERM, 129 SIGHUP, 131 SIGQUIT); an interrupted run leaves no output file.
 A reader that stops early (`basr glyphs --json | head`) is not an error.";
 
 /// Offline trajectory-planning compiler for the Big Articulated Stenciling Robot.

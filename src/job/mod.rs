@@ -39,6 +39,8 @@ pub enum JobError {
         path: String,
         detail: serde_json::Error,
     },
+    #[error("{0}")]
+    NotUtf8(String),
     #[error("{path} is empty: it holds no job; compile it again")]
     Empty { path: String },
     #[error("{path}: not a basr job (format is {found}, expected \"basr-job\"); give a job written by `basr compile`")]

@@ -96,6 +96,9 @@ impl Job {
         if bytes.iter().all(u8::is_ascii_whitespace) {
             return Err(JobError::Empty { path: p() });
         }
+        if let Some(e) = crate::io::utf8_problem(&bytes, path) {
+            return Err(JobError::NotUtf8(e));
+        }
         let members = canonical::check(&bytes).map_err(|nc| explain(&bytes, nc, path))?;
         let head = Head {
             format: member_value(&bytes, &members, "format"),

@@ -137,7 +137,9 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             warnings: vec![],
             balance: vec![],
         },
+        outputs: Default::default(),
         sha256: String::new(),
+        signature: None,
     };
     job.seal();
     job
