@@ -692,6 +692,92 @@ mod tests {
         assert_eq!(text.matches("os error").count(), 1, "{text}");
     }
 
+    /// A staged temporary holding `text`, in `dir`.
+    fn staged(dir: &Path, text: &str) -> tempfile::NamedTempFile {
+        let mut t = tempfile::Builder::new()
+            .prefix(".basr-")
+            .suffix(".part")
+            .tempfile_in(dir)
+            .unwrap();
+        t.write_all(text.as_bytes()).unwrap();
+        t
+    }
+
+    #[test]
+    fn a_rename_failing_part_way_puts_back_what_was_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::write(d.join("a.csv"), "EARLIER a").unwrap();
+        std::fs::create_dir(d.join("folder")).unwrap();
+        std::fs::create_dir(d.join("folder").join("x")).unwrap();
+        let run = vec![
+            (staged(d, "new a"), d.join("a.csv")),
+            (staged(d, "new b"), d.join("b.v2")),
+            // Renaming a file over a non-empty folder fails.
+            (staged(d, "new job"), d.join("folder")),
+            (staged(d, "never"), d.join("c.json")),
+        ];
+        let e = commit_all(run).unwrap_err();
+        assert!(e.to_string().contains("folder"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(d.join("a.csv")).unwrap(),
+            "EARLIER a"
+        );
+        let mut left: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            ["a.csv", "folder"],
+            "no new file, no temporary, no backup"
+        );
+        // And when every rename succeeds: all new, no backup left.
+        let run = vec![
+            (staged(d, "new a"), d.join("a.csv")),
+            (staged(d, "new c"), d.join("c.json")),
+        ];
+        commit_all(run).unwrap();
+        assert_eq!(std::fs::read_to_string(d.join("a.csv")).unwrap(), "new a");
+        assert_eq!(std::fs::read_dir(d).unwrap().count(), 3);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_replaced_file_keeps_its_mode_and_a_key_gets_its_own() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("job.json");
+        std::fs::write(&p, "old").unwrap();
+        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o600)).unwrap();
+        let sha = write_output(&p, None, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(sha, sha256_hex(b"new"));
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&p), 0o600);
+        let k = dir.path().join("key");
+        write_output(&k, Some(0o600), |w| w.write_all(b"secret")).unwrap();
+        assert_eq!(mode(&k), 0o600);
+    }
+
+    #[test]
+    fn unwritable_outputs_are_found_before_the_work() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        assert!(check_writable(&d.join("new.json")).is_ok());
+        let e = check_writable(d).unwrap_err().to_string();
+        assert!(e.contains("is a folder"), "{e}");
+        let e = check_writable(&d.join("no").join("x.csv"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("does not exist"), "{e}");
+        assert_eq!(
+            std::fs::read_dir(d).unwrap().count(),
+            0,
+            "the probe is gone"
+        );
+    }
+
     #[test]
     fn failed_fill_leaves_nothing() {
         let dir = tempfile::tempdir().unwrap();

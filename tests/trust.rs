@@ -384,6 +384,18 @@ fn signals_at_random_moments_leave_no_temporary_and_the_earlier_files() {
         seed ^= seed << 17;
         seed
     };
+    // One run undisturbed sets the span the moments are drawn from (a
+    // little past its end, so some signals land after the commit).
+    let span = {
+        let dir = tempfile::tempdir().unwrap();
+        let start = std::time::Instant::now();
+        let o = run(
+            dir.path(),
+            &["compile", "STOP", "-q", "-o", "j.json", "--csv", "s.csv"],
+        );
+        expect(&o, 0, &[], "the undisturbed run");
+        (start.elapsed().as_micros() as u64 * 6 / 5).max(1)
+    };
     let (mut interrupted, mut finished) = (0, 0);
     for run_no in 0..50 {
         let dir = tempfile::tempdir().unwrap();
@@ -401,8 +413,8 @@ fn signals_at_random_moments_leave_no_temporary_and_the_earlier_files() {
         while !catches(child.id(), number) && child.try_wait().unwrap().is_none() {
             std::thread::sleep(std::time::Duration::from_micros(100));
         }
-        // Somewhere in a run (compile of STOP takes a few tenths of a second).
-        std::thread::sleep(std::time::Duration::from_micros(next() % 600_000));
+        // Somewhere in the run: computing, writing, committing or done.
+        std::thread::sleep(std::time::Duration::from_micros(next() % span));
         let sent = StdCommand::new("kill")
             .args([format!("-{name}"), child.id().to_string()])
             .status()
