@@ -31,7 +31,7 @@ fn preview_json(job: &Path, svg: &Path, extra: &[&str]) -> Value {
         .output()
         .unwrap();
     assert!(
-        out.status.success(),
+        preview_common::ran_to_a_verdict(&out),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -184,9 +184,12 @@ fn render(svg: &str) -> resvg::tiny_skia::Pixmap {
 fn svg_renders_with_resvg_and_the_letter_is_coloured() {
     let job = straight_job(0.2, 1.0);
     let p = preview::preview_job(&job, &Options::default()).unwrap();
+    let verdict = basr::paint::verdict::judge(&p.metrics, &Default::default());
     let panels = [Panel {
         job: &job,
         preview: &p,
+        verdict: &verdict,
+        from_sim: false,
         replanned: None,
     }];
     let svg = preview::render_svg(&panels, "test");

@@ -2,6 +2,9 @@
 //! U on the letter O, `--compare` re-plans side by side, and a compiled job
 //! that was damaged is refused with exit 2.
 
+#[path = "preview_common/mod.rs"]
+mod preview_common;
+
 use std::path::Path;
 
 use assert_cmd::Command;
@@ -29,7 +32,7 @@ fn preview(job: &Path, extra: &[&str]) -> Value {
         .output()
         .unwrap();
     assert!(
-        out.status.success(),
+        preview_common::ran_to_a_verdict(&out),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -210,7 +213,7 @@ fn compare_refuses_a_job_of_another_font_without_that_font() {
 
     let out = run(&["--font", "copy.toml"]);
     assert!(
-        out.status.success(),
+        preview_common::ran_to_a_verdict(&out),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -224,7 +227,7 @@ fn compare_refuses_a_job_of_another_font_without_that_font() {
         .output()
         .unwrap();
     assert!(
-        out.status.success(),
+        preview_common::ran_to_a_verdict(&out),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -265,4 +268,62 @@ fn damaged_compiled_job_exits_2() {
         assert!(err.contains(needle), "{name}: {err}");
         assert!(!dir.path().join("x.svg").exists());
     }
+}
+
+/// Issue 15: a film that misses the documented thresholds exits 1 with
+/// `verdict: "fail"` naming the metric; looser limits pass the same film.
+#[test]
+fn small_letters_fail_the_film_verdict() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = dir.path().join("small.job.json");
+    Command::cargo_bin("basr")
+        .unwrap()
+        .args(["compile", "STOP", "--letter-height", "0.5", "-q", "-o"])
+        .arg(&job)
+        .assert()
+        .success();
+    let run = |extra: &[&str]| {
+        Command::cargo_bin("basr")
+            .unwrap()
+            .arg("preview")
+            .arg(&job)
+            .args(["--json", "-o"])
+            .arg(dir.path().join("small.svg"))
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[]);
+    assert_eq!(out.status.code(), Some(1));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict"], "fail", "{v}");
+    assert_eq!(v["thresholds"]["cv_max"], 0.05);
+    let failed: Vec<&str> = v["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["pass"] == false)
+        .map(|c| c["metric"].as_str().unwrap())
+        .collect();
+    assert!(failed.contains(&"cv"), "{v}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("film verdict: FAIL: cv"), "{err}");
+    // The SVG is written all the same: the crew needs to see why.
+    assert!(dir.path().join("small.svg").exists());
+
+    let out = run(&[
+        "--max-cv",
+        "1",
+        "--max-overspray",
+        "1",
+        "--min-coverage",
+        "0",
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["verdict"], "pass", "{v}");
+
+    let out = run(&["--max-cv", "5"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--max-cv 5"));
 }

@@ -1,5 +1,8 @@
 //! `basr preview --from-sim`: the film of the simulated arm, end to end.
 
+#[path = "preview_common/mod.rs"]
+mod preview_common;
+
 use assert_cmd::Command;
 
 fn basr(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
@@ -32,7 +35,7 @@ fn from_sim_previews_the_film_the_arm_lays() {
         ],
     );
     assert!(
-        out.status.success(),
+        preview_common::ran_to_a_verdict(&out),
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
@@ -64,7 +67,7 @@ fn from_sim_u_stays_near_the_compiled_jobs() {
         args.extend_from_slice(extra);
         let out = basr(dir.path(), &args);
         assert!(
-            out.status.success(),
+            preview_common::ran_to_a_verdict(&out),
             "{}",
             String::from_utf8_lossy(&out.stderr)
         );

@@ -46,3 +46,63 @@ pub fn refuse_clashes(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]) -> an
     }
     Ok(())
 }
+
+/// A progress bar on stderr when `show` and stderr is a terminal (hidden
+/// otherwise, so logs and pipes get no control characters).
+pub fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !(show && std::io::stderr().is_terminal()) {
+        return indicatif::ProgressBar::hidden();
+    }
+    let b = indicatif::ProgressBar::new(1);
+    b.set_style(
+        indicatif::ProgressStyle::with_template(&format!(
+            "{what} {{bar:40}} {{percent:>3}}%, {{eta}} left"
+        ))
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    b
+}
+
+/// Read a job, saying what the file is when it is a setpoint CSV or
+/// another of basr's outputs rather than a job; under `--trust` (the
+/// command's flattened [`basr::job::trust::TrustOptions`]) only a job the
+/// trusted key signed.
+pub fn read_job(
+    path: &Path,
+    trust: &basr::job::trust::TrustOptions,
+) -> anyhow::Result<basr::job::Job> {
+    if let Some(what) = not_a_job(path) {
+        anyhow::bail!(
+            "{}: this is {what}, not a job file; give the job that `basr compile` wrote \
+             (STOP.job.json for `basr compile STOP`)",
+            path.display()
+        );
+    }
+    trust.read_job(path)
+}
+
+/// What a file given as a job is instead, from its name or first bytes.
+fn not_a_job(path: &Path) -> Option<&'static str> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let mut head = [0u8; 64];
+    // An unreadable file is the job reader's to report.
+    let n = std::fs::File::open(path)
+        .and_then(|mut f| std::io::Read::read(&mut f, &mut head))
+        .ok()?;
+    let head = String::from_utf8_lossy(&head[..n]);
+    let head = head.trim_start();
+    if head.starts_with("t_s,") || ext.as_deref() == Some("csv") && !head.starts_with('{') {
+        Some("a setpoint CSV (`compile --csv` writes it beside the job)")
+    } else if head.starts_with("<svg") || head.starts_with("<?xml") {
+        Some("an SVG picture")
+    } else if head.starts_with("<!DOCTYPE html") || head.starts_with("<html") {
+        Some("an HTML page (a job sheet from `basr report`)")
+    } else if ext.as_deref() == Some("toml") {
+        Some("a TOML file (a font, robot or marking: `basr check` reads those)")
+    } else {
+        None
+    }
+}

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use basr::job::Job;
 use basr::paint::preview::{self, JsonReport, Options, Panel, Preview};
+use basr::paint::verdict::{self, Thresholds, Verdict};
 use basr::paint::{Depth, Profile};
 use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
 
@@ -30,7 +31,11 @@ Examples:
 Metrics: coverage = share of letter area with >= 50 % of target film;
 cv = std/mean of the film inside the letters (one cell in from the edge);
 overspray = share of the paint on the road outside the letters; U = the
-tile area ratio of 001 eq. 2.7 (50 % ideal).")]
+tile area ratio of 001 eq. 2.7 (50 % ideal).
+
+Verdict: the film passes when cv <= 0.05, coverage >= 0.98 and overspray
+<= 0.03 (change them with --max-cv, --min-coverage, --max-overspray;
+docs/preview.md says why). Exit 0 pass, 1 fail, 2 bad input.")]
 pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
@@ -46,14 +51,26 @@ pub struct Args {
     #[arg(long)]
     pub json: bool,
 
-    /// Raster cell size in millimetres.
-    #[arg(
-        allow_negative_numbers = true,
-        long,
-        value_name = "R",
-        default_value_t = 5.0
-    )]
-    pub resolution_mm: f64,
+    /// Raster cell size in millimetres [default: 5, coarsened in 0.5 mm
+    /// steps when a long job's raster would not fit in memory; given, it is
+    /// kept or the job refused].
+    #[arg(allow_negative_numbers = true, long, value_name = "R")]
+    pub resolution_mm: Option<f64>,
+
+    /// Verdict: the largest coefficient of variation of the film inside
+    /// the letters that passes.
+    #[arg(long, value_name = "CV", default_value_t = verdict::CV_MAX)]
+    pub max_cv: f64,
+
+    /// Verdict: the smallest share of letter area with at least half the
+    /// target film that passes.
+    #[arg(long, value_name = "SHARE", default_value_t = verdict::COVERAGE_MIN)]
+    pub min_coverage: f64,
+
+    /// Verdict: the largest share of the paint outside the letters that
+    /// passes.
+    #[arg(long, value_name = "SHARE", default_value_t = verdict::OVERSPRAY_MAX)]
+    pub max_overspray: f64,
 
     /// Flux across the fan: `uniform` (even on the road, the seed's
     /// assumption), `uniform-angle`, `gauss[:w,mean,sigma;…]` (lobes per unit
@@ -182,7 +199,15 @@ fn replan(job: &Job, tilt: Tilt, font: Option<String>) -> anyhow::Result<Job> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
-    let r = args.resolution_mm;
+    let r = args
+        .resolution_mm
+        .unwrap_or(basr::paint::preview::DEFAULT_RESOLUTION_M * 1e3);
+    let thresholds = Thresholds {
+        cv_max: args.max_cv,
+        coverage_min: args.min_coverage,
+        overspray_max: args.max_overspray,
+    };
+    verdict::validate(&thresholds).map_err(anyhow::Error::msg)?;
     if !(r.is_finite() && r > 0.0) {
         anyhow::bail!(
             "--resolution-mm {r}: give a cell size in millimetres above zero, \
@@ -204,9 +229,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
          {MIN_RESOLUTION_MM} to {MAX_RESOLUTION_MM}"
     );
     let opts = Options {
-        resolution_m: args.resolution_mm / 1000.0,
+        resolution_m: r / 1000.0,
         profile: Profile::parse(&args.profile)?,
         depth: Depth::parse(&args.fan_depth)?,
+        fit_cells: args
+            .resolution_mm
+            .is_none()
+            .then_some(basr::paint::raster::FIT_CELLS),
     };
     let out = args
         .output
@@ -218,7 +247,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
     basr::io::check_writable(&out)?;
-    let job = args.trust.read_job(&args.job)?;
+    let job = super::read_job(&args.job, &args.trust)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {
@@ -249,23 +278,43 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         ("not carried".to_string(), NOT_RECORDED.to_string()),
     ];
     let replanned_note = format!("re-planned from {REPLANNED_FROM}; not carried: {NOT_RECORDED}");
+    let bar = super::progress_bar(
+        !global.quiet && !args.json,
+        if args.from_sim {
+            "simulating the arm, then painting"
+        } else {
+            "painting"
+        },
+    );
     let previews: Vec<Preview> = jobs
         .iter()
         .map(|(j, _)| {
+            let progress = |done: usize, total: usize| {
+                bar.set_length(total as u64);
+                bar.set_position(done as u64);
+            };
             if args.from_sim {
-                preview_simulated(j, &opts)
+                preview_simulated(j, &opts, &progress)
             } else {
-                preview::preview_job(j, &opts).map_err(Into::into)
+                preview::preview_job_with_progress(j, &opts, &progress).map_err(Into::into)
             }
             .with_context(|| format!("{origin}: preview"))
         })
         .collect::<anyhow::Result<_>>()?;
+    bar.finish_and_clear();
+    let verdicts: Vec<Verdict> = previews
+        .iter()
+        .map(|p| verdict::judge(&p.metrics, &thresholds))
+        .collect();
     let panels: Vec<Panel> = jobs
         .iter()
         .zip(&previews)
-        .map(|((job, re), preview)| Panel {
+        .zip(&verdicts)
+        .map(|(((job, re), preview), verdict)| Panel {
             job,
             preview,
+            verdict,
+            from_sim: args.from_sim,
             replanned: re.then_some(&replanned_lines[..]),
         })
         .collect();
@@ -274,7 +323,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     basr::io::write_atomic(&out, svg.as_bytes())?;
 
     if !global.quiet {
-        for ((j, re), p) in jobs.iter().zip(&previews) {
+        for (((j, re), p), v) in jobs.iter().zip(&previews).zip(&verdicts) {
             let m = &p.metrics;
             let f = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{:.3}", v));
             note!(
@@ -290,6 +339,15 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 f(m.u_min),
                 f(m.u_max),
             );
+            if args.resolution_mm.is_none() && (m.resolution_m - opts.resolution_m).abs() > 1e-12 {
+                note!(
+                    "  raster coarsened from {} mm to {} mm so this long job's film fits in \
+                     memory (--resolution-mm chooses the cell and refuses what does not fit)",
+                    basr::paint::raster::mm_text(opts.resolution_m),
+                    basr::paint::raster::mm_text(m.resolution_m),
+                );
+            }
+            note!("  {}", verdict_line(v));
         }
         if jobs.iter().any(|(_, re)| *re) {
             note!("note: {replanned_note}");
@@ -301,13 +359,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let reports: Vec<JsonReport> = jobs
             .iter()
             .zip(&previews)
-            .map(|((j, re), p)| JsonReport {
+            .zip(&verdicts)
+            .map(|(((j, re), p), v)| JsonReport {
                 job: &origin,
                 message: &j.message,
                 tilt_method: &j.layout.tilt_method,
                 profile: &p.profile,
                 svg: Some(&svg_name),
                 replanned: re.then_some(replanned_note.as_str()),
+                from_sim: args.from_sim,
+                verdict: v,
                 metrics: &p.metrics,
             })
             .collect();
@@ -318,7 +379,20 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         };
         basr::io::print_stdout(&(text + "\n"))?;
     }
-    Ok(Outcome::Success)
+    Ok(if verdicts.iter().all(Verdict::pass) {
+        Outcome::Success
+    } else {
+        Outcome::Negative
+    })
+}
+
+/// `verdict: PASS (cv 0.030 (≤ 0.050), …)` or `verdict: FAIL: cv …`.
+pub fn verdict_line(v: &Verdict) -> String {
+    if v.pass() {
+        "film verdict: PASS (cv, coverage and overspray within the limits)".into()
+    } else {
+        format!("film verdict: FAIL: {}", v.reasons())
+    }
 }
 
 /// The film from the simulated arm: each 5 ms trace tick gives the actual
@@ -329,7 +403,11 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
 /// times (the actual pose interpolated between ticks), so it compares with
 /// the compiled job's U; tiles between 5 ms ticks, 0.8 mm apart, were
 /// twisted end to end by servo jitter and spanned U 0.00–1.00 on STOP.
-fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
+fn preview_simulated(
+    job: &Job,
+    opts: &Options,
+    progress: basr::paint::raster::Progress,
+) -> anyhow::Result<Preview> {
     use basr::paint::spray::{equivalent_fan, Pose};
     use basr::sim;
     let model = sim::SimModel::from_robot(&job.robot)
@@ -340,7 +418,10 @@ fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
         keep_trace: true,
         substeps: None,
     };
-    let outcome = sim::simulate(job, &model, &sim_opts, &mut |_, _| {})?;
+    let outcome = sim::simulate(job, &model, &sim_opts, &mut |done, total| {
+        // The simulation is the first half of the bar, the paint the second.
+        progress(done as usize, 2 * total as usize)
+    })?;
     let trace = &outcome.trace;
     let s = &job.samples;
     let n = s.len();
@@ -455,6 +536,7 @@ fn preview_simulated(job: &Job, opts: &Options) -> anyhow::Result<Preview> {
         &outlines,
         &job.paint,
         opts,
+        &|done, total| progress(total + done, 2 * total),
     )?)
 }
 

@@ -103,7 +103,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for (_, p) in &outputs {
         basr::io::check_writable(p)?;
     }
-    let job = args.trust.read_job(&args.job)?;
+    let job = super::read_job(&args.job, &args.trust)?;
     let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {

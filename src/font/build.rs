@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use kurbo::{Affine, Point, Vec2};
 use toml::Spanned;
 
-use super::spec::{FontSpec, Outline, SegmentSpec, TransformSpec};
+use super::spec::{FontSpec, Outline, PrimitiveSpec, SegmentSpec, TransformSpec};
 use super::validate::{validate_glyph, DEFAULT_LIMITS};
 use super::{Glyph, Stroke, GRID_HEIGHT, GRID_WIDTH};
 use crate::geom::{Cardinal, Conic, Edge, GeomError, Segment};
@@ -19,8 +19,8 @@ pub struct Built {
 
 /// Turns byte offsets into `origin:line:col`.
 pub struct Locator<'a> {
-    text: &'a str,
-    origin: &'a str,
+    pub(super) text: &'a str,
+    pub(super) origin: &'a str,
 }
 
 impl Locator<'_> {
@@ -103,27 +103,7 @@ pub fn build(text: &str, origin: &str) -> Built {
         ));
     }
 
-    // Primitives: stroke templates in their own coordinates.
-    let mut primitives: BTreeMap<&str, Stroke> = BTreeMap::new();
-    for (name, p) in &spec.primitives {
-        let ctx = format!("{}: primitive `{name}`", loc.at(p.span().start));
-        let p = p.get_ref();
-        let left = edge(
-            &p.left,
-            &loc,
-            &format!("{ctx} left edge"),
-            &mut out.problems,
-        );
-        let right = edge(
-            &p.right,
-            &loc,
-            &format!("{ctx} right edge"),
-            &mut out.problems,
-        );
-        if let (Some(left), Some(right)) = (left, right) {
-            primitives.insert(name.as_str(), Stroke { left, right });
-        }
-    }
+    let primitives = build_primitives(&spec.primitives, &loc, &mut out.problems);
 
     // Glyphs that copy another are built after the ones they copy.
     let mut order: Vec<(&Spanned<String>, &super::spec::GlyphSpec)> = spec.glyphs.iter().collect();
@@ -185,7 +165,7 @@ pub fn build(text: &str, origin: &str) -> Built {
                     if let Some(st) = stroke(
                         s.get_ref(),
                         &primitives,
-                        &spec,
+                        &spec.primitives,
                         &loc,
                         &ctx,
                         &mut out.problems,
@@ -214,10 +194,31 @@ pub fn build(text: &str, origin: &str) -> Built {
     out
 }
 
-fn stroke(
+/// Primitives: stroke templates in their own coordinates, by name.
+pub(super) fn build_primitives<'s>(
+    specs: &'s BTreeMap<String, Spanned<PrimitiveSpec>>,
+    loc: &Locator,
+    problems: &mut Vec<String>,
+) -> BTreeMap<&'s str, Stroke> {
+    let mut primitives: BTreeMap<&str, Stroke> = BTreeMap::new();
+    for (name, p) in specs {
+        let ctx = format!("{}: primitive `{name}`", loc.at(p.span().start));
+        let p = p.get_ref();
+        let left = edge(&p.left, loc, &format!("{ctx} left edge"), problems);
+        let right = edge(&p.right, loc, &format!("{ctx} right edge"), problems);
+        if let (Some(left), Some(right)) = (left, right) {
+            primitives.insert(name.as_str(), Stroke { left, right });
+        }
+    }
+    primitives
+}
+
+/// One stroke of a glyph or symbol: a placed primitive or explicit edges,
+/// with its transform and direction applied.
+pub(super) fn stroke(
     s: &super::spec::StrokeSpec,
     primitives: &BTreeMap<&str, Stroke>,
-    spec: &FontSpec,
+    specs: &BTreeMap<String, Spanned<PrimitiveSpec>>,
     loc: &Locator,
     ctx: &str,
     problems: &mut Vec<String>,
@@ -226,8 +227,8 @@ fn stroke(
         (Some(name), None, None) => match primitives.get(name.get_ref().as_str()) {
             Some(p) => p.clone(),
             None => {
-                let known: Vec<&str> = spec.primitives.keys().map(|k| k.as_str()).collect();
-                let why = if spec.primitives.contains_key(name.get_ref()) {
+                let known: Vec<&str> = specs.keys().map(|k| k.as_str()).collect();
+                let why = if specs.contains_key(name.get_ref()) {
                     "is itself invalid (see its own error)".to_string()
                 } else {
                     format!("is unknown; the font defines: {}", known.join(", "))
@@ -437,7 +438,7 @@ fn segment(
 }
 
 /// The composed placement (steps applied in the order written).
-fn transform(
+pub(super) fn transform(
     steps: &[Spanned<TransformSpec>],
     loc: &Locator,
     ctx: &str,

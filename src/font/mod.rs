@@ -16,6 +16,7 @@
 mod build;
 mod sheet;
 mod spec;
+mod symbol;
 mod validate;
 
 use std::collections::BTreeMap;
@@ -27,6 +28,9 @@ use kurbo::{Affine, Point};
 use crate::geom::Edge;
 
 pub use sheet::alphabet_sheet;
+pub use symbol::{
+    check_library_source, extent, looks_like_library, stroke_area, Library, Symbol, SYMBOL_LIMITS,
+};
 pub use validate::{overlap_area, validate_stroke, Limits, DEFAULT_LIMITS};
 
 /// Width of the letter grid in font units (001 §2.3: 25 × 4 grid).

@@ -4,7 +4,7 @@ use kurbo::Point;
 
 use super::{Stroke, GRID_HEIGHT, GRID_WIDTH};
 
-/// Tolerances of glyph validation, in grid units.
+/// Tolerances of glyph validation, in grid units (symbols: metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
     /// Shortest allowed rung (opposing points must be at least this far apart).
@@ -21,6 +21,12 @@ pub struct Limits {
     /// Overlap area (square units) below which abutting strokes count as
     /// touching, not overlapping (polyline sampling of shared curved edges).
     pub overlap_area: f64,
+    /// The drawing's frame: x from 0 to `frame[0]`, y from 0 to `frame[1]`
+    /// (the 4 × 25 grid for letters); `None` checks no bounds (a symbol's
+    /// extent is checked against its declared size instead).
+    pub frame: Option<[f64; 2]>,
+    /// What one unit is, for messages ("units", "m").
+    pub unit: &'static str,
 }
 
 /// The limits `basr` applies on load.
@@ -35,6 +41,8 @@ pub const DEFAULT_LIMITS: Limits = Limits {
     scan_step: 0.02,
     // assumed: ≈ 1 cm² at an 8 ft letter (1 unit ≈ 0.098 m).
     overlap_area: 0.01,
+    frame: Some([GRID_WIDTH, GRID_HEIGHT]),
+    unit: "units",
 };
 
 fn segments_cross(a0: Point, a1: Point, b0: Point, b1: Point) -> bool {
@@ -91,21 +99,23 @@ pub fn validate_stroke(ctx: &str, s: &Stroke, lim: &Limits) -> Vec<String> {
             format!("rung {i} of {}", rungs.len() - 1)
         };
         out.push(format!(
-            "{ctx}: {what} from ({:.2}, {:.2}) to ({:.2}, {:.2}) is {:.3} units long, \
+            "{ctx}: {what} from ({:.2}, {:.2}) to ({:.2}, {:.2}) is {:.3} {} long, \
              shorter than the minimum {} (degenerate stroke?)",
             a.x,
             a.y,
             b.x,
             b.y,
             (*b - *a).hypot(),
+            lim.unit,
             lim.min_rung
         ));
     }
     // On the grid.
     let m = lim.grid_margin;
-    if let Some(p) = l.iter().chain(r.iter()).find(|p| {
-        !p.is_finite() || p.x < -m || p.x > GRID_WIDTH + m || p.y < -m || p.y > GRID_HEIGHT + m
-    }) {
+    let [fw, fh] = lim.frame.unwrap_or([f64::INFINITY, f64::INFINITY]);
+    let off =
+        |p: &&Point| lim.frame.is_some() && (p.x < -m || p.x > fw + m || p.y < -m || p.y > fh + m);
+    if let Some(p) = l.iter().chain(r.iter()).find(|p| !p.is_finite() || off(p)) {
         if p.is_finite() {
             out.push(format!(
                 "{ctx}: reaches ({:.2}, {:.2}), off the 4 × 25 grid (allowed margin {m})",
@@ -222,11 +232,12 @@ pub fn validate_glyph(strokes: &[(String, Stroke)], lim: &Limits) -> Vec<String>
             let (area, at) = overlap(&cover[i], &cover[j]);
             if area > lim.overlap_area {
                 out.push(format!(
-                    "{}: overlaps stroke {} by about {:.3} square units near ({:.2}, {:.2}); \
-                     strokes of a glyph may abut but must not paint the same area twice",
+                    "{}: overlaps stroke {} by about {:.4} square {} near ({:.2}, {:.2}); \
+                     strokes may abut but must not paint the same area twice",
                     strokes[j].0,
                     i + 1,
                     area,
+                    lim.unit,
                     at.x,
                     at.y
                 ));

@@ -6,8 +6,9 @@ use svg::node::element::{Circle, Group, Path, Rectangle};
 use svg::Document;
 
 use super::metrics::{self, GlyphOutline, Metrics};
-use super::raster::{self, Bounds, Film};
+use super::raster::{self, Bounds, Film, Progress};
 use super::spray::{Depth, Pose, Profile, SprayModel};
+use super::verdict::Verdict;
 use super::PaintError;
 use crate::job::{Job, Samples};
 use crate::plot::{self, palette, Frame, HeatMap};
@@ -30,6 +31,11 @@ pub struct Options {
     pub resolution_m: f64,
     pub profile: Profile,
     pub depth: Depth,
+    /// Coarsen the raster until it holds at most this many cells (the
+    /// command's default when no `--resolution-mm` is given, so a long job
+    /// previews); `None` keeps `resolution_m` and refuses a raster over
+    /// [`raster::MAX_CELLS`].
+    pub fit_cells: Option<usize>,
 }
 
 impl Default for Options {
@@ -38,6 +44,7 @@ impl Default for Options {
             resolution_m: DEFAULT_RESOLUTION_M,
             profile: Profile::Uniform,
             depth: Depth::default(),
+            fit_cells: None,
         }
     }
 }
@@ -92,6 +99,15 @@ fn check_paint(job: &Job) -> Result<(), PaintError> {
 
 /// Simulate the film of `job` and measure it.
 pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
+    preview_job_with_progress(job, opts, &|_, _| {})
+}
+
+/// [`preview_job`], telling `progress` how far the deposition has got.
+pub fn preview_job_with_progress(
+    job: &Job,
+    opts: &Options,
+    progress: Progress,
+) -> Result<Preview, PaintError> {
     check_paint(job)?;
     let poses = poses_from_samples(&job.samples);
     let outlines: Vec<GlyphOutline> = job
@@ -100,7 +116,15 @@ pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
         .iter()
         .map(GlyphOutline::from_placed)
         .collect();
-    preview_poses(&poses, &job.samples.stroke, &outlines, &job.paint, opts)
+    preview_tiled(
+        &poses,
+        &poses,
+        &job.samples.stroke,
+        &outlines,
+        &job.paint,
+        opts,
+        progress,
+    )
 }
 
 /// Simulate and measure the film of any pose sequence with `stroke_of[i]`
@@ -113,7 +137,7 @@ pub fn preview_poses(
     paint: &crate::job::Paint,
     opts: &Options,
 ) -> Result<Preview, PaintError> {
-    preview_tiled(poses, poses, stroke_of, outlines, paint, opts)
+    preview_tiled(poses, poses, stroke_of, outlines, paint, opts, &|_, _| {})
 }
 
 /// The film of `poses`, with U measured on the tiles between consecutive
@@ -128,17 +152,31 @@ pub fn preview_tiled(
     outlines: &[GlyphOutline],
     paint: &crate::job::Paint,
     opts: &Options,
+    progress: Progress,
 ) -> Result<Preview, PaintError> {
     let model = SprayModel::new(paint.fan_angle_rad, opts.profile.clone(), opts.depth)?;
     let letters = outlines
         .iter()
         .fold(Bounds::EMPTY, |b, g| b.union(g.bounds()));
-    let film = raster::deposit(
+    let cell_m = match opts.fit_cells {
+        Some(budget) => {
+            let painted = raster::painted_bounds(poses, &model)?;
+            let extent = match (painted.is_empty(), letters.is_empty()) {
+                (true, _) => letters,
+                (_, true) => painted,
+                _ => painted.union(letters),
+            };
+            raster::fitted_cell(extent, opts.resolution_m, budget)
+        }
+        None => opts.resolution_m,
+    };
+    let film = raster::deposit_with_progress(
         poses,
         &model,
         paint.flow_m3ps * paint.transfer_efficiency,
-        opts.resolution_m,
+        cell_m,
         letters,
+        progress,
     )?;
     let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
     Ok(Preview {
@@ -154,6 +192,10 @@ pub fn preview_tiled(
 pub struct Panel<'a> {
     pub job: &'a Job,
     pub preview: &'a Preview,
+    /// The film's verdict against the thresholds.
+    pub verdict: &'a Verdict,
+    /// The film is the simulated arm's (`--from-sim`), not the plan's.
+    pub from_sim: bool,
     /// For a job re-planned from another (`--compare`): what it was
     /// re-planned from, as header lines (key, value).
     pub replanned: Option<&'a [(String, String)]>,
@@ -212,6 +254,27 @@ fn metric_lines(m: &Metrics) -> Vec<(String, String)> {
             ),
         ),
     ]
+}
+
+/// A panel's caption: its verdict, where its film comes from, its metrics.
+fn panel_lines(p: &Panel) -> Vec<(String, String)> {
+    let v = p.verdict;
+    let mut lines = vec![(
+        "film verdict".to_string(),
+        if v.pass() {
+            "PASS (cv, coverage and overspray within the limits)".to_string()
+        } else {
+            format!("FAIL: {}", v.reasons())
+        },
+    )];
+    if p.from_sim {
+        lines.push((
+            "film of".into(),
+            "the SIMULATED arm (basr simulate, sjct controller), not the plan".into(),
+        ));
+    }
+    lines.extend(metric_lines(&p.preview.metrics));
+    lines
 }
 
 fn glyph_rows(m: &Metrics) -> Vec<Vec<String>> {
@@ -302,14 +365,12 @@ fn page(panels: &[Panel]) -> Page {
             header.extend(lines.iter().cloned());
         }
         if panels.len() == 1 {
-            header.extend(metric_lines(&p.preview.metrics));
+            header.extend(panel_lines(p));
         }
     }
     let head_h = plot::title_block_height(header.len()) + 20.0;
     let caption_h = match panels {
-        [first, _, ..] => {
-            plot::title_block_height(metric_lines(&first.preview.metrics).len()) + 10.0
-        }
+        [first, _, ..] => plot::title_block_height(panel_lines(first).len()) + 10.0,
         _ => 0.0,
     };
     let map_top = margin + head_h + caption_h;
@@ -360,7 +421,7 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
                         ""
                     }
                 ),
-                &metric_lines(&p.preview.metrics),
+                &panel_lines(p),
             ));
         }
         doc_g = doc_g.add(draw_panel(p, frame, vmax));
@@ -600,6 +661,11 @@ pub struct JsonReport<'a> {
     /// does not record (so compile's defaults were used).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub replanned: Option<&'a str>,
+    /// The film is the simulated arm's (`--from-sim`).
+    pub from_sim: bool,
+    /// `verdict` ("pass" / "fail"), `thresholds`, `checks`.
+    #[serde(flatten)]
+    pub verdict: &'a Verdict,
     #[serde(flatten)]
     pub metrics: &'a Metrics,
 }

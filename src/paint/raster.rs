@@ -276,6 +276,32 @@ pub fn painted_bounds(poses: &[Pose], model: &SprayModel) -> Result<Bounds, Pain
     Ok(b.grow(depth_reach(model)))
 }
 
+/// Cells a preview raster is coarsened to fit when the user did not ask for
+/// a cell size. // assumed: 40 M cells (320 MB of f64 plus the metrics'
+/// masks) fits a 200-letter job at about 6 mm on a small machine shared
+/// with other work; MAX_CELLS stays the hard limit for an explicit size.
+pub const FIT_CELLS: usize = 40_000_000;
+
+/// The finest cell, at least `wanted_m` and in steps of 0.5 mm, whose grid
+/// over `b` holds at most `budget` cells.
+pub fn fitted_cell(b: Bounds, wanted_m: f64, budget: usize) -> f64 {
+    if b.is_empty() || !(wanted_m > 0.0) {
+        return wanted_m;
+    }
+    // Two cells of margin as deposit adds, plus one for the alignment.
+    let cells = |c: f64| ((b.width() / c).ceil() + 5.0) * ((b.height() / c).ceil() + 5.0);
+    let step = 0.0005; // assumed: half-millimetre steps read well in the title
+    let mut c = wanted_m;
+    while cells(c) > budget as f64 && c < 1.0 {
+        c = ((c / step).floor() + 1.0) * step;
+    }
+    c
+}
+
+/// How far a long computation has got: `(done, total)`, called from worker
+/// threads.
+pub type Progress<'a> = &'a (dyn Fn(usize, usize) + Sync);
+
 /// Deposit the paint of `poses` (time-ordered, gun state holding until the
 /// next pose) with `flow_eff_m3ps` = flow × transfer efficiency reaching the
 /// road, on a grid of `cell_m` covering the painted region and `extra`.
@@ -285,6 +311,18 @@ pub fn deposit(
     flow_eff_m3ps: f64,
     cell_m: f64,
     extra: Bounds,
+) -> Result<Film, PaintError> {
+    deposit_with_progress(poses, model, flow_eff_m3ps, cell_m, extra, &|_, _| {})
+}
+
+/// [`deposit`], telling `progress` how many painted intervals are done.
+pub fn deposit_with_progress(
+    poses: &[Pose],
+    model: &SprayModel,
+    flow_eff_m3ps: f64,
+    cell_m: f64,
+    extra: Bounds,
+    progress: Progress,
 ) -> Result<Film, PaintError> {
     if !(flow_eff_m3ps >= 0.0 && flow_eff_m3ps.is_finite()) {
         return Err(PaintError::Model(format!(
@@ -315,9 +353,15 @@ pub fn deposit(
     let half = cell_m / 2.0;
     let depth = model.depth.nodes(half);
 
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let chunks: Vec<Canvas> = painted
         .par_chunks(INTERVALS_PER_CHUNK)
-        .map(|chunk| deposit_chunk(poses, chunk, model, flow_eff_m3ps, &grid, &depth))
+        .map(|chunk| {
+            let c = deposit_chunk(poses, chunk, model, flow_eff_m3ps, &grid, &depth);
+            let n = done.fetch_add(chunk.len(), std::sync::atomic::Ordering::Relaxed);
+            progress(n + chunk.len(), painted.len());
+            c
+        })
         .collect::<Result<_, _>>()?;
     let area = cell_m * cell_m;
     let mut whole = Canvas {
@@ -448,6 +492,26 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fitted_cell_coarsens_only_what_does_not_fit() {
+        let small = Bounds {
+            min: [-2.0, 0.0],
+            max: [2.0, 3.0],
+        };
+        assert_eq!(fitted_cell(small, 0.005, FIT_CELLS), 0.005);
+        // A 200-letter job: 40 lines 12.2 m apart across a 3.66 m lane.
+        let long = Bounds {
+            min: [-1.83, 0.0],
+            max: [1.83, 488.0],
+        };
+        let c = fitted_cell(long, 0.005, FIT_CELLS);
+        let cells = |c: f64| (long.width() / c + 5.0) * (long.height() / c + 5.0);
+        assert!(c > 0.005 && cells(c) <= FIT_CELLS as f64, "{c}");
+        // The finest half-millimetre step that fits, not any coarser.
+        assert!(cells(c - 0.0005) > FIT_CELLS as f64, "{c}");
+        assert!(Grid::covering(long.grow(2.0 * c), c).is_ok());
+    }
 
     #[test]
     fn millimetres_are_printed_with_their_digits() {

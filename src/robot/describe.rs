@@ -1,7 +1,7 @@
 //! Reading and validating robot descriptions: every problem at once, each
 //! with file:line:col, the field's dotted name, what is wrong and the fix.
 
-use super::{fourbar::Assembly, JointLimit, Robot};
+use super::{fourbar::Assembly, JointLimit, Kind, Robot};
 
 /// Errors from reading a robot description.
 #[derive(Debug, thiserror::Error)]
@@ -165,7 +165,7 @@ fn non_finite(value: &toml::Value, path: &str, out: &mut Vec<String>) {
 
 /// Every problem of a robot description's text (empty when valid).
 pub fn check_source(text: &str, origin: &str) -> Vec<String> {
-    match parse(text, origin) {
+    match super::AnyRobot::from_toml_str(text, origin) {
         Ok(_) => vec![],
         Err(RobotError::Invalid { problems, .. }) => problems,
         Err(e) => vec![e.to_string()],
@@ -173,6 +173,42 @@ pub fn check_source(text: &str, origin: &str) -> Vec<String> {
 }
 
 pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
+    parse_as(text, origin, validate)
+}
+
+/// The `kind` of a description's text (absent = BASR); a text that is not
+/// TOML is left to [`parse`] to report, as BASR.
+pub(super) fn kind_of(text: &str, origin: &str) -> Result<Kind, RobotError> {
+    let Ok(tree) = toml::from_str::<toml::Table>(text) else {
+        return Ok(Kind::Basr);
+    };
+    match tree.get("kind") {
+        None => Ok(Kind::Basr),
+        Some(toml::Value::String(s)) if Kind::parse(s).is_some() => {
+            Ok(Kind::parse(s).unwrap_or_default())
+        }
+        Some(v) => Err(RobotError::Invalid {
+            origin: origin.to_string(),
+            problems: vec![at(
+                origin,
+                text,
+                "kind",
+                &format!(
+                    "must be one of {} (got {v}); absent means \"basr\"",
+                    Kind::NAMES.map(|n| format!("\"{n}\"")).join(", ")
+                ),
+            )],
+        }),
+    }
+}
+
+/// Parse a description of one kind: syntax, non-finite numbers, fields
+/// (serde), then `validate`'s semantic checks, each with its line.
+pub(super) fn parse_as<T: serde::de::DeserializeOwned>(
+    text: &str,
+    origin: &str,
+    validate: impl Fn(&T) -> Vec<(String, String)>,
+) -> Result<T, RobotError> {
     let invalid = |problems| RobotError::Invalid {
         origin: origin.to_string(),
         problems,
@@ -199,7 +235,7 @@ pub(super) fn parse(text: &str, origin: &str) -> Result<Robot, RobotError> {
                 .collect(),
         ));
     }
-    let robot: Robot = match toml::from_str(text) {
+    let robot: T = match toml::from_str(text) {
         Ok(r) => r,
         Err(e) => {
             let (loc, field) = span_location(text, origin, e.span());

@@ -5,9 +5,15 @@
 //! The description is an immutable model (DESIGN: model apart from state);
 //! every computation takes it by reference.
 
+pub mod articulated;
+pub mod design;
 pub mod dynamics;
+pub mod envelope;
 pub mod fourbar;
+pub mod kind;
 pub mod kinematics;
+pub mod section;
+pub mod telescopic;
 pub mod workspace;
 
 mod describe;
@@ -15,6 +21,7 @@ mod describe;
 pub use describe::{check_source, RobotError};
 pub use dynamics::Dynamics;
 pub use fourbar::FourBar;
+pub use kind::{AnyRobot, ArmKind, Kind, ServoJoint, Q};
 pub use kinematics::{Actuators, Encoders, Joints, NozzlePose, RateViolation, Unreachable};
 pub use workspace::Region;
 
@@ -34,6 +41,9 @@ pub fn looks_like_robot(text: &str) -> bool {
 #[serde(deny_unknown_fields)]
 pub struct Robot {
     pub name: String,
+    /// Always BASR here (SPEC §8); other kinds are [`AnyRobot`]'s.
+    #[serde(default, skip_serializing_if = "Kind::is_basr")]
+    pub kind: Kind,
     pub arm: Arm,
     pub end_effector: EndEffector,
     pub paint: Paint,
@@ -264,7 +274,17 @@ impl Robot {
 
     /// Parse and validate a description; `origin` names it in messages.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Robot, RobotError> {
-        describe::parse(text, origin)
+        match describe::kind_of(text, origin)? {
+            Kind::Basr => describe::parse(text, origin),
+            kind => Err(RobotError::Invalid {
+                origin: origin.to_string(),
+                problems: vec![format!(
+                    "{origin}: a robot of kind \"{}\": this command takes a BASR description so \
+                     far (docs/robot-kinds.md says which commands take every kind)",
+                    kind.name()
+                )],
+            }),
+        }
     }
 
     /// The description as TOML that reads back to an identical robot.

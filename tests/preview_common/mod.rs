@@ -222,3 +222,17 @@ pub fn tilted_job(w: f64, len: f64, beta: f64) -> Job {
     };
     job_with("I", "trapezoid", &rungs, glyph)
 }
+
+/// `basr preview` ran to its verdict: exit 0 when the film passes, 1 when
+/// it fails (the metrics are printed either way); 2 would be bad input.
+pub fn ran_to_a_verdict(out: &std::process::Output) -> bool {
+    let code = out.status.code();
+    match serde_json::from_slice::<serde_json::Value>(&out.stdout) {
+        Ok(v) if v.is_object() => match v["verdict"].as_str() {
+            Some("pass") => code == Some(0),
+            Some("fail") => code == Some(1),
+            _ => false,
+        },
+        _ => matches!(code, Some(0 | 1)),
+    }
+}
