@@ -264,6 +264,34 @@ fn an_edited_csv_row_is_named_beside_its_job() {
             column,
         );
     }
+    // The Adept program is bound the same way.
+    let o = site.run(&["check", "STOP.job.json", "STOP.v2"]);
+    expect(&o, 0, &["STOP.v2: ok"], "the program as written");
+    let program = site.read("STOP.v2");
+    let line = program
+        .lines()
+        .position(|l| l.starts_with("move "))
+        .unwrap();
+    let edited: Vec<String> = program
+        .lines()
+        .enumerate()
+        .map(|(k, l)| {
+            if k == line {
+                l.replacen("move trans(", "move trans(1", 1)
+            } else {
+                l.into()
+            }
+        })
+        .collect();
+    site.write("edited.v2", &(edited.join("\n") + "\n"));
+    let o = site.run(&["check", "STOP.job.json", "edited.v2"]);
+    let at = format!("edited.v2:{}: the program has", line + 1);
+    expect(
+        &o,
+        1,
+        &["not the Adept program written with STOP.job.json", &at],
+        "adept",
+    );
     // The CSV of another job (the signed one's is the same; a 3-letter
     // job's is not) is not this job's either.
     expect(

@@ -37,6 +37,7 @@ enum Kind {
     Robot,
     Marking,
     Csv,
+    Adept,
 }
 
 fn kind_of(text: &str) -> Option<Kind> {
@@ -46,6 +47,9 @@ fn kind_of(text: &str) -> Option<Kind> {
     }
     if basr::job::csv::looks_like_csv(text) {
         return Some(Kind::Csv);
+    }
+    if basr::job::adept::looks_like_program(text) {
+        return Some(Kind::Adept);
     }
     let table: toml::Table = toml::from_str(text).ok()?;
     if table.contains_key("glyphs") || table.contains_key("primitives") {
@@ -63,6 +67,7 @@ fn kind_of(text: &str) -> Option<Kind> {
 enum Kept {
     Job(Box<basr::job::Job>),
     Csv(String),
+    Adept(String),
     Other,
 }
 
@@ -84,10 +89,10 @@ fn problems(
     match basr::io::utf8_text(bytes, origin) {
         Ok(text) => {
             let found = text_problems(&text, origin);
-            let kept = if kind_of(&text) == Some(Kind::Csv) {
-                Kept::Csv(text)
-            } else {
-                Kept::Other
+            let kept = match kind_of(&text) {
+                Some(Kind::Csv) => Kept::Csv(text),
+                Some(Kind::Adept) => Kept::Adept(text),
+                _ => Kept::Other,
             };
             (found, kept)
         }
@@ -95,18 +100,20 @@ fn problems(
     }
 }
 
-/// The job a CSV is checked against: the one that recorded its bytes, else
-/// the one that recorded its file name, else the only job given.
+/// The job a CSV or program (`kind`) is checked against: the one that
+/// recorded its bytes, else the one that recorded its file name, else the
+/// only job given.
 fn job_for<'a>(
-    csv: &str,
-    csv_origin: &str,
+    text: &str,
+    origin: &str,
+    kind: &str,
     jobs: &'a [(String, Box<basr::job::Job>)],
 ) -> Option<&'a (String, Box<basr::job::Job>)> {
-    let sha = basr::io::sha256_hex(csv.as_bytes());
-    let name = std::path::Path::new(csv_origin)
+    let sha = basr::io::sha256_hex(text.as_bytes());
+    let name = std::path::Path::new(origin)
         .file_name()
         .map(|n| n.to_string_lossy().into_owned());
-    let recorded = |j: &basr::job::Job| j.outputs.get("csv").cloned();
+    let recorded = |j: &basr::job::Job| j.outputs.get(kind).cloned();
     jobs.iter()
         .find(|(_, j)| recorded(j).is_some_and(|b| b.sha256 == sha))
         .or_else(|| {
@@ -130,6 +137,8 @@ fn text_problems(text: &str, origin: &str) -> Vec<String> {
         },
         Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),
         Some(Kind::Csv) => basr::job::csv::check_source(text, origin),
+        // Checked against its job when one is given.
+        Some(Kind::Adept) => vec![],
         None if basr::layout::looks_like_marking(text) => {
             basr::layout::check_marking_source(text, origin)
         }
@@ -153,6 +162,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let (mut bad, mut unreadable) = (0usize, 0usize);
     let mut jobs: Vec<(String, Box<basr::job::Job>)> = vec![];
     let mut csvs: Vec<(String, String, bool)> = vec![];
+    let mut programs: Vec<(String, String)> = vec![];
     let mut report: Vec<(String, Vec<String>)> = vec![];
     for path in &args.files {
         let origin = path.display().to_string();
@@ -168,6 +178,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         match kept {
             Kept::Job(j) => jobs.push((origin.clone(), j)),
             Kept::Csv(text) => csvs.push((origin.clone(), text, found.is_empty())),
+            Kept::Adept(text) => programs.push((origin.clone(), text)),
             Kept::Other => {}
         }
         report.push((origin, found));
@@ -177,11 +188,21 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if !sound {
             continue;
         }
-        if let Some((job_origin, job)) = job_for(text, origin, &jobs) {
+        if let Some((job_origin, job)) = job_for(text, origin, "csv", &jobs) {
             let found = basr::job::csv::compare(job, text, origin, job_origin);
             if let Some((_, r)) = report.iter_mut().find(|(o, _)| o == origin) {
                 r.extend(found);
             }
+        }
+    }
+    // An Adept program beside a job: the same, by the program's hash.
+    for (origin, text) in &programs {
+        let found = match job_for(text, origin, "adept", &jobs) {
+            Some((job_origin, job)) => basr::job::adept::compare(job, text, origin, job_origin),
+            None => vec![],
+        };
+        if let Some((_, r)) = report.iter_mut().find(|(o, _)| o == origin) {
+            r.extend(found);
         }
     }
     for (origin, found) in report {
