@@ -9,6 +9,9 @@ use std::process::{Command as StdCommand, Output};
 
 use assert_cmd::Command;
 
+mod process_common;
+use process_common::{catches, entries};
+
 fn basr_in(dir: &Path) -> Command {
     let mut c = Command::cargo_bin("basr").unwrap();
     c.current_dir(dir).env_remove("BASR_TRUST");
@@ -312,15 +315,6 @@ fn an_edited_csv_row_is_named_beside_its_job() {
     expect(&o, 1, &["so.csv", "row 0"], "another job's CSV");
 }
 
-fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
-
 #[test]
 fn a_folder_as_output_leaves_the_earlier_files() {
     let dir = tempfile::tempdir().unwrap();
@@ -378,18 +372,6 @@ fn replaced_files_keep_their_mode() {
     std::fs::set_permissions(d.join("k"), std::fs::Permissions::from_mode(0o644)).unwrap();
     let o = run(d, &["compile", "I", "--sign", "k"]);
     expect(&o, 2, &["readable by others"], "a shared secret key");
-}
-
-/// Whether process `pid` catches signal `sig` yet (its bit in SigCgt).
-fn catches(pid: u32, sig: i32) -> bool {
-    let Ok(status) = std::fs::read_to_string(format!("/proc/{pid}/status")) else {
-        return false;
-    };
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("SigCgt:"))
-        .and_then(|hex| u64::from_str_radix(hex.trim(), 16).ok())
-        .is_some_and(|mask| mask & (1 << (sig - 1)) != 0)
 }
 
 #[cfg(target_os = "linux")]

@@ -528,6 +528,13 @@ mod tests {
             let err = Job::from_str_verified(empty, "t").unwrap_err();
             assert!(err.to_string().contains("t is empty"), "{err}");
         }
+        // A duplicate key said as one, wherever it stands (a duplicate
+        // `format` also trips serde's own check of the head).
+        for key in ["\"format\": \"basr-job\"", "\"message\": \"I\""] {
+            let twice = text.replacen(key, &format!("{key},\n  {key}"), 1);
+            let err = Job::from_str_verified(&twice, "t").unwrap_err().to_string();
+            assert!(err.contains("appears twice"), "{err}");
+        }
         let v2 = text.replacen("\"version\": 1", "\"version\": 2", 1);
         let err = Job::from_str_verified(&v2, "t").unwrap_err();
         assert!(matches!(err, JobError::Version { .. }), "{err}");

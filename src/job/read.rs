@@ -47,22 +47,28 @@ fn explain(bytes: &[u8], nc: canonical::NotCanonical, path: &str) -> JobError {
             path: path.to_string(),
             detail,
         },
-        Err(_) => JobError::Format {
+        // JSON, but not an object: not a job at all.
+        Err(_) if bytes.trim_ascii_start().first() != Some(&b'{') => JobError::Format {
             path: path.to_string(),
             found: "missing (the file is not a JSON object)".into(),
         },
         Ok(head) => match check_head(head, path) {
             Err(e) => e,
-            Ok(()) => {
-                let (line, col) = nc.line_col(bytes);
-                JobError::NotCanonical {
-                    path: path.to_string(),
-                    line,
-                    col,
-                    what: nc.what,
-                }
-            }
+            Ok(()) => not_canonical(bytes, nc, path),
         },
+        // A job's JSON spelled otherwise (a duplicate `format` is a serde
+        // error here, and is said as the duplicate it is).
+        Err(_) => not_canonical(bytes, nc, path),
+    }
+}
+
+fn not_canonical(bytes: &[u8], nc: canonical::NotCanonical, path: &str) -> JobError {
+    let (line, col) = nc.line_col(bytes);
+    JobError::NotCanonical {
+        path: path.to_string(),
+        line,
+        col,
+        what: nc.what,
     }
 }
 
