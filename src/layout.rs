@@ -76,8 +76,9 @@ pub enum LayoutError {
     )]
     TooFar { field: String, value: f64 },
     #[error(
-        "unsupported character {ch:?} at position {position} of {message:?}: messages take \
-         the letters A–Z (lower case is read as upper case), the digits 0–9 and spaces"
+        "unsupported character {} at position {position} of {message:?}: messages take \
+         the letters A–Z (lower case is read as upper case), the digits 0–9 and spaces",
+        crate::chars::describe(*ch)
     )]
     Unsupported {
         ch: char,

@@ -6,6 +6,8 @@
 //! actuators, encoders) → `job` (the document). `paint` previews a job's
 //! film; `sim` runs it through the arm in closed loop; `plot` draws SVG.
 
+pub mod canon;
+pub mod chars;
 pub mod font;
 pub mod geom;
 pub mod io;
@@ -14,5 +16,7 @@ pub mod layout;
 pub mod paint;
 pub mod plan;
 pub mod plot;
+pub mod report;
 pub mod robot;
 pub mod sim;
+pub mod units;

@@ -37,6 +37,7 @@ Examples:
   basr compile \"STOP AHEAD\" --csv sa.csv # two lines, setpoints as CSV too
   basr preview STOP.job.json -o stop.svg # simulated paint film
   basr simulate STOP.job.json            # closed-loop check against 6.35 mm
+  basr report STOP.job.json -o STOP.html # the job sheet for the crew
   basr glyphs --svg alphabet.svg         # the embedded font, drawn
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
   basr keygen -o crew.key                # a key pair; then compile --sign crew.key
@@ -70,12 +71,14 @@ enum Command {
     Compile(cmd::compile::Args),
     Glyphs(cmd::glyphs::Args),
     Preview(cmd::preview::Args),
+    Report(cmd::report::Args),
     Simulate(cmd::simulate::Args),
     Robot(cmd::robot::Args),
     Workspace(cmd::workspace::Args),
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
     Keygen(cmd::keygen::Args),
+    Design(cmd::design::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Examples:
   basr completions bash > ~/.local/share/bash-completion/completions/basr
@@ -87,21 +90,51 @@ enum Command {
     },
 }
 
+/// Print clap's error (or help) as clap would, with a hint for the usual
+/// slip: `basr compile STOP AHEAD`, a message of several words unquoted.
+fn usage_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let compiling = args.first().is_some_and(|a| a == "compile");
+    if e.kind() != ErrorKind::UnknownArgument || !compiling {
+        e.exit();
+    }
+    let words: Vec<&str> = args[1..]
+        .iter()
+        .map(String::as_str)
+        .filter(|a| !a.is_empty() && a.chars().all(|c| c.is_alphanumeric()))
+        .collect();
+    let text = e.render().to_string();
+    note_text(&text);
+    if words.len() > 1 {
+        note!(
+            "hint: a message of several words is one argument; quote it: basr compile \"{}\"",
+            words.join(" ")
+        );
+    }
+    ExitCode::from(2)
+}
+
 fn main() -> ExitCode {
     basr::io::install_interrupt_cleanup();
     basr::io::stage_outputs();
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(e),
+    };
     let global = cmd::Global { quiet: cli.quiet };
     let result = match cli.command {
         Command::Compile(a) => cmd::compile::run(a, &global),
         Command::Glyphs(a) => cmd::glyphs::run(a, &global),
         Command::Preview(a) => cmd::preview::run(a, &global),
+        Command::Report(a) => cmd::report::run(a, &global),
         Command::Simulate(a) => cmd::simulate::run(a, &global),
         Command::Robot(a) => cmd::robot::run(a, &global),
         Command::Workspace(a) => cmd::workspace::run(a, &global),
         Command::Pose(a) => cmd::pose::run(a, &global),
         Command::Check(a) => cmd::check::run(a, &global),
         Command::Keygen(a) => cmd::keygen::run(a, &global),
+        Command::Design(a) => cmd::design::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;
             // Generated into memory: clap_complete panics on a failed write,
@@ -116,7 +149,14 @@ fn main() -> ExitCode {
     // Every output of the run is renamed into place together, or none is.
     let result = match result {
         Ok(outcome) => basr::io::commit_outputs()
-            .map(|()| outcome)
+            .map(|()| {
+                if !global.quiet {
+                    for text in cmd::outputs::take_after_commit() {
+                        note!("{text}");
+                    }
+                }
+                outcome
+            })
             .map_err(Into::into),
         Err(e) => {
             basr::io::discard_outputs();

@@ -299,7 +299,10 @@ fn refused(args: &[&str], says: &str) {
 
 #[test]
 fn bad_input_exits_2_and_leaves_nothing() {
-    refused(&["ST*P"], "unsupported character '*' at position 3");
+    refused(
+        &["ST*P"],
+        "unsupported character '*' (U+002A) at position 3",
+    );
     refused(&["   "], "empty");
     refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.660 m");
     refused(
@@ -366,13 +369,15 @@ fn check_reports_derived_columns_and_totals_that_disagree() {
 #[test]
 fn outputs_that_name_one_file_or_an_input_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let m = dir.path().join("m.toml");
+    let m = dir.path().join("m.json");
     let marking = "[marking]\nlines = [\"STOP\"]\n";
     std::fs::write(&m, marking).unwrap();
+    // A marking whose name ends in .json, so the output-extension check
+    // passes and the same-file check is what refuses it.
     let cases: [&[&str]; 3] = [
-        &["STOP", "-o", "x.csv", "--csv", "x.csv"],
+        &["STOP", "-o", "x.job.json", "--adept", "./x.job.json"],
         &["STOP", "--csv", "x.csv", "--adept", "./x.csv"],
-        &["--marking", "m.toml", "-o", "m.toml"],
+        &["--marking", "m.json", "-o", "m.json"],
     ];
     for args in cases {
         basr()
@@ -383,7 +388,7 @@ fn outputs_that_name_one_file_or_an_input_are_refused() {
             .code(2)
             .stderr(predicate::str::contains("are the same file"))
             .stderr(predicate::str::contains("give a different path"));
-        assert_eq!(files(dir.path()), vec!["m.toml"], "{args:?}");
+        assert_eq!(files(dir.path()), vec!["m.json"], "{args:?}");
         assert_eq!(std::fs::read_to_string(&m).unwrap(), marking);
     }
 }

@@ -61,7 +61,13 @@ fn machine_output_into_a_closed_pipe_ends_quietly() {
             !stderr.contains("panicked") && !stderr.contains("Broken pipe"),
             "basr {args:?} complained about the closed pipe:\n{stderr}"
         );
-        assert_eq!(code, Some(0), "basr {args:?}; stderr:\n{stderr}");
+        // preview's own film verdict (exit 1 on a failed film) is not what
+        // this test is about; a closed pipe must not turn into any other code.
+        let ok: &[i32] = if args[0] == "preview" { &[0, 1] } else { &[0] };
+        assert!(
+            code.is_some_and(|c| ok.contains(&c)),
+            "basr {args:?} exited {code:?}; stderr:\n{stderr}"
+        );
     }
     // The job was still written: the closed pipe only drops the summary.
     assert!(dir.path().join("again.job.json").is_file());

@@ -54,30 +54,40 @@ fn tiny_tolerance_fails_with_exit_1_and_says_where() {
 }
 
 #[test]
-fn a_step_in_the_setpoints_fails_and_is_located() {
+fn a_step_in_the_setpoints_is_refused_by_simulate_and_fails_in_the_library() {
     let dir = tempfile::tempdir().unwrap();
     let job = write_job(&dir, "step.job.json", &synthetic::step_job());
-    let out = basr()
+    // the binary runs `check`'s content checks first: a 20 mm step breaks
+    // the joints' acceleration limits, and simulate says so (exit 2)
+    basr()
         .arg("simulate")
         .arg(&job)
-        .arg("--json")
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["verdict"], "fail");
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("acceleration limit"));
+    // simulated anyway (the library does not check), it fails and says where
+    let stepped = synthetic::step_job();
+    let r = basr::sim::simulate(
+        &stepped,
+        &basr::sim::SimModel::basr(),
+        &basr::sim::Options::default(),
+        &mut |_, _| {},
+    )
+    .unwrap()
+    .report;
+    assert_eq!(r.verdict, "fail");
     // the step is halfway through stroke 0
-    assert_eq!(v["worst"]["stroke"], 0);
-    assert!(v["max_error_m"].as_f64().unwrap() > 0.01);
+    assert_eq!(r.worst.stroke, 0);
+    assert!(r.max_error_m > 0.01);
     // and the worst moment is the arm catching up with it: within a fraction
     // of a second after the first stepped row (the reference starts to move
     // towards it one row, 32 ms, earlier)
-    let (plain, stepped) = (synthetic::letter_job(), synthetic::step_job());
+    let plain = synthetic::letter_job();
     let first = (0..plain.samples.len())
         .find(|&i| plain.samples.y_m[i] != stepped.samples.y_m[i])
         .unwrap();
     let t_step = stepped.samples.t_s[first];
-    let t_worst = v["worst"]["t_s"].as_f64().unwrap();
+    let t_worst = r.worst.t_s;
     assert!(
         t_worst >= t_step - stepped.control_period_s && t_worst <= t_step + 0.3,
         "worst at {t_worst} s, step at {t_step} s"

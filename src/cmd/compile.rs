@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use basr::layout::Overrides;
 use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
+use basr::units::Length;
 
 use super::{Global, Outcome};
 
@@ -62,22 +63,27 @@ pub struct Args {
     /// Nozzle tilt method.
     #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
     pub tilt: TiltArg,
-    /// Letter height in metres, 0.3–10 [default: 2.44, or the marking file's].
-    #[arg(allow_hyphen_values = true, long, value_name = "M")]
-    pub letter_height: Option<f64>,
-    /// Lane width in metres, at most 30 [default: 3.66, or the marking file's].
-    #[arg(allow_hyphen_values = true, long, value_name = "M")]
-    pub lane_width: Option<f64>,
-    /// Clear space between lines in metres, at least 4× the letter height
-    /// [default: 4× the letter height, or the marking file's].
-    #[arg(allow_hyphen_values = true, long, value_name = "M")]
-    pub line_gap: Option<f64>,
-    /// Largest distance between rungs along a stroke, in millimetres (1–100).
+    /// Letter height, 0.3–10 m; metres unless a unit is written (8ft,
+    /// 96in, 2440mm) [default: 2.44, or the marking file's].
+    #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
+    pub letter_height: Option<Length>,
+    /// Lane width, at most 30 m; metres unless a unit is written (12ft)
+    /// [default: 3.66, or the marking file's].
+    #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
+    pub lane_width: Option<Length>,
+    /// Clear space between lines, at least 4× the letter height; metres
+    /// unless a unit is written [default: 4× the letter height, or the
+    /// marking file's].
+    #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
+    pub line_gap: Option<Length>,
+    /// Largest distance between rungs along a stroke, 1–100 mm;
+    /// millimetres unless a unit is written (0.75in).
     #[arg(
         allow_negative_numbers = true,
         long,
         value_name = "MM",
-        default_value_t = 20.0
+        default_value = "20",
+        value_parser = basr::units::millimetres
     )]
     pub rung_spacing_mm: f64,
     /// Setpoint period in seconds, 0.005–0.1 (the controller samples at 0.005 s).
@@ -103,9 +109,13 @@ pub struct Args {
     /// so readers under `--trust NAME.pub` accept it.
     #[arg(long, value_name = "NAME")]
     pub sign: Option<PathBuf>,
-    /// Print the summary as JSON on stdout.
+    /// Print the summary as JSON on stdout (every warning, with its
+    /// severity).
     #[arg(long)]
     pub json: bool,
+    /// List every warning (info and notices too), not only the problems.
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 /// Finest rung spacing, mm. Assumed: 1/20 of the default and far below the
@@ -133,6 +143,23 @@ fn stem_of(text: &str) -> String {
         .collect()
 }
 
+/// Usual ranges, m, for the feet hint: letters of 1–12 ft (MUTCD §3B.20
+/// uses 6–8 ft) and lanes of 8–16 ft. // assumed: wide enough for
+/// every marking in markings/, narrow enough that 8 (ft) falls outside.
+const USUAL_LETTER_HEIGHT_M: (f64, f64) = (0.3, 3.7);
+const USUAL_LANE_WIDTH_M: (f64, f64) = (2.4, 5.0);
+
+/// Hints for bare numbers that look like feet (`--letter-height 8`).
+fn feet_hints(args: &Args) -> Vec<String> {
+    [
+        ("--letter-height", args.letter_height, USUAL_LETTER_HEIGHT_M),
+        ("--lane-width", args.lane_width, USUAL_LANE_WIDTH_M),
+    ]
+    .into_iter()
+    .filter_map(|(flag, l, usual)| basr::units::feet_hint(flag, l?, usual))
+    .collect()
+}
+
 /// Refuse outputs that name one file twice, or an input: each would be
 /// written over the other (the job over `--csv`, or over the marking file).
 fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
@@ -157,6 +184,18 @@ fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    // Before any work: a folder or a wrong name fails now, not after planning.
+    if let Some(p) = &args.output {
+        // Two outputs on one file is the more useful complaint.
+        refuse_clashing_paths(&args, p)?;
+        super::outputs::check("-o", p, &["json"])?;
+    }
+    if let Some(p) = &args.csv {
+        super::outputs::check("--csv", p, &["csv"])?;
+    }
+    if let Some(p) = &args.adept {
+        super::outputs::check("--adept", p, &[])?;
+    }
     // Non-finite and non-positive values are reported by the planner.
     let too_fine = |v: f64, min: f64| v.is_finite() && v > 0.0 && v < min;
     anyhow::ensure!(
@@ -195,9 +234,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let req = CompileRequest {
         source,
         overrides: Overrides {
-            letter_height_m: args.letter_height,
-            lane_width_m: args.lane_width,
-            line_gap_m: args.line_gap,
+            letter_height_m: args.letter_height.map(|l| l.m),
+            lane_width_m: args.lane_width.map(|l| l.m),
+            line_gap_m: args.line_gap.map(|l| l.m),
         },
         font: args.font.clone(),
         robot: args.robot.clone(),
@@ -222,11 +261,24 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for p in [&args.output, &args.csv, &args.adept].into_iter().flatten() {
         basr::io::check_writable(p)?;
     }
-    let mut job = compile_job(&req)?;
+    let hints = feet_hints(&args);
+    if !global.quiet {
+        for h in &hints {
+            note!("hint: {h}");
+        }
+    }
+    let mut job = compile_job(&req).map_err(|e| {
+        let e = anyhow::Error::from(e);
+        match hints.is_empty() {
+            true => e,
+            false => anyhow::anyhow!("{e:#}\n  hint: {}", hints.join("\n  hint: ")),
+        }
+    })?;
     let out = args
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{}.job.json", stem_of(&job.message))));
+    super::outputs::check("the job", &out, &["json"])?;
     refuse_clashing_paths(&args, &out)?;
     basr::io::check_writable(&out)?;
     // main renames all three into place together when the run succeeds, and
@@ -265,69 +317,127 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
     if !global.quiet {
-        print_summary(&job, &out, &args);
+        // Printed once every output is in place.
+        super::outputs::after_commit(summary_text(&job, &out, &args).join("\n"));
     }
     Ok(Outcome::Success)
 }
 
-fn print_summary(job: &basr::job::Job, out: &Path, args: &Args) {
-    let s = &job.summary;
-    note!(
-        "{}: {:?} in {} station(s), {} stroke(s), {} setpoints every {} s",
-        out.display(),
-        job.message.replace('\n', " / "),
-        job.stations.len(),
-        s.strokes,
-        job.samples.len(),
-        job.control_period_s
-    );
-    note!(
-        "  duration {:.1} s: paint {:.1} s, air {:.1} s; paint sprayed {:.2} L",
-        s.duration_s,
-        s.paint_time_s,
-        s.air_time_s,
-        s.paint_volume_m3 * 1e3
-    );
-    if let Some((none, tilted)) = s.u_overall() {
-        // The stroke whose tilted U strays furthest from even (0.5).
-        let spread = |u: [f64; 2]| (0.5 - u[0]).max(u[1] - 0.5);
-        let worst = s
-            .balance
-            .iter()
-            .max_by(|a, b| spread(a.u_tilted).total_cmp(&spread(b.u_tilted)));
-        note!(
-            "  paint balance U (001 eq. 2.7, 0.5 is even): {:.3}–{:.3} untilted, \
-             {:.3}–{:.3} with {} tilt{}",
-            none[0],
-            none[1],
-            tilted[0],
-            tilted[1],
-            job.layout.tilt_method,
-            worst
-                .map(|w| format!(" (least even: stroke {}, letter {})", w.stroke, w.char))
-                .unwrap_or_default()
-        );
-    }
-    for (i, st) in job.stations.iter().enumerate() {
-        note!(
-            "  station {i}: arm axis at x {:+.3} m, y {:.3} m",
-            st.x_m,
-            st.y_m
-        );
-    }
-    if let Some(c) = &args.csv {
-        note!("  setpoints: {}", c.display());
-    }
-    if let Some(a) = &args.adept {
-        note!("  Adept V+ program: {}", a.display());
-    }
-    if let Some(sig) = &job.signature {
-        note!("  signed by key {}", sig.key_id);
-    }
-    if !s.warnings.is_empty() {
-        note!("  {} warning(s):", s.warnings.len());
-        for w in &s.warnings {
-            note!("  warning: {}", w.message);
+/// Lines compile prints at most without --verbose (issue 15: a crew reads
+/// a short block, not 300 warnings).
+const MAX_LINES: usize = 12;
+/// Stops listed one per line before they are summed up in one.
+const MAX_STOP_LINES: usize = 3;
+
+/// The warnings of one kind on one item, worst first: printed as one line.
+fn grouped(warnings: &[basr::job::Warning]) -> Vec<Vec<&basr::job::Warning>> {
+    // The owner is the message's text before ", stroke" ("letter P of line 1").
+    let owner =
+        |w: &basr::job::Warning| w.message.split(", stroke").next().unwrap_or("").to_string();
+    let mut groups: Vec<Vec<&basr::job::Warning>> = Vec::new();
+    for w in warnings {
+        match groups
+            .iter_mut()
+            .find(|g| g[0].kind == w.kind && g[0].severity == w.severity && owner(g[0]) == owner(w))
+        {
+            Some(g) => g.push(w),
+            None => groups.push(vec![w]),
         }
     }
+    for g in &mut groups {
+        g.sort_by(|a, b| b.factor.unwrap_or(0.0).total_cmp(&a.factor.unwrap_or(0.0)));
+    }
+    groups
+}
+
+/// Compile's human text: what, where the truck stops, time on site, paint,
+/// the verdict and the problems; `verbose` adds every warning.
+fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
+    let s = &job.summary;
+    let stops = job.stations.len();
+    let mut lines = vec![format!(
+        "{}: {:?}, {stops} stop{}, {:.1} min on site, {:.2} L of paint ({} strokes, {} setpoints)",
+        out.display(),
+        job.message.replace('\n', " / "),
+        if stops == 1 { "" } else { "s" },
+        basr::report::time_on_site_s(job) / 60.0,
+        s.paint_volume_m3 * 1e3,
+        s.strokes,
+        job.samples.len()
+    )];
+    let anchor = basr::report::anchor_words(job);
+    if stops <= MAX_STOP_LINES {
+        for (k, st) in job.stations.iter().enumerate() {
+            lines.push(format!(
+                "  stop {}: arm axis {}",
+                k + 1,
+                basr::report::place_words(st, &anchor)
+            ));
+        }
+    } else {
+        lines.push(format!(
+            "  stops 1–{stops}: the first with the arm axis {}; `basr report` lists them all",
+            basr::report::place_words(&job.stations[0], &anchor)
+        ));
+    }
+    let written: Vec<String> = [("setpoints", &args.csv), ("Adept V+ program", &args.adept)]
+        .iter()
+        .filter_map(|(what, p)| p.as_ref().map(|p| format!("{what} {}", p.display())))
+        .collect();
+    if !written.is_empty() {
+        lines.push(format!("  also wrote {}", written.join(", ")));
+    }
+    if let Some(sig) = &job.signature {
+        lines.push(format!("  signed by key {}", sig.key_id));
+    }
+    let count = |sev: &str| s.warnings.iter().filter(|w| w.severity == sev).count();
+    let (problems, notices, infos) = (count("problem"), count("notice"), count("info"));
+    let severities: Vec<&str> = s.warnings.iter().map(|w| w.severity.as_str()).collect();
+    let verdict = basr::report::overall(&severities, false).to_uppercase();
+    let more = if args.verbose || s.warnings.is_empty() {
+        String::new()
+    } else {
+        "; --verbose lists them".to_string()
+    };
+    lines.push(format!(
+        "  verdict: {verdict} ({problems} problem{}, {notices} notice{}, {infos} for \
+         information{more})",
+        if problems == 1 { "" } else { "s" },
+        if notices == 1 { "" } else { "s" },
+    ));
+    let shown: Vec<&basr::job::Warning> = s
+        .warnings
+        .iter()
+        .filter(|w| args.verbose || w.severity == "problem")
+        .collect();
+    if args.verbose {
+        for w in shown {
+            lines.push(format!("  {}: {}", w.severity, w.message));
+        }
+        return lines;
+    }
+    let groups = grouped(&shown.into_iter().cloned().collect::<Vec<_>>())
+        .into_iter()
+        .map(|g| {
+            let others: Vec<String> = g[1..].iter().map(|w| w.stroke.to_string()).collect();
+            let also = match others.len() {
+                0 => String::new(),
+                1 => format!(" (the same on stroke {})", others[0]),
+                _ => format!(" (the same on strokes {})", others.join(", ")),
+            };
+            format!("  problem: {}{also}", g[0].message)
+        })
+        .collect::<Vec<_>>();
+    let room = MAX_LINES.saturating_sub(lines.len());
+    if groups.len() > room {
+        let keep = room.saturating_sub(1);
+        let left = groups.len() - keep;
+        lines.extend(groups.into_iter().take(keep));
+        lines.push(format!(
+            "  … {left} more problem lines: --verbose, or `basr report` for the job sheet"
+        ));
+    } else {
+        lines.extend(groups);
+    }
+    lines
 }

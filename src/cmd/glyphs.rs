@@ -43,6 +43,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(svg) = &args.svg {
         let font = std::path::Path::new(&args.font);
         super::refuse_clashes(&[("--svg", svg)], &[("the font file (--font)", font)])?;
+        super::outputs::check("--svg", svg, &["svg"])?;
     }
     let font = Font::from_name_or_path(&args.font)?;
     if let Some(path) = &args.svg {
@@ -52,7 +53,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if !global.quiet {
             let n = font.glyphs().count();
             let glyphs = if n == 1 { "glyph" } else { "glyphs" };
-            note!("wrote {} ({n} {glyphs})", path.display());
+            super::outputs::after_commit(format!("wrote {} ({n} {glyphs})", path.display()));
         }
     }
     if args.json {

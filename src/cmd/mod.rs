@@ -3,13 +3,17 @@
 
 pub mod check;
 pub mod compile;
+pub mod design;
 pub mod glyphs;
 pub mod keygen;
+pub mod outputs;
 pub mod pose;
 pub mod preview;
+pub mod report;
 pub mod robot;
 pub mod simulate;
 pub mod workspace;
+pub mod workspace_kinds;
 
 use std::path::Path;
 

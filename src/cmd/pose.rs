@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use basr::robot::kinematics::{show_number, wrap_pi};
-use basr::robot::{Joints, NozzlePose, Robot};
+use basr::robot::{AnyRobot, ArmKind, Joints, NozzlePose, Robot};
 use serde_json::json;
 
 use super::{Global, Outcome};
@@ -105,7 +105,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             );
         }
     }
-    let robot = Robot::load_or_default(args.robot.as_deref())?;
+    let robot = match AnyRobot::load_or_default(args.robot.as_deref())? {
+        AnyRobot::Basr(r) => r,
+        other => return run_kind(&args, other.arm(), global),
+    };
     let top = robot.end_effector.tip_height_top_m;
     let lv = &robot.limits.vertical_m;
     let yaw_deg = wrap_deg(args.yaw_deg);
@@ -208,6 +211,96 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         note!("  enc_vertical  {:>10}", e.vertical);
         note!(
             "reach margin: {} m inside the workspace boundary",
+            show_number(margin, 3)
+        );
+    }
+    Ok(Outcome::Success)
+}
+
+/// Encoder column names of a kind's joints: `enc_` and the joint's name
+/// without its unit (`boom_rad` → `enc_boom`).
+pub fn encoder_names(arm: &dyn ArmKind) -> [String; 5] {
+    arm.joint_names().map(|n| {
+        let stem = n
+            .strip_suffix("_rad")
+            .or_else(|| n.strip_suffix("_m"))
+            .unwrap_or(n);
+        format!("enc_{stem}")
+    })
+}
+
+/// `pose` for the telescopic and articulated kinds: the joints of the
+/// solution with the shortest travel from the rest position, their encoder
+/// counts, how many solutions there are and the margin on the road.
+fn run_kind(args: &Args, arm: &dyn ArmKind, global: &Global) -> anyhow::Result<Outcome> {
+    let [lo, hi] = arm.tip_heights_m();
+    let yaw_deg = wrap_deg(args.yaw_deg);
+    let tilt_deg = unsigned_zero(args.tilt_deg);
+    let pose = NozzlePose {
+        x_m: unsigned_zero(args.x),
+        y_m: unsigned_zero(args.y),
+        z_m: unsigned_zero(args.height.unwrap_or(0.5 * (lo + hi))),
+        yaw_rad: yaw_deg.to_radians(),
+        tilt_rad: tilt_deg.to_radians(),
+    };
+    let all = arm.ik(&pose).with_context(|| {
+        format!(
+            "pose {} cannot be reached by {} ({} arm)",
+            pose_text(&pose, yaw_deg, tilt_deg, ", "),
+            arm.name(),
+            arm.kind().name()
+        )
+    })?;
+    let q = arm
+        .nearest(&all, &arm.rest())
+        .context("inverse kinematics returned no solution")?
+        .map(unsigned_zero);
+    let enc = arm.encoders(&q);
+    let names = arm.joint_names();
+    let enc_names = encoder_names(arm);
+    let margin = basr::robot::section::reach_margin(arm, pose.x_m, pose.y_m, pose.z_m);
+    if args.json {
+        let joints: serde_json::Map<_, _> = names
+            .iter()
+            .zip(q)
+            .map(|(n, v)| (n.to_string(), json!(v)))
+            .collect();
+        let encoders: serde_json::Map<_, _> = enc_names
+            .iter()
+            .zip(enc)
+            .map(|(n, v)| (n.clone(), json!(v)))
+            .collect();
+        let out = json!({
+            "kind": arm.kind().name(),
+            "pose": pose,
+            "joints": joints,
+            "encoders": encoders,
+            "solutions": all.len(),
+            "reach_margin_m": unsigned_zero(margin),
+        });
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&out)? + "\n"))?;
+    } else if !global.quiet {
+        note!(
+            "pose (base frame): {}",
+            pose_text(&pose, yaw_deg, tilt_deg, "  ")
+        );
+        note!(
+            "{} ({} arm): {} solutions; the shortest travel from the rest position shown:",
+            arm.name(),
+            arm.kind().name(),
+            all.len()
+        );
+        for ((n, v), (e, c)) in names.iter().zip(q).zip(enc_names.iter().zip(enc)) {
+            let deg = if n.ends_with("_rad") {
+                format!("  ({}°)", show_number(v.to_degrees(), 3))
+            } else {
+                String::new()
+            };
+            note!("  {n:<14}{}{deg}", cell(v, 12, 6));
+            note!("    {e:<16}{c:>10}");
+        }
+        note!(
+            "reach margin: {} m on the road at this height (zero tilt)",
             show_number(margin, 3)
         );
     }

@@ -246,6 +246,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         inputs.push(("the font file (--font)", std::path::Path::new(f)));
     }
     super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
+    super::outputs::check("-o", &out, &["svg"])?;
     basr::io::check_writable(&out)?;
     let job = super::read_job(&args.job, &args.trust)?;
     let origin = args.job.display().to_string();
@@ -352,7 +353,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         if jobs.iter().any(|(_, re)| *re) {
             note!("note: {replanned_note}");
         }
-        note!("wrote {}", out.display());
+        super::outputs::after_commit(format!("wrote {}", out.display()));
     }
     if args.json {
         let svg_name = out.display().to_string();

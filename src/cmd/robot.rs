@@ -27,9 +27,9 @@ pub struct Args {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
-    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     if args.json {
-        let mut v = serde_json::to_value(&robot)?;
+        let mut v = robot.to_json();
         if let Some(o) = v.as_object_mut() {
             o.insert("sha256".into(), robot.sha256().into());
         }
@@ -40,7 +40,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         // `robot --robot f --toml` gives the same text.
         basr::io::print_stdout(&robot.to_toml_text())?;
         if !global.quiet {
-            note!("robot {} sha256 {}", robot.name, robot.sha256());
+            note!("robot {} sha256 {}", robot.arm().name(), robot.sha256());
         }
     }
     Ok(Outcome::Success)

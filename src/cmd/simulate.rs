@@ -76,9 +76,25 @@ pub struct Args {
     #[arg(long)]
     pub json: bool,
 
-    /// RK4 sub-steps per 5 ms control period (default: the model's, 5).
-    #[arg(allow_hyphen_values = true, long, hide = true)]
+    /// RK4 sub-steps per 5 ms control period (default: the model's, 1 ms steps), 1–100.
+    #[arg(allow_hyphen_values = true, long, hide = true,
+          value_parser = clap::value_parser!(u32).range(1..=100))]
     pub substeps: Option<u32>,
+}
+
+/// Before any work, the same content checks as `basr check` (time base,
+/// indices, joint limits, forward kinematics of the columns): a correctly
+/// sealed job can still hold a tilt of 90° or a row at t = 1e9 s.
+/// Exit 2 naming every problem found.
+fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
+    let problems = basr::job::verify::problems(job, &path.display().to_string());
+    if !problems.is_empty() {
+        anyhow::bail!(
+            "the job fails the content checks of `basr check` (compile it again):\n  {}",
+            problems.join("\n  ")
+        );
+    }
+    Ok(())
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
@@ -100,6 +116,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         inputs.push(("the robot file (--robot)", p));
     }
     super::refuse_clashes(&outputs, &inputs)?;
+    if let Some(p) = &args.trace {
+        super::outputs::check("--trace", p, &["csv"])?;
+    }
+    if let Some(p) = &args.svg {
+        super::outputs::check("--svg", p, &["svg"])?;
+    }
     for (_, p) in &outputs {
         basr::io::check_writable(p)?;
     }
@@ -117,6 +139,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             want
         );
     }
+    content_checks(&job, &args.job)?;
     let model = sim::SimModel::from_robot(&job.robot).map_err(|e| {
         anyhow::anyhow!(
             "{}: the robot description cannot be simulated: {e}",
@@ -162,6 +185,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     if let Some(p) = &args.svg {
         basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
+    }
+    for p in args.trace.iter().chain(&args.svg) {
+        super::outputs::after_commit(format!("wrote {}", p.display()));
     }
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;

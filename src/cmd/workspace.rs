@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
-use basr::robot::{Region, Robot};
+use basr::robot::{AnyRobot, Region};
 use serde_json::json;
 use svg::node::element::{Circle, Line, Path, Text};
 use svg::Document;
@@ -55,13 +55,26 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let (Some(svg), Some(robot)) = (&args.svg, &args.robot) {
         super::refuse_clashes(&[("--svg", svg)], &[("the robot file (--robot)", robot)])?;
     }
+    if let Some(svg) = &args.svg {
+        super::outputs::check("--svg", svg, &["svg"])?;
+    }
     for (flag, v) in [("--yaw-deg", args.yaw_deg), ("--tilt-deg", args.tilt_deg)] {
         anyhow::ensure!(
             v.is_finite(),
             "{flag} must be a finite number of degrees, got {v}"
         );
     }
-    let robot = Robot::load_or_default(args.robot.as_deref())?;
+    let robot = match AnyRobot::load_or_default(args.robot.as_deref())? {
+        AnyRobot::Basr(r) => r,
+        other => {
+            anyhow::ensure!(
+                args.yaw_deg == 0.0 && args.tilt_deg == 0.0,
+                "--yaw-deg and --tilt-deg are for BASR; the {} kind's road region is drawn at zero tilt",
+                other.kind().name()
+            );
+            return super::workspace_kinds::run(&other, args.svg.as_deref(), args.json, global);
+        }
+    };
     let yaw_deg = wrap_deg(args.yaw_deg);
     let region = robot
         .region_for(yaw_deg.to_radians(), args.tilt_deg.to_radians())
@@ -76,7 +89,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let doc = draw(&region, &boundaries);
         basr::io::write_atomic(path, doc.to_string().as_bytes())?;
         if !global.quiet {
-            note!("wrote {}", path.display());
+            super::outputs::after_commit(format!("wrote {}", path.display()));
         }
     }
     let inner = region.extension_m[0].hypot(region.a2_m);

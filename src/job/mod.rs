@@ -116,6 +116,11 @@ pub struct FontRef {
 pub struct Warning {
     /// Short machine-readable kind, e.g. `"slowed"`, `"height_clamped"`.
     pub kind: String,
+    /// How much it matters to the crew: `"info"` (nothing to do),
+    /// `"notice"` (paints, slightly off somewhere), `"problem"` (visibly off
+    /// target). Empty in jobs written before severities existed.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub severity: String,
     /// Stroke index, or -1 when not about one stroke.
     pub stroke: i64,
     /// Time in the job where it applies (s), when known.
@@ -139,6 +144,22 @@ pub struct Summary {
     /// "report the U range per stroke before and after tilt"), in stroke order.
     #[serde(default)]
     pub balance: Vec<StrokeBalance>,
+    /// Paint-time bound: the painted area over k (every stroke's area at
+    /// speed × width = k, 001 eq. 2.6), s; 0 in jobs written before it.
+    #[serde(default)]
+    pub lower_bound_s: f64,
+    /// `duration_s / lower_bound_s` (issue 11 aims at ≤ 1.20).
+    #[serde(default)]
+    pub bound_ratio: f64,
+    /// Largest nozzle error while painting in the closed-loop simulation
+    /// compile verified the job with (default controller), m; `None` when
+    /// not verified.
+    #[serde(default)]
+    pub verified_max_error_m: Option<f64>,
+    /// How far the truck drives to each station from the previous one (the
+    /// first from where the job starts), m.
+    #[serde(default)]
+    pub truck_moves_m: Vec<f64>,
 }
 
 /// Range of the seed's tile area ratio U of one stroke (001 eq. 2.7–2.8:
@@ -357,10 +378,19 @@ pub struct Job {
     pub signature: Option<trust::Signature>,
 }
 
-/// Compact JSON of a value, object keys in byte order: the form
-/// `robot_sha256` hashes (see `crate::robot::Robot::sha256`).
-pub fn canonical_json(v: &serde_json::Value) -> Vec<u8> {
-    serde_json::to_vec(v).expect("a serde_json::Value always serialises")
+pub use crate::canon::canonical_json;
+
+impl Paint {
+    /// The job's `paint` object (SPEC §3) for a robot's nozzle and paint.
+    pub fn of(p: &crate::robot::Paint) -> Paint {
+        Paint {
+            fan_angle_rad: p.fan_angle_rad,
+            flow_m3ps: p.flow_m3ps,
+            transfer_efficiency: p.transfer_efficiency,
+            film_m: p.film_m,
+            k_m2ps: p.k_m2ps(),
+        }
+    }
 }
 
 /// The `sha256` of a job document given as a JSON value: the SHA-256 of its
@@ -487,6 +517,10 @@ mod tests {
                 paint_volume_m3: 0.0,
                 warnings: vec![],
                 balance: vec![],
+                lower_bound_s: 0.0,
+                bound_ratio: 0.0,
+                verified_max_error_m: None,
+                truck_moves_m: vec![],
             },
             outputs: BTreeMap::new(),
             sha256: String::new(),

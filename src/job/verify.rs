@@ -223,8 +223,8 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
             c.add(
                 "nozzle",
                 format!(
-                    "{origin}: row {i}: the nozzle columns are {:.4} m, {:.4} m (height) and \
-                     {:.4} rad (yaw) away from where the joints put the nozzle",
+                    "{origin}: row {i}: the nozzle columns x_m/y_m, z_m and yaw_rad are {:.4} m, {:.4} m \
+                     and {:.4} rad away from where the joints put the nozzle",
                     dx,
                     dz,
                     dyaw.abs()
@@ -248,7 +248,7 @@ fn settings(job: &Job, origin: &str, c: &mut Collector) {
             format!("{origin}: the job's robot description: field `robot.{field}`: {what}"),
         );
     }
-    let want = job.robot.paint.job_paint();
+    let want = super::Paint::of(&job.robot.paint);
     let stated = &job.paint;
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-12);
     for (name, a, b) in [

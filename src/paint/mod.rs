@@ -31,3 +31,19 @@ pub enum PaintError {
     #[error("job: {0}")]
     Job(String),
 }
+
+/// A length in millimetres with four significant digits, trailing zeros
+/// dropped (`5`, `2.5`, `0.0125`): a cell of 0.01 mm is not "0.0 mm".
+pub fn mm_text(m: f64) -> String {
+    let mm = m * 1000.0;
+    if !(mm.is_finite() && mm > 0.0) {
+        return format!("{mm}");
+    }
+    let decimals = (3 - mm.log10().floor() as i64).clamp(0, 12) as usize;
+    let s = format!("{mm:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}

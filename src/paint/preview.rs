@@ -283,7 +283,8 @@ fn glyph_rows(m: &Metrics) -> Vec<Vec<String>> {
         .map(|g| {
             vec![
                 g.char.clone(),
-                g.line.to_string(),
+                // People count lines from 1, as compile's warnings do.
+                (g.line + 1).to_string(),
                 format!("{:.3}", g.area_m2),
                 um(g.mean_film_m),
                 pct(g.cv),
@@ -600,7 +601,7 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
             .add(plot::text(
                 sx + 8.0,
                 sy - 6.0,
-                &format!("S{k}"),
+                &format!("stop {}", k + 1),
                 11.0,
                 "start",
             ));

@@ -14,6 +14,7 @@
 
 use rayon::prelude::*;
 
+pub use super::mm_text;
 use super::spray::{Footprint, Pose, SprayModel};
 use super::PaintError;
 
@@ -84,22 +85,6 @@ pub struct Grid {
     pub nx: usize,
     pub ny: usize,
     pub data: Vec<f64>,
-}
-
-/// A length in millimetres with four significant digits, trailing zeros
-/// dropped (`5`, `2.5`, `0.0125`): a cell of 0.01 mm is not "0.0 mm".
-pub fn mm_text(m: f64) -> String {
-    let mm = m * 1000.0;
-    if !(mm.is_finite() && mm > 0.0) {
-        return format!("{mm}");
-    }
-    let decimals = (3 - mm.log10().floor() as i64).clamp(0, 12) as usize;
-    let s = format!("{mm:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
 }
 
 impl Grid {
@@ -285,7 +270,7 @@ pub const FIT_CELLS: usize = 40_000_000;
 /// The finest cell, at least `wanted_m` and in steps of 0.5 mm, whose grid
 /// over `b` holds at most `budget` cells.
 pub fn fitted_cell(b: Bounds, wanted_m: f64, budget: usize) -> f64 {
-    if b.is_empty() || !(wanted_m > 0.0) {
+    if b.is_empty() || wanted_m.is_nan() || wanted_m <= 0.0 {
         return wanted_m;
     }
     // Two cells of margin as deposit adds, plus one for the alignment.

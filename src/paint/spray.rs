@@ -231,7 +231,7 @@ impl Depth {
             return Err(bad(&format!(
                 "the sheet would reach {} mm either side of the fan; a flat fan's sheet \
                  reaches at most {:.0} mm (tophat:{:.0}, gauss:{:.1} at most; default gauss:{})",
-                super::raster::mm_text(depth.reach_m()),
+                super::mm_text(depth.reach_m()),
                 MAX_DEPTH_REACH_M * 1000.0,
                 2.0 * MAX_DEPTH_REACH_M * 1000.0,
                 MAX_DEPTH_REACH_M / 3.0 * 1000.0,

@@ -9,34 +9,13 @@
 use kurbo::{Point, Vec2};
 use serde::{Deserialize, Serialize};
 
+pub use super::rungs::Rung;
 use super::tilt;
 pub use super::tilt::TiltMethod;
 
 /// Rungs narrower than this (m) have no direction of their own: they take
 /// the fan direction of the nearest proper rung (e.g. a pointed stroke end).
 const DEGENERATE_WIDTH_M: f64 = 1e-9;
-
-/// One rung: a segment across the stroke joining opposing edge points (road frame, m).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rung {
-    pub left: Point,
-    pub right: Point,
-}
-
-impl Rung {
-    /// Midpoint: where the untilted nozzle sits (001 §2.4).
-    pub fn mid(&self) -> Point {
-        self.left.midpoint(self.right)
-    }
-    /// Rung length: the stroke width to paint.
-    pub fn width(&self) -> f64 {
-        (self.right - self.left).hypot()
-    }
-    /// Fan direction ψ, eq. 2.4 (atan2, so the full circle).
-    pub fn yaw(&self) -> f64 {
-        (self.right - self.left).atan2()
-    }
-}
 
 /// Nozzle height above the road as a function of stroke width.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -225,7 +204,7 @@ pub enum PlanError {
 /// Heights below the vertical joint's minimum are clamped and listed; the
 /// fan then covers more than the rung and the speed is set by the width it
 /// covers, so the film stays the target. A rung needing more than the
-/// maximum height is an error: split the stroke with [`split_passes`] first.
+/// maximum height is an error: split the stroke with `passes::split_passes` first.
 /// Zero-width rungs (a pointed stroke end) take the fan direction of the
 /// nearest rung with width.
 pub fn knots(
@@ -426,77 +405,9 @@ fn yaws(rungs: &[Rung]) -> Result<Vec<f64>, PlanError> {
         .collect())
 }
 
-/// Splits a stroke too wide for one pass into parallel passes.
-///
-/// The rule: the number of passes n is the same along the whole stroke (so
-/// each pass is one continuous stroke with the gun on from end to end), the
-/// smallest with w_max/n + overlap ≤ `max_width_m`. Every rung is cut at the
-/// fractions j/n of its length; pass j gets the piece from j/n to (j+1)/n,
-/// widened by `overlap_m`/2 into each neighbour (never past the stroke's
-/// edges). With `overlap_m` = 0 the pieces tile every rung exactly: the
-/// passes share their boundaries, cover the stroke and paint no area twice.
-/// A positive overlap trades a band of double film for tolerance to arm
-/// error at the seam. Passes come left to right (pass 0 touches the left
-/// edge); a stroke narrow enough for one pass comes back unchanged.
-pub fn split_passes(
-    rungs: &[Rung],
-    max_width_m: f64,
-    overlap_m: f64,
-) -> Result<Vec<Vec<Rung>>, PlanError> {
-    if !(max_width_m.is_finite()
-        && overlap_m.is_finite()
-        && overlap_m >= 0.0
-        && max_width_m > overlap_m)
-    {
-        return Err(PlanError::BadPassSplit {
-            max_width_m,
-            overlap_m,
-        });
-    }
-    let widest = rungs.iter().map(Rung::width).fold(0.0_f64, f64::max);
-    if !widest.is_finite() {
-        return Err(PlanError::NotFinite {
-            rung: rungs
-                .iter()
-                .position(|r| !r.width().is_finite())
-                .unwrap_or(0),
-        });
-    }
-    if widest <= max_width_m {
-        return Ok(vec![rungs.to_vec()]);
-    }
-    let n = (widest / (max_width_m - overlap_m)).ceil().max(1.0) as usize;
-    Ok((0..n)
-        .map(|j| {
-            rungs
-                .iter()
-                .map(|r| {
-                    let w = r.width();
-                    let ext = if w > 0.0 { 0.5 * overlap_m / w } else { 0.0 };
-                    let f0 = if j == 0 {
-                        0.0
-                    } else {
-                        j as f64 / n as f64 - ext
-                    };
-                    let f1 = if j + 1 == n {
-                        1.0
-                    } else {
-                        (j + 1) as f64 / n as f64 + ext
-                    };
-                    Rung {
-                        left: r.left.lerp(r.right, f0.max(0.0)),
-                        right: r.left.lerp(r.right, f1.min(1.0)),
-                    }
-                })
-                .collect()
-        })
-        .collect())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::*;
     use std::f64::consts::PI;
 
     const FAN: f64 = 63.5 * PI / 180.0; // 001 App. A
@@ -720,45 +631,6 @@ mod tests {
             // β < 0 leans towards −ψ (inwards); the foot moves outwards (+ψ) to keep the fan on the rung.
             let along = (k.tip - k.mid).dot(Vec2::from_angle(k.yaw_rad));
             assert!(along > 0.0);
-        }
-    }
-
-    proptest! {
-        #![proptest_config(ProptestConfig::with_cases(128))]
-        #[test]
-        fn passes_tile_every_rung(
-            widths in proptest::collection::vec(0.01f64..1.5, 2..12),
-            max_w in 0.1f64..0.5, overlap_frac in 0.0f64..0.5, angle in -3.0f64..3.0,
-        ) {
-            let overlap = overlap_frac * max_w;
-            let d = Vec2::from_angle(angle);
-            let rungs: Vec<Rung> = widths.iter().enumerate().map(|(k, &w)| {
-                let left = Point::new(0.03 * k as f64, 0.1);
-                Rung { left, right: left + w * d }
-            }).collect();
-            let passes = split_passes(&rungs, max_w, overlap).unwrap();
-            for p in &passes {
-                prop_assert_eq!(p.len(), rungs.len());
-                for r in p { prop_assert!(r.width() <= max_w + 1e-9); }
-            }
-            for (k, r) in rungs.iter().enumerate() {
-                let w = r.width();
-                // Pieces in order, first at the left end, last at the right end,
-                // consecutive ones overlapping by exactly min(overlap, …) and 0 when overlap = 0.
-                prop_assert!((passes[0][k].left - r.left).hypot() < 1e-12);
-                prop_assert!((passes[passes.len() - 1][k].right - r.right).hypot() < 1e-12);
-                let covered: f64 = passes.iter().map(|p| p[k].width()).sum();
-                let seams = (passes.len() - 1) as f64;
-                prop_assert!(covered >= w - 1e-9);
-                prop_assert!(covered <= w + seams * overlap + 1e-9);
-                for pair in passes.windows(2) {
-                    // Next piece starts no later than this one ends: no gap.
-                    let end = (pair[0][k].right - r.left).hypot();
-                    let start = (pair[1][k].left - r.left).hypot();
-                    prop_assert!(start <= end + 1e-12);
-                    if overlap == 0.0 { prop_assert!((start - end).abs() < 1e-12); }
-                }
-            }
         }
     }
 }

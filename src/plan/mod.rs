@@ -1,9 +1,28 @@
-//! Planning: rungs and knots (001 §2.4), tilt (§2.5), path order, stations
-//! and the time law that turns a path into timed setpoints.
+//! Planning: the compile pipeline (`compile`) and its stages, a module per
+//! value: `inputs` → `placed` strokes → `rungs` → `passes` (knots, 001
+//! §2.4, tilt §2.5) → `stations` → `tours` (`order`) → `joints` (with
+//! `leads`) → `trajectory` (the `timing` time law) → `samples` → `seal`.
+//! `warnings` holds every note a stage makes and renders it.
 
+pub mod chain;
 pub mod compile;
+pub mod error;
+pub mod inputs;
+pub mod joints;
 pub mod knots;
+pub mod leads;
 pub mod order;
+pub mod passes;
+pub mod placed;
+pub mod request;
+pub mod rungs;
+pub mod samples;
+pub mod seal;
 pub mod stations;
+pub mod stow;
 pub mod tilt;
 pub mod timing;
+pub mod tours;
+pub mod trajectory;
+pub mod verify;
+pub mod warnings;

@@ -10,10 +10,12 @@
 //! be symmetric. Everything is deterministic: ties go to the lower index.
 
 /// The two ends of one item, in its natural direction.
+/// `P` is what the cost compares: a road point, or a point with the
+/// fan's direction and tilt there.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Ends {
-    pub start: [f64; 2],
-    pub end: [f64; 2],
+pub struct Ends<P = [f64; 2]> {
+    pub start: P,
+    pub end: P,
 }
 
 /// One step of the tour: which item, and whether it runs end → start.
@@ -24,7 +26,7 @@ pub struct Visit {
 }
 
 impl Visit {
-    fn entry(&self, items: &[Ends]) -> [f64; 2] {
+    fn entry<P: Copy>(&self, items: &[Ends<P>]) -> P {
         let e = items[self.item];
         if self.reversed {
             e.end
@@ -32,7 +34,7 @@ impl Visit {
             e.start
         }
     }
-    fn exit(&self, items: &[Ends]) -> [f64; 2] {
+    fn exit<P: Copy>(&self, items: &[Ends<P>]) -> P {
         let e = items[self.item];
         if self.reversed {
             e.start
@@ -54,11 +56,11 @@ pub fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 /// Total air cost of a tour starting at `from` (not returning).
-pub fn tour_cost(
-    items: &[Ends],
+pub fn tour_cost<P: Copy>(
+    items: &[Ends<P>],
     tour: &[Visit],
-    from: [f64; 2],
-    cost: &impl Fn([f64; 2], [f64; 2]) -> f64,
+    from: P,
+    cost: &impl Fn(P, P) -> f64,
 ) -> f64 {
     let mut at = from;
     let mut total = 0.0;
@@ -88,7 +90,7 @@ struct Table {
 }
 
 impl Table {
-    fn new(items: &[Ends], from: [f64; 2], cost: &impl Fn([f64; 2], [f64; 2]) -> f64) -> Table {
+    fn new<P: Copy>(items: &[Ends<P>], from: P, cost: &impl Fn(P, P) -> f64) -> Table {
         let mut pts = Vec::with_capacity(2 * items.len() + 1);
         pts.push(from);
         for e in items {
@@ -132,11 +134,7 @@ impl Visit {
 
 /// Order and direction of `items` starting from `from`, minimising the summed
 /// `cost` of the air moves between them. `cost` must be symmetric.
-pub fn order(
-    items: &[Ends],
-    from: [f64; 2],
-    cost: impl Fn([f64; 2], [f64; 2]) -> f64,
-) -> Vec<Visit> {
+pub fn order<P: Copy>(items: &[Ends<P>], from: P, cost: impl Fn(P, P) -> f64) -> Vec<Visit> {
     let t = Table::new(items, from, &cost);
     let mut tour = greedy_in(&t, items.len());
     for _ in 0..MAX_SWEEPS {

@@ -12,7 +12,11 @@
 use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 
+pub use super::error::StationError;
 use crate::job::Station;
+use crate::plan::knots::Knot;
+use crate::plan::passes::Passes;
+use crate::robot::Robot;
 
 /// Heading of every station: truck with the traffic, arm behind (SPEC §2).
 pub const HEADING_RAD: f64 = -FRAC_PI_2;
@@ -28,23 +32,6 @@ const Y_STEP_M: f64 = 0.005;
 const MAX_REACH_M: f64 = 10.0;
 /// Step of the search over the station's lateral position (m).
 const X_STEP_M: f64 = 0.05;
-
-/// Errors of station planning.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum StationError {
-    #[error(
-        "stroke {item} cannot be reached from any truck position in the lane: its point \
-         ({x:.3}, {y:.3}) m stays {short_m:.3} m outside the arm's reach (margin {margin_m} m); \
-         use a smaller --letter-height or a robot with more reach"
-    )]
-    Unreachable {
-        item: usize,
-        x: f64,
-        y: f64,
-        short_m: f64,
-        margin_m: f64,
-    },
-}
 
 /// The SPEC §4 reach of the BASR arm, used until a robot description
 /// supplies its own: base rotation window, extension range and offset.
@@ -387,6 +374,43 @@ fn best_pose(
         }
     }
     best
+}
+
+/// Points of one pass offered to the station planner (its knots, thinned).
+const STATION_POINTS_PER_PASS: usize = 32;
+
+/// Stations for the marking's passes: every pass reachable from one truck
+/// position, the truck's axis inside the lane.
+pub fn for_passes(
+    passes: &Passes,
+    lane_width_m: f64,
+    margin_m: f64,
+    robot: &Robot,
+) -> Result<StationPlan, StationError> {
+    let region = robot.region();
+    let reach_pts: Vec<Vec<[f64; 2]>> = passes.passes.iter().map(|p| thin_tips(&p.knots)).collect();
+    plan(&reach_pts, lane_width_m / 2.0, margin_m, |x, y| {
+        region.margin(x, y)
+    })
+}
+
+/// Up to `STATION_POINTS_PER_PASS` knot tips, both ends included.
+fn thin_tips(knots: &[Knot]) -> Vec<[f64; 2]> {
+    let n = knots.len();
+    if n == 0 {
+        return vec![];
+    }
+    let step = n.div_ceil(STATION_POINTS_PER_PASS).max(1);
+    let mut v: Vec<[f64; 2]> = knots
+        .iter()
+        .step_by(step)
+        .map(|k| [k.tip.x, k.tip.y])
+        .collect();
+    let last = knots[n - 1].tip;
+    if (n - 1) % step != 0 {
+        v.push([last.x, last.y]);
+    }
+    v
 }
 
 #[cfg(test)]

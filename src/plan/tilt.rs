@@ -50,7 +50,7 @@ use std::str::FromStr;
 
 use kurbo::Point;
 
-use super::knots::Rung;
+use super::rungs::Rung;
 
 /// Default tilt range: the end-effector's four-bar allows ±15° (SPEC §4, 000 App. B).
 pub const DEFAULT_MAX_TILT_RAD: f64 = 15.0 * std::f64::consts::PI / 180.0;

@@ -261,6 +261,11 @@ const MAX_TICKS: f64 = 100.0;
 
 /// Axes around a frame: a box and metre ticks along the bottom and left.
 pub fn axes(frame: &Frame, tick_m: f64) -> Group {
+    axes_named(frame, tick_m, "x (m)", "y (m)")
+}
+
+/// [`axes`] with other names for the two axes (`r (m)`, `z (m)`).
+pub fn axes_named(frame: &Frame, tick_m: f64, x_name: &str, y_name: &str) -> Group {
     let (x0, y0) = frame.px([frame.road_min[0], frame.road_max[1]]);
     let (x1, y1) = frame.px([frame.road_max[0], frame.road_min[1]]);
     let mut g = Group::new().add(
@@ -299,10 +304,10 @@ pub fn axes(frame: &Frame, tick_m: f64) -> Group {
             .add(line(x0 - 4.0, py, x0, py, palette::INK, 0.8))
             .add(text(x0 - 6.0, py + 3.5, &num(v), 10.0, "end"));
     }
-    g.add(text((x0 + x1) / 2.0, y1 + 28.0, "x (m)", 10.0, "middle"))
+    g.add(text((x0 + x1) / 2.0, y1 + 28.0, x_name, 10.0, "middle"))
         // Turned, so it clears tick labels as wide as "-1.5".
         .add(
-            text(x0 - 34.0, (y0 + y1) / 2.0, "y (m)", 10.0, "middle").set(
+            text(x0 - 34.0, (y0 + y1) / 2.0, y_name, 10.0, "middle").set(
                 "transform",
                 format!("rotate(-90 {} {})", num(x0 - 34.0), num((y0 + y1) / 2.0)),
             ),

@@ -354,7 +354,7 @@ mod tests {
     /// the same arm matrix. The seed gives no link lengths; the flip keeps
     /// θ2 + θ3 + θ4 and moves θ2 by 2·atan2(l3 sin θ3, l2 + l3 cos θ3),
     /// which is 29.3° (50 → 20.7) for l3/l2 = 0.5: the shipped arm's
-    /// 2.6 m and 1.3 m.
+    /// 3.2 m and 1.6 m.
     #[test]
     fn seed_003_example_both_solutions_shorter_chosen() {
         let mut r = shipped();

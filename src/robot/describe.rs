@@ -265,6 +265,7 @@ pub(super) fn parse_as<T: serde::de::DeserializeOwned>(
 /// Semantic checks: (dotted field, what is wrong and how to fix it).
 pub(crate) fn validate(r: &Robot) -> Vec<(String, String)> {
     let mut out: Vec<(String, String)> = r.dynamics.problems();
+    out.extend(super::ranges::problems(r));
     let mut positive = |path: &str, v: f64| {
         // Values are finite here (checked before deserialising).
         if v <= 0.0 {

@@ -22,7 +22,7 @@
 use serde::Serialize;
 
 use super::envelope::real_roots;
-use super::kind::ArmKind;
+use super::kind::{turns_within, ArmKind};
 use super::telescopic::{spray_axis, Telescopic};
 use super::NozzlePose;
 
@@ -114,9 +114,9 @@ pub fn parse_points(text: &str, origin: &str) -> Result<Vec<[f64; 3]>, DesignErr
     Ok(out)
 }
 
-/// Wrist points of one tip point: zero tilt and both tilt limits, the fan
-/// along the arm (tilt leans the spray axis along it).
-fn wrists(t: &Telescopic, p: [f64; 3]) -> Vec<[f64; 2]> {
+/// Wrist points H (base frame) of one tip point: zero tilt and both tilt
+/// limits, the fan along the arm (tilt leans the spray axis along it).
+fn wrists(t: &Telescopic, p: [f64; 3]) -> Vec<[f64; 3]> {
     let yaw = p[1].atan2(p[0]);
     let l = t.arm.nozzle_m;
     let tl = &t.joints.tilt_rad;
@@ -124,36 +124,76 @@ fn wrists(t: &Telescopic, p: [f64; 3]) -> Vec<[f64; 2]> {
         .iter()
         .map(|&beta| {
             let s = spray_axis(yaw, beta);
-            let h = [p[0] - l * s[0], p[1] - l * s[1], p[2] - l * s[2]];
-            [h[0].hypot(h[1]), h[2] - t.arm.base_height_m]
+            [p[0] - l * s[0], p[1] - l * s[1], p[2] - l * s[2]]
         })
         .collect()
 }
 
-/// The stroke whose torus passes through (r, z), nearest `near` (NaN when
-/// no stroke in (0, MAX_BOOM_M·2] does).
-fn stroke_for(t: &Telescopic, rz: [f64; 2], near: f64) -> f64 {
-    let q = t.dh().quartic(rz[0], rz[1]);
-    real_roots(&q, 0.0, 2.0 * MAX_BOOM_M)
-        .into_iter()
-        .min_by(|a, b| (a - near).abs().total_cmp(&(b - near).abs()))
-        .unwrap_or(f64::NAN)
+/// (r, z) of H in 002's frame (z from the first frame's origin).
+fn rz(t: &Telescopic, h: [f64; 3]) -> [f64; 2] {
+    [h[0].hypot(h[1]), h[2] - t.arm.base_height_m]
 }
 
-/// (r, z) moved by `m` along the direction the needed stroke grows.
-fn offset(t: &Telescopic, rz: [f64; 2], near: f64, m: f64) -> [f64; 2] {
-    let h = 1e-6;
-    let g = [
-        stroke_for(t, [rz[0] + h, rz[1]], near) - stroke_for(t, [rz[0] - h, rz[1]], near),
-        stroke_for(t, [rz[0], rz[1] + h], near) - stroke_for(t, [rz[0], rz[1] - h], near),
-    ];
+/// A stroke the arm can use to put H at `h`, and the piece of d around it
+/// where eq. 1 is monotone (so Newton there cannot slide to another root).
+#[derive(Clone, Copy, Debug)]
+struct Usable {
+    h: [f64; 3],
+    stroke: f64,
+    piece: [f64; 2],
+}
+
+/// The root of eq. 1 at `h` (a torus through H) whose θ1 and θ2 have turns
+/// inside the template's limits, nearest `near`: eq. 1 also holds for the
+/// boom reaching over the base axis (θ1 + π), outside the base window.
+fn usable_stroke(t: &Telescopic, h: [f64; 3], near: f64) -> Option<Usable> {
+    let [r, z] = rz(t, h);
+    let q = t.dh().quartic(r, z);
+    let top = 2.0 * MAX_BOOM_M;
+    let j = &t.joints;
+    let stroke = real_roots(&q, 0.0, top)
+        .into_iter()
+        .filter(|&d| {
+            t.arm_at_stroke(h, d).is_some_and(|[t1, t2, _]| {
+                !turns_within(t1, &j.base_rot_rad.limit()).is_empty()
+                    && !turns_within(t2, &j.boom_rad.limit()).is_empty()
+            })
+        })
+        .min_by(|a, b| (a - near).abs().total_cmp(&(b - near).abs()))?;
+    let dq: Vec<f64> = (1..5).map(|i| q[i] * i as f64).collect();
+    let crit = real_roots(&dq, 0.0, top);
+    let lo = crit
+        .iter()
+        .copied()
+        .filter(|&c| c < stroke)
+        .fold(0.0, f64::max);
+    let hi = crit
+        .iter()
+        .copied()
+        .filter(|&c| c > stroke)
+        .fold(top, f64::min);
+    Some(Usable {
+        h,
+        stroke,
+        piece: [lo, hi],
+    })
+}
+
+/// H moved by `m` in its (r, z) half-plane along the direction its usable
+/// stroke grows fastest (None where no stroke is usable nearby).
+fn offset(t: &Telescopic, h: [f64; 3], near: f64, m: f64) -> Option<Usable> {
+    let [r, z] = rz(t, h);
+    let az = h[1].atan2(h[0]);
+    let at = |r: f64, z: f64| [r * az.cos(), r * az.sin(), z + t.arm.base_height_m];
+    let s = |r: f64, z: f64| usable_stroke(t, at(r, z), near).map(|u| u.stroke);
+    let e = 1e-6;
+    let g = [s(r + e, z)? - s(r - e, z)?, s(r, z + e)? - s(r, z - e)?];
     let n = g[0].hypot(g[1]);
     if !(n.is_finite() && n > 0.0) {
-        return rz;
+        return usable_stroke(t, h, near);
     }
-    [rz[0] + m * g[0] / n, rz[1] + m * g[1] / n]
+    usable_stroke(t, at(r + m * g[0] / n, z + m * g[1] / n), near)
 }
-
 /// Solve J·x = b (Gaussian elimination, partial pivoting). Written here:
 /// the system is 2×2; a linear-algebra crate would add more than it saves.
 fn solve(mut j: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
@@ -167,8 +207,9 @@ fn solve(mut j: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
         b.swap(c, p);
         for r in c + 1..n {
             let f = j[r][c] / j[c][c];
-            for k in c..n {
-                j[r][k] -= f * j[c][k];
+            let pivot = j[c].clone();
+            for (v, p) in j[r][c..].iter_mut().zip(&pivot[c..]) {
+                *v -= f * p;
             }
             b[r] -= f * b[c];
         }
@@ -209,15 +250,22 @@ pub fn design(
     margin_m: f64,
 ) -> Result<Design, DesignError> {
     refuse_impossible(template, points)?;
-    let (near_h, far_h) = extreme_wrists(template, points, margin_m)?;
+    let (near, far) = extreme_wrists(template, points, margin_m)?;
     // F(x) for x = (d_min, d_max): eq. 1 at the margin-moved wrist points,
     // scaled by A² so the residual is dimensionless.
     let k = template.dh();
+    let (near_rz, far_rz) = (rz(template, near.h), rz(template, far.h));
     let f = |x: &[f64]| -> Vec<f64> {
-        let g = |rz: [f64; 2], d: f64| k.torus(rz[0], rz[1], d) / k.coefficients(d).a.powi(2);
-        vec![g(near_h, x[0]), g(far_h, x[1])]
+        let g = |p: [f64; 2], d: f64| k.torus(p[0], p[1], d) / k.coefficients(d).a.powi(2);
+        vec![g(near_rz, x[0]), g(far_rz, x[1])]
     };
-    let mut x = vec![template.joints.stroke_m.min, template.joints.stroke_m.max];
+    let pieces = [near.piece, far.piece];
+    // Start from the template's strokes, inside the monotone pieces.
+    let inside = |v: f64, [lo, hi]: [f64; 2]| v.clamp(lo + 0.05 * (hi - lo), hi - 0.05 * (hi - lo));
+    let mut x = vec![
+        inside(template.joints.stroke_m.min, pieces[0]),
+        inside(template.joints.stroke_m.max, pieces[1]),
+    ];
     let mut table = Vec::new();
     for it in 0..=MAX_ITERATIONS {
         let fx = f(&x);
@@ -248,11 +296,24 @@ pub fn design(
         let Some(step) = solve(jac, fx.iter().map(|v| -v).collect()) else {
             break;
         };
-        // Damped: halve the step until the residual falls.
+        // Damped, and kept inside each unknown's monotone piece (a step
+        // that leaves it goes halfway to the piece's end instead).
         let mut t = 1.0;
         let mut next = x.clone();
         for _ in 0..30 {
-            next = x.iter().zip(&step).map(|(a, s)| a + t * s).collect();
+            next = (0..2)
+                .map(|i| {
+                    let v = x[i] + t * step[i];
+                    let [lo, hi] = pieces[i];
+                    if v <= lo {
+                        0.5 * (x[i] + lo)
+                    } else if v >= hi {
+                        0.5 * (x[i] + hi)
+                    } else {
+                        v
+                    }
+                })
+                .collect();
             let r = f(&next).iter().fold(0.0f64, |a, v| a.max(v.abs()));
             if r < res {
                 break;
@@ -305,32 +366,32 @@ fn extreme_wrists(
     t: &Telescopic,
     points: &[[f64; 3]],
     margin: f64,
-) -> Result<([f64; 2], [f64; 2]), DesignError> {
+) -> Result<(Usable, Usable), DesignError> {
     let mid = 0.5 * (t.joints.stroke_m.min + t.joints.stroke_m.max);
-    let mut near: Option<([f64; 2], f64)> = None;
-    let mut far: Option<([f64; 2], f64)> = None;
+    let mut near: Option<Usable> = None;
+    let mut far: Option<Usable> = None;
     for (i, p) in points.iter().enumerate() {
         for h in wrists(t, *p) {
-            let lo = offset(t, h, mid, -margin);
-            let hi = offset(t, h, mid, margin);
-            let (s_lo, s_hi) = (stroke_for(t, lo, mid), stroke_for(t, hi, mid));
-            if !(s_lo.is_finite() && s_hi.is_finite()) {
+            let (Some(lo), Some(hi)) = (offset(t, h, mid, -margin), offset(t, h, mid, margin))
+            else {
                 return Err(DesignError::Unreachable(format!(
-                    "points_m[{i}]: no stroke up to {MAX_BOOM_M} m puts the wrist there (the boom's \
-                     axis offsets a2, h2 keep it off that point)"
+                    "points_m[{i}]: no stroke up to {} m puts the wrist there with the base and boom \
+                     joints in their ranges",
+                    2.0 * MAX_BOOM_M
                 )));
+            };
+            if near.is_none_or(|n| lo.stroke < n.stroke) {
+                near = Some(lo);
             }
-            if near.is_none_or(|(_, s)| s_lo < s) {
-                near = Some((lo, s_lo));
-            }
-            if far.is_none_or(|(_, s)| s_hi > s) {
-                far = Some((hi, s_hi));
+            if far.is_none_or(|f| hi.stroke > f.stroke) {
+                far = Some(hi);
             }
         }
     }
-    let (Some((nh, ns)), Some((fh, fs))) = (near, far) else {
+    let (Some(n), Some(f)) = (near, far) else {
         return Err(DesignError::Points("no points".into()));
     };
+    let (ns, fs) = (n.stroke, f.stroke);
     if fs > MAX_BOOM_M {
         return Err(DesignError::Unreachable(format!(
             "the farthest point needs a {fs:.2} m boom; a road truck carries at most {MAX_BOOM_M} m (assumed)"
@@ -343,7 +404,7 @@ fn extreme_wrists(
             fs / ns
         )));
     }
-    Ok((nh, fh))
+    Ok((n, f))
 }
 
 /// The designed robot, checked point by point with inverse kinematics.

@@ -17,6 +17,7 @@ pub mod telescopic;
 pub mod workspace;
 
 mod describe;
+mod ranges;
 
 pub use describe::{check_source, RobotError};
 pub use dynamics::Dynamics;
@@ -125,17 +126,6 @@ impl Paint {
         match (self.height_law_c0_m, self.height_law_c1) {
             (Some(c0), Some(c1)) => c0 + c1 * width_m,
             _ => 0.5 * width_m / (0.5 * self.fan_angle_rad).tan(),
-        }
-    }
-
-    /// The job's `paint` object (SPEC §3).
-    pub fn job_paint(&self) -> crate::job::Paint {
-        crate::job::Paint {
-            fan_angle_rad: self.fan_angle_rad,
-            flow_m3ps: self.flow_m3ps,
-            transfer_efficiency: self.transfer_efficiency,
-            film_m: self.film_m,
-            k_m2ps: self.k_m2ps(),
         }
     }
 }
@@ -309,10 +299,10 @@ impl Robot {
         }
     }
 
-    /// SHA-256 of the description's canonical form (see `crate::job::canonical_json`).
+    /// SHA-256 of the description's canonical form (see `crate::canon::canonical_json`).
     pub fn sha256(&self) -> String {
         let v = serde_json::to_value(self).expect("robot serialises");
-        crate::io::sha256_hex(&crate::job::canonical_json(&v))
+        crate::io::sha256_hex(&crate::canon::canonical_json(&v))
     }
 
     /// What is wrong with a description already read (a job's embedded
@@ -387,9 +377,9 @@ mod tests {
         // values toml spells in unusual ways (exponents, -0.0, optional keys).
         let mut c = Robot::basr();
         c.name = "custom \"arm\"".into();
-        c.end_effector.mass_kg = 0.1 + 0.2;
+        c.end_effector.mass_kg = 35.0 + 0.1 + 0.2;
         c.dynamics.leakage_m3_per_s_pa = 1.234e-17;
-        c.hydraulics.supply_pa = 2.5e300;
+        c.hydraulics.supply_pa = 2.5e7 + 1.0 / 3.0; // within its range (ranges.rs)
         c.arm.a2_m = -0.0;
         c.paint.height_law_c0_m = Some(0.02);
         c.paint.height_law_c1 = Some(0.7);

@@ -248,3 +248,58 @@ pub fn reach_margin(arm: &dyn ArmKind, x: f64, y: f64, z: f64) -> f64 {
     }
     best
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::kind::{ARTICULATED_TOML, TELESCOPIC_TOML};
+    use crate::robot::AnyRobot;
+
+    /// The shipped kinds are sized for a 12 ft lane and an 8 ft letter: the
+    /// tip reaches the whole lane width over the depth their descriptions
+    /// claim, at both ends of the painting heights.
+    #[test]
+    fn shipped_kinds_cover_a_lane_across_and_a_letter_along() {
+        for (text, y_range) in [
+            (TELESCOPIC_TOML, [1.5, 4.3]),
+            (ARTICULATED_TOML, [1.8, 4.3]),
+        ] {
+            let r = AnyRobot::from_toml_str(text, "shipped").unwrap();
+            let arm = r.arm();
+            // More than an 8 ft letter along the lane.
+            assert!(y_range[1] - y_range[0] > 2.44);
+            for z in arm.tip_heights_m() {
+                for i in 0..=12 {
+                    let x = -1.83 + 3.66 * i as f64 / 12.0;
+                    for k in 0..=10 {
+                        let y = y_range[0] + (y_range[1] - y_range[0]) * k as f64 / 10.0;
+                        assert!(reaches(arm, x, y, z), "{}: ({x}, {y}, {z})", arm.name());
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn voids_and_rings_are_found_on_a_drawn_section() {
+        // An annulus off the axis: a ring with one void.
+        let mut pts = Vec::new();
+        for i in 0..2000 {
+            let a = i as f64 * std::f64::consts::TAU / 2000.0;
+            for k in 0..20 {
+                let rho = 0.5 + 0.01 * k as f64;
+                pts.push([2.0 + rho * a.cos(), rho * a.sin()]);
+            }
+        }
+        let s = Section::from_points(&pts, 0.02);
+        assert!(s.ring);
+        assert_eq!(s.voids, 1);
+        // A disc touching the axis: neither.
+        let disc: Vec<[f64; 2]> = (0..200)
+            .flat_map(|i| (0..200).map(move |j| [i as f64 * 0.01, j as f64 * 0.01]))
+            .collect();
+        let s = Section::from_points(&disc, 0.02);
+        assert!(!s.ring);
+        assert_eq!(s.voids, 0);
+    }
+}

@@ -115,12 +115,9 @@ impl Telescopic {
     /// Every (θ1, θ2, d) that puts H at `h` with d in range (θ turns not
     /// yet chosen); the nearest stroke outside the range when none.
     pub fn wrist_ik(&self, h: [f64; 3]) -> Result<Vec<[f64; 3]>, f64> {
-        let k = self.dh();
-        let (s1, c1) = k.alpha1.sin_cos();
-        let s2 = k.alpha2.sin();
         let r = h[0].hypot(h[1]);
         let z = h[2] - self.arm.base_height_m;
-        let q = k.quartic(r, z);
+        let q = self.dh().quartic(r, z);
         let l = &self.joints.stroke_m;
         let span = (l.max - l.min).max(1.0);
         let roots = real_roots(&q, l.min - 20.0 * span, l.max + 20.0 * span);
@@ -149,24 +146,33 @@ impl Telescopic {
                     .unwrap_or(l.max)
             }));
         }
-        let mut out = Vec::new();
-        for d in inside {
-            let (r2, z2) = k.r2_z2(d);
-            let w = k.h2 + z2;
-            if r2 <= 0.0 {
-                continue;
-            }
-            // 002 eq. 1: r² + z² − A = 2·a1·r2·cos φ; eq. 4: z = r2·sin φ·sin α1 + w·cos α1.
-            let cos = (r * r + z * z - k.coefficients(d).a) / (2.0 * k.a1 * r2);
-            let sin = (z - w * c1) / (r2 * s1);
-            let phi = sin.atan2(cos);
-            let theta2 = phi + (d * s2).atan2(k.a2);
-            // H across the base axis in the θ1 = 0 frame.
-            let u = [k.a1 + r2 * phi.cos(), r2 * phi.sin() * c1 - w * s1];
-            let theta1 = wrap_pi(h[1].atan2(h[0]) - u[1].atan2(u[0]));
-            out.push([theta1, theta2, d]);
+        Ok(inside
+            .into_iter()
+            .filter_map(|d| self.arm_at_stroke(h, d))
+            .collect())
+    }
+
+    /// (θ1, θ2, d) putting H at `h` with stroke `d`, a root of eq. 1 at H
+    /// (θ1 wrapped to (−π, π]); None where the stroke's circle degenerates.
+    pub fn arm_at_stroke(&self, h: [f64; 3], d: f64) -> Option<[f64; 3]> {
+        let k = self.dh();
+        let (s1, c1) = k.alpha1.sin_cos();
+        let r = h[0].hypot(h[1]);
+        let z = h[2] - self.arm.base_height_m;
+        let (r2, z2) = k.r2_z2(d);
+        let w = k.h2 + z2;
+        if r2 <= 0.0 {
+            return None;
         }
-        Ok(out)
+        // 002 eq. 1: r² + z² − A = 2·a1·r2·cos φ; eq. 4: z = r2·sin φ·sin α1 + w·cos α1.
+        let cos = (r * r + z * z - k.coefficients(d).a) / (2.0 * k.a1 * r2);
+        let sin = (z - w * c1) / (r2 * s1);
+        let phi = sin.atan2(cos);
+        let theta2 = phi + (d * k.alpha2.sin()).atan2(k.a2);
+        // H across the base axis in the θ1 = 0 frame.
+        let u = [k.a1 + r2 * phi.cos(), r2 * phi.sin() * c1 - w * s1];
+        let theta1 = wrap_pi(h[1].atan2(h[0]) - u[1].atan2(u[0]));
+        Some([theta1, theta2, d])
     }
 
     pub fn problems(&self) -> Vec<(String, String)> {

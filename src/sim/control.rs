@@ -114,8 +114,11 @@ pub mod gains {
     pub const FILTER_THETA: f64 = 0.8;
     /// Extension PID (per metre of R error → valve command), as the seed's
     /// velocity form: proportional, integral per second, derivative·s.
-    pub const EXT_KP: f64 = 8.0;
-    pub const EXT_KI: f64 = 16.0;
+    /// Lowered from 8 and 16 with the hoses and boom modes of the plant
+    /// (issue 12): at full reach the stiffer loop rang the 12 Hz link and
+    /// 9 Hz linkage modes (STOP at 3.6 m letters: 7.8 → 4.8 mm; STOP 3.1 mm).
+    pub const EXT_KP: f64 = 4.0;
+    pub const EXT_KI: f64 = 8.0;
     pub const EXT_KD: f64 = 0.0;
     /// Dynamic pressure feedback on the cylinder (valve command per newton of
     /// high-passed load force): the hydraulic resonance of the arm's mass on
@@ -135,6 +138,10 @@ pub mod gains {
     /// larger gains go unstable at full reach; these leave errors of tens of
     /// millimetres — "stable, but lower accuracy" as 000 section III says.
     /// Pressure feedback on the motor made it worse at every gain tried.
+    /// With the counterbalance valves' damping (issue 12) the loop gains
+    /// stay; a grid of Kp 0.02–0.1, Ki 0.02–0.3, Kd 0–0.02 on STOP found no
+    /// better point than ~105 mm (the oil column's wind-up under the
+    /// acceleration torque, now fed forward, was 180 mm of it).
     pub const ROT_PID_KP: f64 = 0.02;
     pub const ROT_PID_KI: f64 = 0.02;
     pub const ROT_PID_KD: f64 = 0.0;
@@ -146,17 +153,22 @@ pub mod gains {
     pub const ACC_KI: f64 = 100.0;
     /// SJCT inertia estimate Ā = m·R (seed `A1 = m*q2_a`), kg·m. Stable
     /// while 0 < Ā/A11 < 2 over the whole reach (1.5 retracted, 0.5 at full
-    /// reach). 150 left STOP at 6.41 mm; 250 gives 5.69 mm.
-    pub const SJCT_M: f64 = 250.0;
+    /// reach). 150 left STOP at 6.41 mm; 250 gave 5.69 mm before the plant
+    /// had hoses and boom modes; with them 250 saturates the motor valve for
+    /// 14 s at full reach, 180 (with k_F 45) gives STOP 3.1 mm, 4.8 mm at
+    /// full reach.
+    pub const SJCT_M: f64 = 180.0;
     /// Low-pass of the time-delay estimate (Hz): quantisation noise of the
     /// encoder's second difference drops to ≈0.01 rad/s² (20 Hz tripled
     /// the STOP error).
     pub const TDE_LP_HZ: f64 = 10.0;
-    /// Sohl–Bobrow force-error gain k_F (1/s).
-    pub const KF: f64 = 60.0;
-    /// SCCT Cartesian gains (section II eq. 24).
-    pub const SCCT_KP: f64 = 160.0;
-    pub const SCCT_KD: f64 = 25.0;
+    /// Sohl–Bobrow force-error gain k_F (1/s); 60 before the hoses made the
+    /// pressure loop see their 180 Hz line mode (30–120 tried; 45 best).
+    pub const KF: f64 = 45.0;
+    /// SCCT Cartesian gains (section II eq. 24): 2 Hz critically damped was
+    /// 46 mm on STOP; 1.6 Hz (100, 20) 15 mm.
+    pub const SCCT_KP: f64 = 100.0;
+    pub const SCCT_KD: f64 = 20.0;
 }
 
 /// Fading-memory (discounted least squares) second-order polynomial filter:
@@ -384,6 +396,8 @@ pub struct PidPid {
     est: Estimates,
     ext: ExtensionLoop,
     rot: IncrementalPid,
+    /// Oil-column wind-up J·θ̈_d/K_h of the last tick (rad).
+    windup_prev: Option<f64>,
 }
 
 impl PidPid {
@@ -399,7 +413,21 @@ impl PidPid {
                 model.control.period_s,
                 model.motor.command_limit,
             ),
+            windup_prev: None,
         }
+    }
+
+    /// How far the motor's oil column must be compressed to give the planned
+    /// acceleration torque, as an angle: J(x)·θ̈_d / K_h with the column's
+    /// stiffness K_h = E·D²·(1/V_A + 1/V_B) (000 eq. 27's M / D, the seed's
+    /// 6.1782·(1/vA + 1/vB)).
+    fn windup(&self, m: &Measurement) -> f64 {
+        let md = &self.model;
+        let a11 = mass_matrix(md, md.arm.x_of_r(m.extension_m)).a11;
+        let (va, vb) = volumes(&md.motor, m.base_rot_rad);
+        let d = md.motor.area;
+        let k = md.hydraulics.bulk_modulus_pa * d * d * (1.0 / va + 1.0 / vb);
+        a11 * m.reference.base_rot[2] / k
     }
 }
 
@@ -411,10 +439,19 @@ impl Controller for PidPid {
             return off(&self.model);
         }
         let e = m.reference.base_rot[0] - m.base_rot_rad;
+        // The feed-forward flow moves the motor at the planned speed and
+        // compresses its oil column as the planned acceleration needs: a
+        // flow for speed alone leaves the arm behind by J·θ̈/K_h (0.036 rad,
+        // 180 mm at full reach, at 0.3 rad/s²) for the slow loop to recover.
+        let w = self.windup(m);
+        let wind_rate = self
+            .windup_prev
+            .map_or(0.0, |p| (w - p) / self.model.control.period_s);
+        self.windup_prev = Some(w);
         let ff = flow_feedforward(
             &self.model,
             &self.model.motor,
-            m.reference.base_rot[1],
+            m.reference.base_rot[1] + wind_rate,
             m.motor_pa[0],
             m.motor_pa[1],
         );
@@ -440,30 +477,6 @@ impl AccelLaw {
             + gains::ACC_KV * (reference[1] - qd)
             + gains::ACC_KP * e
             + gains::ACC_KI * self.integral
-    }
-}
-
-/// Ring buffer of the last few values (for the time-delay estimate).
-#[derive(Clone, Debug)]
-struct Delay {
-    buf: Vec<f64>,
-    at: usize,
-}
-
-impl Delay {
-    fn new(n: usize, v: f64) -> Delay {
-        Delay {
-            buf: vec![v; n.max(1)],
-            at: 0,
-        }
-    }
-    /// Value pushed n steps ago.
-    fn oldest(&self) -> f64 {
-        self.buf[self.at]
-    }
-    fn push(&mut self, v: f64) {
-        self.buf[self.at] = v;
-        self.at = (self.at + 1) % self.buf.len();
     }
 }
 
@@ -588,6 +601,9 @@ impl TimeDelayEstimate {
 /// `/dynInv`: θ1 torque from the full model inertia and Coriolis term
 /// (no disturbance estimate), Sohl–Bobrow to the valve; PID on R.
 pub struct DynInvPid {
+    /// The inertia the controller's model gives, identified at mid reach:
+    /// (J there, R there).
+    nominal: (f64, f64),
     model: SimModel,
     est: Estimates,
     ext: ExtensionLoop,
@@ -597,7 +613,19 @@ pub struct DynInvPid {
 
 impl DynInvPid {
     pub fn new(model: &SimModel, m0: &Measurement) -> DynInvPid {
+        // What a real identification gives (000 §III's dynamic inversion uses
+        // a model, the seed does not say which): swing tests at mid reach
+        // measure J there, and the model scales it as a point mass at the
+        // nozzle, J·(R/R_mid)². That is exact at mid reach and over-states J
+        // towards full reach (the links' inertia grows slower than R², the
+        // turntable's not at all), so the inversion's loop gain grows with
+        // the reach until the oil column's resonance is no longer damped.
+        let r_mid = model
+            .arm
+            .r_of_x(model.arm.x_min_m + 0.5 * model.arm.stroke_m);
+        let j_mid = mass_matrix(model, model.arm.x_of_r(r_mid)).a11;
         DynInvPid {
+            nominal: (j_mid, r_mid),
             model: model.clone(),
             est: Estimates::new(model, m0),
             ext: ExtensionLoop::new(model, m0),
@@ -617,11 +645,11 @@ impl Controller for DynInvPid {
             return off(md);
         }
         let u = self.acc.step(&m.reference.base_rot, q, qd, t);
-        let x = md.arm.x_of_r(r);
-        let mm = mass_matrix(md, x);
-        let tau_d = mm.a11 * u
-            + mm.a11_dx * (rd / md.arm.k) * qd
-            + md.motor.friction.force(m.reference.base_rot[1]);
+        // the identified model (see `DynInvPid::nominal`): J(R) = J_mid·(R/R_mid)^n
+        let (j_mid, r_mid) = self.nominal;
+        let a11 = j_mid * (r / r_mid) * (r / r_mid);
+        let a11_dr = 2.0 * a11 / r;
+        let tau_d = a11 * u + a11_dr * rd * qd + md.motor.friction.force(m.reference.base_rot[1]);
         let tau_dot = (tau_d - self.tau_prev) / t;
         self.tau_prev = tau_d;
         let u_motor = sohl_bobrow(
@@ -649,25 +677,31 @@ pub struct Scct {
     model: SimModel,
     est: Estimates,
     a_bar: [f64; 2],
-    tau_hist: [Delay; 2],
-    qdd_hist: [Delay; 2],
+    tde: [TimeDelayEstimate; 2],
     tau_prev: [f64; 2],
 }
 
 impl Scct {
     pub fn new(model: &SimModel, m0: &Measurement) -> Scct {
-        let n = lambda_steps(model);
+        // Ā: "only knowledge of the bounds of the inertia matrix" (000 §II
+        // 5.1): the base's A at mid reach, the extension's at full
+        // retraction (its A grows without bound as the pantograph opens).
+        // The seed's code pairs Ā·q̈ with the *desired* τ of λ ago, which
+        // diverged on every job (000 §III: "very unstable … should not be
+        // used without changes"); changed as in SJCT to the measured
+        // efforts, with the low-pass of the delay estimate.
+        let lo = mass_matrix(model, model.arm.x_min_m);
         let mid = mass_matrix(model, model.arm.x_min_m + 0.5 * model.arm.stroke_m);
-        let tau0 = [
-            model.motor.area * (m0.motor_pa[0] - m0.motor_pa[1]),
-            model.cylinder.area * (m0.cylinder_pa[0] - model.cylinder.alpha * m0.cylinder_pa[1]),
-        ];
+        let tau0 = [motor_torque(model, m0), cyl_force(model, m0)];
+        let x0 = model.arm.x_of_r(m0.extension_m);
         Scct {
             model: model.clone(),
             est: Estimates::new(model, m0),
-            a_bar: [mid.a11, mid.a22],
-            tau_hist: [Delay::new(n, tau0[0]), Delay::new(n, tau0[1])],
-            qdd_hist: [Delay::new(n, 0.0), Delay::new(n, 0.0)],
+            a_bar: [mid.a11, lo.a22],
+            tde: [
+                TimeDelayEstimate::new(model, m0.base_rot_rad, tau0[0]),
+                TimeDelayEstimate::new(model, x0, tau0[1]),
+            ],
             tau_prev: tau0,
         }
     }
@@ -711,14 +745,18 @@ impl Controller for Scct {
         } else {
             [0.0, 0.0]
         };
-        let qdd = [thdd, rdd / k];
-        let mut tau = [0.0; 2];
-        for i in 0..2 {
-            tau[i] = self.a_bar[i] * u[i] + self.tau_hist[i].oldest()
-                - self.a_bar[i] * self.qdd_hist[i].oldest();
-            self.tau_hist[i].push(tau[i]);
-            self.qdd_hist[i].push(qdd[i]);
-        }
+        // η̂ = τ(t−λ) − Ā·q̈(t−λ) (eq. 23) with the measured actuator
+        // efforts, as SJCT (the seed's desired τ lags the pressure loop)
+        let eta = [
+            self.tde[0].step(m.base_rot_rad, motor_torque(md, m), self.a_bar[0]),
+            self.tde[1].step(
+                md.arm.x_of_r(m.extension_m),
+                cyl_force(md, m),
+                self.a_bar[1],
+            ),
+        ];
+        let _ = (thdd, rdd);
+        let tau = [self.a_bar[0] * u[0] + eta[0], self.a_bar[1] * u[1] + eta[1]];
         let tdot = [
             (tau[0] - self.tau_prev[0]) / t,
             (tau[1] - self.tau_prev[1]) / t,

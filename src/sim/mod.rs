@@ -4,11 +4,13 @@
 //! the controller of 000 section III into the plant of section II, every
 //! 5 ms with RK4 sub-steps, and measures where the nozzle actually went.
 
+pub mod circuit;
 pub mod control;
 pub mod ee;
 pub mod model;
 pub mod plant;
 pub mod report;
+pub mod servo;
 pub mod svg;
 pub mod synthetic;
 
@@ -343,7 +345,12 @@ pub fn simulate(
             opts.tolerance_m
         )));
     }
-    let substeps = opts.substeps.unwrap_or(model.substeps).max(1);
+    if let Some(n) = opts.substeps.filter(|n| !(1..=100).contains(n)) {
+        return Err(SimError::Option(format!(
+            "substeps = {n} must be 1–100 RK4 steps per control period"
+        )));
+    }
+    let substeps = opts.substeps.unwrap_or(model.substeps);
     let s = &job.samples;
     let n = s.len();
     let dt_job = job.control_period_s;
@@ -457,6 +464,7 @@ pub fn simulate(
     let mut painting_ticks: u64 = 0;
     let r_max = model.arm.r_of_x(model.arm.x_max_m());
 
+    let mut diverged: Option<f64> = None;
     for k in 0..ticks {
         let t = k as f64 * period;
         let row = ((t / dt_job + 1e-9).floor() as usize).min(n - 1);
@@ -476,7 +484,11 @@ pub fn simulate(
             ee_yaw_rad: yaw.pos,
             tilt_rad: tilt,
         });
-        let act = [pose.x_m + state[plant::DX], pose.y_m + state[plant::DY]];
+        let bend = plant::boom_offset(&state);
+        let act = [
+            pose.x_m + state[plant::DX] + bend[0],
+            pose.y_m + state[plant::DY] + bend[1],
+        ];
         let des = reference.nozzle[0];
         let (ex, ey) = (act[0] - des[0], act[1] - des[1]);
         let err = ex.hypot(ey);
@@ -600,7 +612,7 @@ pub fn simulate(
                 x_m: a_road[0],
                 y_m: a_road[1],
                 error_m: err,
-                deflection_m: state[plant::DX].hypot(state[plant::DY]),
+                deflection_m: (state[plant::DX] + bend[0]).hypot(state[plant::DY] + bend[1]),
                 base_rot_desired_rad: reference.base_rot[0],
                 base_rot_rad: th,
                 extension_desired_m: reference.extension[0],
@@ -645,9 +657,9 @@ pub fn simulate(
             sat.vertical_s += period;
         }
         if state.iter().any(|v| !v.is_finite()) {
-            return Err(SimError::Model(format!(
-                "the state became non-finite at t = {t:.3} s (an unstable parameter set)"
-            )));
+            // an unstable loop: a failed run, judged on what it did so far
+            diverged = Some(t);
+            break;
         }
         if k % 2000 == 0 {
             progress(k, ticks);
@@ -693,6 +705,13 @@ pub fn simulate(
 
     let verdict_stats = if paint.n > 0 { &paint } else { &all };
     let mut reasons = Vec::new();
+    if let Some(t) = diverged {
+        reasons.push(format!(
+            "the closed loop diverged (the arm's state grew without bound) at t = {t:.3} s: \
+             the {} controller is unstable on this job",
+            opts.controller.name()
+        ));
+    }
     if verdict_stats.max > opts.tolerance_m {
         let w = &verdict_stats.worst;
         reasons.push(format!(

@@ -247,6 +247,10 @@ pub struct SimModel {
     pub tilt_nut: ServoAxis,
     pub vertical: ServoAxis,
     pub compliance: Compliance,
+    /// Accumulator, check and counterbalance valves, hoses (000 §I).
+    pub circuit: super::circuit::Circuit,
+    /// One lateral bending mode per main link.
+    pub boom: super::circuit::Boom,
     pub sensors: Sensors,
     pub control: ControlSettings,
     /// RK4 sub-steps per control period.
@@ -390,6 +394,31 @@ impl SimModel {
                 mass_kg: ee.mass_kg,
                 damping_ratio: dy.linkage_damping_ratio,
             },
+            circuit: super::circuit::Circuit {
+                acc_gas_m3: dy.accumulator_gas_m3,
+                acc_precharge_pa: dy.accumulator_precharge_pa,
+                supply_volume_m3: dy.supply_volume_m3,
+                pump_flow_m3ps: dy.pump_flow_m3ps,
+                pump_band_pa: dy.pump_band_pa,
+                check_crack_pa: dy.supply_check_crack_pa,
+                cb_pilot_ratio: dy.counterbalance_pilot_ratio,
+                cb_crack_pa: dy.counterbalance_crack_pa,
+                cb_band_pa: dy.counterbalance_band_pa,
+                cb_gain: dy.counterbalance_flow_gain,
+                cb_bleed: dy.counterbalance_bleed_m3_per_s_pa,
+                line_volume_m3: dy.line_volume_m3,
+                line_bulk_pa: dy.line_bulk_modulus_pa,
+                line_inertance: dy.line_inertance_kg_per_m4,
+                line_resistance: dy.line_resistance_pa_s_per_m3,
+                pump_on: true,
+            },
+            boom: super::circuit::Boom {
+                omega: [
+                    std::f64::consts::TAU * dy.boom_link1_hz,
+                    std::f64::consts::TAU * dy.boom_link2_hz,
+                ],
+                damping_ratio: dy.boom_damping_ratio,
+            },
             sensors: Sensors {
                 base_counts_per_turn: robot.encoders.base_counts_per_rev as f64,
                 extension_m_per_count: robot.encoders.extension_m_per_count,
@@ -402,7 +431,11 @@ impl SimModel {
                 period_s: robot.control.controller_sample_s,
                 lambda_s: robot.control.delay_estimate_s,
             },
-            substeps: 5, // 1 ms RK4 step: 4× inside the valve's τ_s stability bound
+            // RK4 steps of at most 1 ms (5 in the seed's 5 ms period): 4×
+            // inside the valve's τ_s stability bound
+            substeps: (robot.control.controller_sample_s / 1.0e-3 - 1e-9)
+                .ceil()
+                .max(1.0) as u32,
         };
         m.validate()?;
         Ok(m)
@@ -480,8 +513,8 @@ impl SimModel {
                 return Err(format!("{name} = {v} is outside its physical range"));
             }
         }
-        if self.substeps == 0 {
-            return Err("substeps must be at least 1".into());
+        if self.substeps == 0 || self.substeps > 100 {
+            return Err(format!("substeps = {} must be 1–100", self.substeps));
         }
         Ok(())
     }

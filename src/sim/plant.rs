@@ -1,6 +1,9 @@
 //! The plant: pantograph arm (000 eq. 1–8), hydraulic motor and cylinder
-//! (eq. 9–14), servovalves (eq. 15–17) and the end-effector linkage mode, as
-//! one ODE integrated by fixed-step RK4.
+//! (eq. 9–14), servovalves (eq. 15–17), the end-effector linkage mode, and
+//! what section I added to the hydraulics and section II left out (supply
+//! accumulator and pump, supply check valves, counterbalance valves on the
+//! motor's exhaust, the hoses between valves and actuators, one bending mode
+//! per main link; `circuit.rs`), as one ODE integrated by fixed-step RK4.
 //!
 //! Generalised coordinates: θ1 (base rotation) and x, the pantograph's A–C
 //! distance (the cylinder moves x; R = R_min + k·(x − x_min)). The kinetic
@@ -11,6 +14,7 @@
 //!   A22·ẍ = τ2 − ½A22'·ẋ² + ½A11'·θ̇² + F(x)
 //! with F(x) = B·x/√(4d² − x²) the gravity pull of App. A eq. 11.
 
+use super::circuit::{series, Circuit};
 use super::model::{Actuator, Hydraulics, SimModel};
 
 /// Indices into the state vector.
@@ -28,8 +32,19 @@ pub const DX: usize = 10;
 pub const DXD: usize = 11;
 pub const DY: usize = 12;
 pub const DYD: usize = 13;
+/// Supply pressure at the accumulator (Pa).
+pub const PS: usize = 14;
+/// Valve-side pressures of the four hoses: motor A, motor B, cylinder A, B.
+pub const LP: usize = 15;
+/// Flows in those hoses towards the actuator (m³/s).
+pub const LQ: usize = 19;
+/// Lateral bending of the two main links (m) and their rates.
+pub const B1: usize = 23;
+pub const B1D: usize = 24;
+pub const B2: usize = 25;
+pub const B2D: usize = 26;
 /// Number of state variables.
-pub const N: usize = 14;
+pub const N: usize = 27;
 
 /// The continuous state of arm, hydraulics, valves and linkage mode.
 /// (Base frame; δ is the nozzle's deflection from the linkage mode.)
@@ -96,20 +111,40 @@ fn orifice(dp: f64) -> f64 {
     }
 }
 
-/// Servovalve flows into chambers A and B for spool `y` (000 eq. 15–16).
+/// Servovalve flows out of ports A and B for spool `y` (000 eq. 15–16) at
+/// port pressures `pa`, `pb` and supply `ps`, and the flow drawn from
+/// supply. The inlet side takes oil through its supply check valve (none
+/// flows back into supply, 000 §I); with `counterbalance` the exhaust side
+/// passes the counterbalance valve, piloted by the inlet, in series with the
+/// spool's metering edge (000 §I: "on the exhaust side of the motors").
 #[inline]
-pub fn valve_flows(h: &Hydraulics, act: &Actuator, y: f64, pa: f64, pb: f64) -> (f64, f64) {
-    let bv = act.valve_gain;
+#[allow(clippy::too_many_arguments)]
+pub fn valve_flows(
+    h: &Hydraulics,
+    c: &Circuit,
+    act: &Actuator,
+    y: f64,
+    ps: f64,
+    pa: f64,
+    pb: f64,
+    counterbalance: bool,
+) -> (f64, f64, f64) {
+    let a = act.valve_gain * y.abs();
+    let inlet = |p: f64| a * orifice((ps - p - c.check_crack_pa).max(0.0));
+    let exhaust = |p: f64, pilot: f64| {
+        let e = if counterbalance {
+            series(a, c.cb_gain * c.cb_opening(p, pilot))
+        } else {
+            a
+        };
+        e * orifice(p - h.tank_pa)
+    };
     if y >= 0.0 {
-        (
-            bv * y * orifice(h.supply_pa - pa),
-            -bv * y * orifice(pb - h.tank_pa),
-        )
+        let q = inlet(pa);
+        (q, -exhaust(pb, pa), q)
     } else {
-        (
-            bv * y * orifice(pa - h.tank_pa),
-            -bv * y * orifice(h.supply_pa - pb),
-        )
+        let q = inlet(pb);
+        (-exhaust(pa, pb), q, q)
     }
 }
 
@@ -135,8 +170,11 @@ pub fn volumes(act: &Actuator, pos: f64) -> (f64, f64) {
     )
 }
 
-/// Pressure rates of one actuator (000 eq. 11–12, plus leakage and relief).
+/// Pressure rates of one actuator's chambers fed by hose flows `qa`, `qb`
+/// (000 eq. 11–12, plus leakage and relief; `bleed` is an extra laminar
+/// cross-port path).
 #[inline]
+#[allow(clippy::too_many_arguments)]
 fn pressure_rates(
     h: &Hydraulics,
     act: &Actuator,
@@ -144,11 +182,11 @@ fn pressure_rates(
     vel: f64,
     pa: f64,
     pb: f64,
-    y: f64,
+    (qa, qb): (f64, f64),
+    bleed: f64,
 ) -> (f64, f64) {
     let (va, vb) = volumes(act, pos);
-    let (qa, qb) = valve_flows(h, act, y, pa, pb);
-    let leak = act.leakage * (pa - pb);
+    let leak = (act.leakage + bleed) * (pa - pb);
     let dpa = h.bulk(pa) / va * (qa - act.area * vel - leak + relief_flow(h, pa));
     let dpb = h.bulk(pb) / vb * (qb + act.alpha * act.area * vel + leak + relief_flow(h, pb));
     (dpa, dpb)
@@ -196,12 +234,47 @@ pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
     ds[X] = xd;
     ds[XD] = xdd;
     let h = &m.hydraulics;
-    let (a1, b1) = pressure_rates(h, &m.motor, th, thd, s[PA1], s[PB1], s[Y1]);
-    let (a2, b2) = pressure_rates(h, &m.cylinder, x - m.arm.x_min_m, xd, s[PA2], s[PB2], s[Y2]);
+    let c = &m.circuit;
+    let ps = s[PS];
+    let (va1, vb1, qs1) = valve_flows(h, c, &m.motor, s[Y1], ps, s[LP], s[LP + 1], true);
+    let (va2, vb2, qs2) = valve_flows(h, c, &m.cylinder, s[Y2], ps, s[LP + 2], s[LP + 3], false);
+    // the hoses: compliance at the valve end, inertance and friction along
+    let valve_q = [va1, vb1, va2, vb2];
+    let chamber = [s[PA1], s[PB1], s[PA2], s[PB2]];
+    let kl = c.line_bulk_pa / c.line_volume_m3;
+    for j in 0..4 {
+        ds[LP + j] = kl * (valve_q[j] - s[LQ + j]);
+        ds[LQ + j] = (s[LP + j] - chamber[j] - c.line_resistance * s[LQ + j]) / c.line_inertance;
+    }
+    let (a1, b1) = pressure_rates(
+        h,
+        &m.motor,
+        th,
+        thd,
+        s[PA1],
+        s[PB1],
+        (s[LQ], s[LQ + 1]),
+        c.cb_bleed,
+    );
+    let (a2, b2) = pressure_rates(
+        h,
+        &m.cylinder,
+        x - m.arm.x_min_m,
+        xd,
+        s[PA2],
+        s[PB2],
+        (s[LQ + 2], s[LQ + 3]),
+        0.0,
+    );
     ds[PA1] = a1;
     ds[PB1] = b1;
     ds[PA2] = a2;
     ds[PB2] = b2;
+    // the accumulator: pump in, both valves' inlets out
+    // (the manifold's oil at its pure-oil modulus: eq. 13 is within 5 % of
+    // it at supply pressure)
+    ds[PS] =
+        (c.pump_flow(ps, h.supply_pa) - qs1 - qs2) / c.supply_capacitance(ps, h.bulk_modulus_pa);
     // eq. 17 with K_s folded into the valve gain; the spool stops at ±1
     let spool = |y: f64, cmd: f64, tau: f64| {
         let r = (cmd.clamp(-1.0, 1.0) - y) / tau;
@@ -228,7 +301,28 @@ pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
     ds[DXD] = -g * acc[0] - z2w * s[DXD] - w * w * s[DX];
     ds[DY] = s[DYD];
     ds[DYD] = -g * acc[1] - z2w * s[DYD] - w * w * s[DY];
+    // each main link's lateral mode, driven by the tangential acceleration
+    // of its outer end: link 1 at the pantograph's apex (k·x/2 from the
+    // axis, 000 eq. 1), link 2 at the nozzle (R)
+    let b = &m.boom;
+    let r_apex = 0.5 * k * x;
+    let tangential = [r_apex * thdd + k * xd * thd, at];
+    for (i, (p, v)) in [(B1, B1D), (B2, B2D)].into_iter().enumerate() {
+        let wb = b.omega[i];
+        ds[p] = s[v];
+        ds[v] = -tangential[i] - 2.0 * b.damping_ratio * wb * s[v] - wb * wb * s[p];
+    }
     (ds, acc)
+}
+
+/// The nozzle's offset in the base frame from the links' bending (m): both
+/// modes move it sideways (tangentially), one to one (assumed: link 2
+/// carries link 1's apex deflection to the nozzle rigidly).
+#[inline]
+pub fn boom_offset(s: &State) -> [f64; 2] {
+    let d = s[B1] + s[B2];
+    let (sn, cs) = s[TH].sin_cos();
+    [-sn * d, cs * d]
 }
 
 /// One classical RK4 step of length `h`.
@@ -270,6 +364,13 @@ pub fn rest_state(m: &SimModel, theta: f64, r: f64) -> State {
     let pb = (sum + f / c.area) / (1.0 + c.alpha);
     s[PB2] = pb;
     s[PA2] = sum - pb;
+    // the accumulator charged to the compensator setting, the hoses at their
+    // chambers' pressures and still
+    s[PS] = h.supply_pa;
+    s[LP] = s[PA1];
+    s[LP + 1] = s[PB1];
+    s[LP + 2] = s[PA2];
+    s[LP + 3] = s[PB2];
     // the linkage hangs straight at rest
     s
 }

@@ -2,7 +2,7 @@
 //! drawn in a station's base frame, timed with smooth speed ramps, turned
 //! into joint setpoints by the arm's closed-form inverse kinematics.
 
-use crate::job::{FontRef, Job, Layout, Paint, SampleRow, Samples, Station, Summary};
+use crate::job::{FontRef, Job, Layout, SampleRow, Samples, Station, Summary};
 use crate::robot::Robot;
 
 /// A stroke in the base frame: `point(u)` for u ∈ [0, 1].
@@ -85,6 +85,10 @@ pub fn ik(p: [f64; 2], a2: f64) -> (f64, f64) {
     (p[1].atan2(p[0]) + a2.atan2(r), r)
 }
 
+/// Speed ramps of every move (s): slow enough that the rows keep the base's
+/// 0.3 rad/s² at 2 m of reach (robots/basr.toml `limits.base_rot_rad`).
+const RAMP_S: f64 = 0.8;
+
 /// A sealed job painting `strokes` from one station at (0, `station_y`),
 /// heading −π/2, with air moves at `air_speed` between them and 0.5 s holds
 /// at start and end. Setpoints every `period` s.
@@ -105,7 +109,7 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
         let start = (st.point)(0.0);
         let gap = (start[0] - prev_end[0]).hypot(start[1] - prev_end[1]);
         if gap > 1e-9 {
-            let (t, f) = profile(gap, air_speed, 0.4);
+            let (t, f) = profile(gap, air_speed, RAMP_S);
             let a = prev_end;
             segs.push((
                 t,
@@ -118,7 +122,7 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
             ));
         }
         let l = st.length();
-        let (t, f) = profile(l, st.speed, 0.3);
+        let (t, f) = profile(l, st.speed, RAMP_S);
         let pt: &Stroke = st;
         let pts: Vec<[f64; 2]> = (0..=2000)
             .map(|j| pt.at_length(j as f64 / 2000.0 * l, l))
@@ -168,9 +172,6 @@ fn sealed(
     period: f64,
 ) -> Job {
     let a2 = robot.arm.a2_m;
-    let k = robot.arm.pantograph_ratio;
-    let r0 = robot.arm.retracted_extension_m;
-    let nut0 = robot.end_effector.fourbar.nut_m(0.0).unwrap_or(0.0);
     let n = rows.len();
     let mut samples = Samples::default();
     let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
@@ -184,35 +185,61 @@ fn sealed(
             [(p[0] - q[0]) / period, (p[1] - q[1]) / period]
         });
         prev = Some(p);
-        let yaw_b = v[1].atan2(v[0]);
         if *paint {
             paint_time += period;
         }
+        // every column from the robot's own kinematics, as compile writes
+        // them, so `basr check` finds nothing to say about the job
+        let joints = crate::robot::Joints {
+            base_rot_rad: th,
+            extension_m: r,
+            vertical_m: 0.0,
+            ee_yaw_rad: 0.0,
+            tilt_rad: 0.0,
+        };
+        let pose = robot.fk(&joints);
+        let act = robot.actuators(&joints);
+        let enc = robot.encoders(&joints);
         samples.push(&SampleRow {
             t_s: t,
             station: 0,
             stroke: *stroke,
             paint: u8::from(*paint),
-            x_m: station.x_m + c * p[0] - s * p[1],
-            y_m: station.y_m + s * p[0] + c * p[1],
-            z_m: robot.end_effector.tip_height_top_m - 0.1,
-            yaw_rad: yaw_b + station.heading_rad - std::f64::consts::FRAC_PI_2,
+            x_m: station.x_m + c * pose.x_m - s * pose.y_m,
+            y_m: station.y_m + s * pose.x_m + c * pose.y_m,
+            z_m: pose.z_m,
+            yaw_rad: crate::robot::kinematics::wrap_pi(
+                pose.yaw_rad + station.heading_rad - std::f64::consts::FRAC_PI_2,
+            ),
             tilt_rad: 0.0,
             speed_mps: v[0].hypot(v[1]),
             width_m: if *paint { 0.15 } else { 0.0 },
             base_rot_rad: th,
             extension_m: r,
-            cylinder_m: (r - r0) / k,
-            vertical_m: 0.1,
+            cylinder_m: act.cylinder_m,
+            vertical_m: joints.vertical_m,
             ee_yaw_rad: 0.0,
-            tilt_nut_m: nut0,
-            enc_base: (th / (std::f64::consts::TAU / 88_000.0)).round() as i64,
-            enc_extension: ((r - r0) / robot.encoders.extension_m_per_count).round() as i64,
-            enc_yaw: 0,
-            enc_tilt: 0,
-            enc_vertical: 0,
+            tilt_nut_m: act.tilt_nut_m,
+            enc_base: enc.base,
+            enc_extension: enc.extension,
+            enc_yaw: enc.yaw,
+            enc_tilt: enc.tilt,
+            enc_vertical: enc.vertical,
         });
     }
+    // nozzle speed as compile writes it: central difference of the road
+    // columns, one-sided at the ends
+    for i in 0..n {
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+        samples.speed_mps[i] = if b > a {
+            (samples.x_m[b] - samples.x_m[a]).hypot(samples.y_m[b] - samples.y_m[a])
+                / ((b - a) as f64 * period)
+        } else {
+            0.0
+        };
+    }
+    let paint = crate::job::Paint::of(&robot.paint);
+    let paint_volume_m3 = robot.paint.flow_m3ps * paint_time;
     let mut job = Job {
         format: crate::job::FORMAT.into(),
         version: crate::job::VERSION,
@@ -223,19 +250,23 @@ fn sealed(
         },
         robot,
         robot_sha256: String::new(),
-        paint: Paint {
-            fan_angle_rad: 63.5f64.to_radians(),
-            flow_m3ps: 0.4e-3 / 60.0,
-            transfer_efficiency: 0.9,
-            film_m: 3.8e-4,
-            k_m2ps: 0.4e-3 / 60.0 * 0.9 / 3.8e-4,
-        },
+        paint,
         control_period_s: period,
         layout: Layout {
             letter_height_m: 2.44,
             lane_width_m: 3.66,
             tilt_method: "none".into(),
-            glyphs: vec![],
+            // one glyph holding the strokes (their edges are not drawn)
+            glyphs: vec![crate::job::PlacedGlyph {
+                char: "S".into(),
+                line: 0,
+                strokes: (0..strokes)
+                    .map(|_| crate::job::PlacedStroke {
+                        left: vec![],
+                        right: vec![],
+                    })
+                    .collect(),
+            }],
         },
         stations: vec![station],
         samples,
@@ -244,9 +275,13 @@ fn sealed(
             paint_time_s: paint_time,
             air_time_s: (n - 1) as f64 * period - paint_time,
             strokes,
-            paint_volume_m3: 0.0,
+            paint_volume_m3,
             warnings: vec![],
             balance: vec![],
+            lower_bound_s: 0.0,
+            bound_ratio: 0.0,
+            verified_max_error_m: None,
+            truck_moves_m: vec![],
         },
         outputs: Default::default(),
         sha256: String::new(),
@@ -273,7 +308,7 @@ pub fn letter_job() -> Job {
             Stroke::line([-0.6, 5.0], [0.6, 5.0], v),
             Stroke::line([0.5, 2.0], [-0.5, 2.0], v),
         ],
-        0.5,
+        0.25,
         0.032,
     )
 }
@@ -300,22 +335,30 @@ pub fn step_job() -> Job {
 
 /// The arm held fully retracted (every extension setpoint exactly at the
 /// reach's lower limit) for 0.5 s, then extended by 0.5 m at the robot's
-/// full extension speed and held (a setpoint series that a curve through
-/// the rows overshoots below the limit at the corner).
+/// extension acceleration limit (speeding up, then slowing down) and held:
+/// a setpoint series that a curve through the rows overshoots below the
+/// limit at the corner.
 pub fn retracted_then_extending_job() -> Job {
     let robot = Robot::basr();
     let period = robot.control.period_s;
     let a2 = robot.arm.a2_m;
     let r_min = robot.limits.extension_m.min;
-    let speed = robot.limits.extension_m.max_vel;
+    let acc = robot.limits.extension_m.max_acc;
     let theta = std::f64::consts::FRAC_PI_2; // the arm's symmetry axis (SPEC §2)
     let (sn, cs) = theta.sin_cos();
     let hold = (0.5 / period).round() as usize;
-    let moving = (0.5 / speed / period).round() as usize;
+    // 0.25 m speeding up, 0.25 m slowing down at `acc`
+    let half = (0.25 * 2.0 / acc).sqrt();
+    let moving = (2.0 * half / period).ceil() as usize;
     let rows: Vec<([f64; 2], bool, i64)> = (0..2 * hold + moving)
         .map(|i| {
-            let k = i.saturating_sub(hold).min(moving);
-            let r = r_min + speed * period * k as f64;
+            let t = (i.saturating_sub(hold) as f64 * period).min(2.0 * half);
+            let d = if t <= half {
+                0.5 * acc * t * t
+            } else {
+                0.5 - 0.5 * acc * (2.0 * half - t).powi(2)
+            };
+            let r = r_min + d;
             // W = R·(cos θ1, sin θ1) + a2·(sin θ1, −cos θ1) (SPEC §2)
             ([r * cs + a2 * sn, r * sn - a2 * cs], false, -1)
         })
@@ -347,6 +390,12 @@ mod tests {
         let j = letter_job();
         let text = String::from_utf8(j.to_bytes()).unwrap();
         let back = Job::from_str_verified(&text, "t").unwrap();
+        // and `basr check` finds nothing wrong with it
+        let problems = crate::job::verify::problems(&back, "t");
+        assert!(problems.is_empty(), "{problems:#?}");
+        let r = retracted_then_extending_job();
+        let problems = crate::job::verify::problems(&r, "r");
+        assert!(problems.is_empty(), "{problems:#?}");
         assert!(back.summary.paint_time_s > 10.0);
         assert!(back.samples.paint.contains(&1));
     }

@@ -1,0 +1,185 @@
+//! `basr report JOB -o FILE.html`: the job sheet for the crew and the
+//! supervisor, one self-contained page to print.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use basr::paint::preview::{self, Options, Panel};
+use basr::paint::verdict::{self, Thresholds};
+use basr::report::{self, tally::Tally, SimVerdict};
+
+use super::{Global, Outcome};
+
+/// Write the job sheet: one HTML page a supervisor can print.
+///
+/// The page says what to paint, where to stop the truck (from the
+/// marking's anchor: the lane centre at the near edge of the first line),
+/// the time on site, the paint and the spray tip's life left, the film the
+/// plan lays with a verdict per letter, the simulated arm's verdict, and the
+/// warnings by severity, under one word: READY, READY WITH NOTES or NOT
+/// READY. Everything is inline (CSS, SVG): the page needs no network.
+#[derive(clap::Args)]
+#[command(after_help = "\
+Examples:
+  basr report STOP.job.json -o STOP.html
+  basr report STOP.job.json -o STOP.html --tip-tally tip.toml   # counts the paint
+  basr simulate STOP.job.json --json > sim.json
+  basr report STOP.job.json -o STOP.html --sim sim.json          # no second simulation
+
+Exit 0 when the page is written (its verdict is on the page), 2 for bad
+input. docs/report.md describes the page and the tally file.")]
+pub struct Args {
+    /// The job file written by `basr compile`.
+    pub job: PathBuf,
+
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
+
+    /// The page to write (.html) [default: the job's name with .html, here].
+    #[arg(short, long, value_name = "FILE.html")]
+    pub output: Option<PathBuf>,
+
+    /// A `basr simulate --json` result for this job, instead of simulating
+    /// it again.
+    #[arg(long, value_name = "FILE", conflicts_with = "no_sim")]
+    pub sim: Option<PathBuf>,
+
+    /// Leave the simulator out (the page says it was not simulated).
+    #[arg(long)]
+    pub no_sim: bool,
+
+    /// The crew's tally of paint through the current spray tip (TOML; made
+    /// when missing). This job's paint is added once; start a new file for
+    /// a new tip.
+    #[arg(long, value_name = "FILE")]
+    pub tip_tally: Option<PathBuf>,
+}
+
+/// `STOP.job.json` → `STOP.html`.
+fn default_output(job: &Path) -> PathBuf {
+    let name = job
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "job".into());
+    let stem = name.strip_suffix(".json").unwrap_or(&name);
+    let stem = stem.strip_suffix(".job").unwrap_or(stem);
+    PathBuf::from(format!("{stem}.html"))
+}
+
+fn read_sim(path: &Path) -> anyhow::Result<SimVerdict> {
+    let text = basr::io::read_text(path)?;
+    serde_json::from_str(&text).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: not a `basr simulate --json` result ({e}); write one with \
+             `basr simulate JOB --json > {}`",
+            path.display(),
+            path.display()
+        )
+    })
+}
+
+fn simulate(job: &basr::job::Job, show: bool) -> anyhow::Result<SimVerdict> {
+    use basr::sim;
+    let model = sim::SimModel::from_robot(&job.robot)
+        .map_err(|e| anyhow::anyhow!("the job's robot cannot be simulated: {e} (use --no-sim)"))?;
+    let opts = sim::Options {
+        controller: sim::ControllerKind::Sjct,
+        tolerance_m: job.robot.control.accuracy_m,
+        keep_trace: false,
+        substeps: None,
+    };
+    let bar = super::progress_bar(show, "simulating the arm");
+    let outcome = sim::simulate(job, &model, &opts, &mut |done, total| {
+        bar.set_length(total);
+        bar.set_position(done);
+    })?;
+    bar.finish_and_clear();
+    Ok(SimVerdict::from_report(&outcome.report))
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| default_output(&args.job));
+    let mut outputs: Vec<(&str, &Path)> = vec![("the page (-o)", &out)];
+    if let Some(t) = &args.tip_tally {
+        outputs.push(("the tip tally (--tip-tally)", t));
+    }
+    let mut inputs: Vec<(&str, &Path)> = vec![("the job", &args.job)];
+    if let Some(s) = &args.sim {
+        inputs.push(("the simulate result (--sim)", s));
+    }
+    super::refuse_clashes(&outputs, &inputs)?;
+    super::outputs::check("-o", &out, &["html", "htm"])?;
+    if let Some(t) = &args.tip_tally {
+        super::outputs::check("--tip-tally", t, &["toml"])?;
+    }
+    basr::io::check_writable(&out)?;
+    let job = super::read_job(&args.job, &args.trust)?;
+    let origin = args.job.display().to_string();
+    let sim = match (&args.sim, args.no_sim) {
+        (Some(p), _) => Some(read_sim(p)?),
+        (None, true) => None,
+        (None, false) => Some(simulate(&job, !global.quiet)?),
+    };
+    let tally = match &args.tip_tally {
+        Some(p) if p.exists() => Some(
+            Tally::parse(&basr::io::read_text(p)?, &p.display().to_string())
+                .map_err(anyhow::Error::msg)?,
+        ),
+        Some(_) => Some(Tally::default()),
+        None => None,
+    };
+
+    let opts = Options {
+        fit_cells: Some(basr::paint::raster::FIT_CELLS),
+        ..Options::default()
+    };
+    let bar = super::progress_bar(!global.quiet, "painting");
+    let film = preview::preview_job_with_progress(&job, &opts, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })
+    .with_context(|| format!("{origin}: preview"))?;
+    bar.finish_and_clear();
+    let thresholds = Thresholds::default();
+    let film_verdict = verdict::judge(&film.metrics, &thresholds);
+    let panel = Panel {
+        job: &job,
+        preview: &film,
+        verdict: &film_verdict,
+        from_sim: false,
+        replanned: None,
+    };
+    let film_svg = preview::render_svg(
+        &[panel],
+        &format!("film of {}", job.message.replace('\n', " / ")),
+    );
+
+    let sheet = report::build(&report::Input {
+        job_name: &origin,
+        job: &job,
+        film: &film.metrics,
+        film_verdict: &film_verdict,
+        film_svg: &film_svg,
+        sim: sim.as_ref(),
+        tip_used_before_m3: tally.as_ref().map(|t| t.used_m3_without(&job.sha256)),
+    });
+    basr::io::write_atomic(&out, report::html::render(&sheet).as_bytes())?;
+    if let (Some(p), Some(t)) = (&args.tip_tally, tally) {
+        let t = t.with_job(&job.sha256, &job.message, job.summary.paint_volume_m3);
+        basr::io::write_atomic(p, t.to_toml().as_bytes())?;
+        super::outputs::after_commit(format!(
+            "tip tally {}: {:.2} L through this tip with this job",
+            p.display(),
+            t.used_m3_without("") * 1e3
+        ));
+    }
+    super::outputs::after_commit(format!(
+        "wrote {} (job sheet: {})",
+        out.display(),
+        sheet.overall.to_uppercase()
+    ));
+    Ok(Outcome::Success)
+}

@@ -1,0 +1,297 @@
+//! The chained path of a station: every run's knots in painting order,
+//! joined by blends in joint space, as one path for the time law, so the
+//! nozzle flies out of one stroke's run-out into the next stroke's run-up
+//! without stopping unless a limit forces it.
+//!
+//! A blend from run a's last knot to run b's first is a cubic Hermite curve
+//! in joint space whose end tangents are the runs' own joint rates per
+//! metre (so the path is C¹ where the blend meets a run). Its path
+//! parameter advances by the nozzle's road travel, or by the slowest
+//! joint's travel time at `BLEND_SPEED_MPS` where the joints move more than
+//! the nozzle (a fan turn on the spot). A blend whose curve would leave a
+//! joint's range is flattened (tangents scaled down, at worst to zero: the
+//! arm then stops at the seam, and the stop is reported with its reason).
+
+use crate::robot::Robot;
+
+use super::joints::Run;
+use super::timing::PathPoint;
+use super::trajectory::{arc_lengths, joints_of, Q};
+
+/// Path-parameter rate standing in for the joints' own motion in a blend
+/// (m of s per s of the slowest joint at its speed limit). assumed: about
+/// the painting speed (0.16 m/s, SPEC §4), so blends and runs share a scale.
+const BLEND_SPEED_MPS: f64 = 0.2;
+/// Spacing of a blend's waypoints (m of s). assumed: the default rung
+/// spacing.
+const BLEND_STEP_M: f64 = 0.02;
+/// Shortest blend (m of s): room to turn round where the next stroke starts
+/// where the last one ended and runs back. assumed: half the 0.1 m lead.
+const BLEND_MIN_M: f64 = 0.05;
+/// Most waypoints per blend.
+const BLEND_MAX_POINTS: usize = 400;
+/// Tangent scales tried, largest first.
+const TANGENT_SCALES: [f64; 4] = [1.0, 0.5, 0.25, 0.0];
+
+/// Why the arm comes to rest at a seam.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StopReason {
+    /// A smooth blend would carry this joint (and every other moving one)
+    /// past its range.
+    JointRange { joint: &'static str },
+}
+
+/// A station's runs as one path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chain {
+    pub points: Vec<PathPoint<5>>,
+    /// Per run: its knots `lo..=hi` on the path (the lead-in of the first
+    /// run, the lead-out of the last; between runs a blend replaces them).
+    pub spans: Vec<Span>,
+    /// Per run: arc lengths of its knots from its own first knot.
+    pub arcs: Vec<Vec<f64>>,
+    /// Seams where the blend was flattened to rest: (run entered, why).
+    pub stops: Vec<(usize, StopReason)>,
+}
+
+/// Where a run's knots sit on the chained path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Span {
+    pub lo: usize,
+    pub hi: usize,
+    /// Index of knot `lo` in `Chain::points`.
+    pub first_point: usize,
+    /// Path parameter of knot i is `offset + arcs[i]`.
+    pub offset: f64,
+}
+
+impl Chain {
+    /// The run whose knots span path parameter `s`, and `s` on its own arcs.
+    pub fn run_at(&self, s: f64) -> (Option<usize>, f64) {
+        for (ri, sp) in self.spans.iter().enumerate() {
+            let (a, b) = (
+                sp.offset + self.arcs[ri][sp.lo],
+                sp.offset + self.arcs[ri][sp.hi],
+            );
+            if s >= a - 1e-12 && s <= b + 1e-12 {
+                return (
+                    Some(ri),
+                    (s - sp.offset).clamp(self.arcs[ri][sp.lo], self.arcs[ri][sp.hi]),
+                );
+            }
+        }
+        (None, 0.0)
+    }
+
+    /// The run and knot of a waypoint (a blend's waypoints belong to the
+    /// run they lead into).
+    pub fn knot_of(&self, waypoint: usize) -> (usize, usize) {
+        let ri = self
+            .spans
+            .iter()
+            .rposition(|sp| sp.first_point <= waypoint)
+            .unwrap_or(0);
+        let sp = self.spans[ri];
+        (
+            ri,
+            (sp.lo + waypoint.saturating_sub(sp.first_point)).min(sp.hi),
+        )
+    }
+}
+
+/// Chain `runs` (at least one) into one path.
+pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
+    let mut out = Chain {
+        points: vec![],
+        spans: vec![],
+        arcs: vec![],
+        stops: vec![],
+    };
+    let mut s = 0.0;
+    for (ri, run) in runs.iter().enumerate() {
+        let arcs = arc_lengths(&run.knots);
+        // Leads where the stroke needs a run-up; none where it carries on
+        // from the last one (same place, same heading: the nozzle flies
+        // straight on from paint into paint).
+        let lo = if ri > 0 && continues(&runs[ri - 1], run) {
+            run.paint_first
+        } else {
+            0
+        };
+        let hi = if runs.get(ri + 1).is_some_and(|next| continues(run, next)) {
+            run.paint_last
+        } else {
+            run.knots.len() - 1
+        };
+        if ri > 0 {
+            let prev = &runs[ri - 1];
+            let from = out.spans[ri - 1].hi;
+            let (blend, stop) = blend(robot, prev, &out.arcs[ri - 1], from, run, &arcs, lo);
+            if let Some(why) = stop {
+                out.stops.push((ri, why));
+            }
+            for (ds, q) in blend.inner {
+                out.points.push(PathPoint {
+                    s_m: s + ds,
+                    q,
+                    max_speed_mps: None,
+                });
+            }
+            s += blend.length;
+        }
+        let offset = s - arcs[lo];
+        out.spans.push(Span {
+            lo,
+            hi,
+            first_point: out.points.len(),
+            offset,
+        });
+        for (i, (k, j)) in run
+            .knots
+            .iter()
+            .zip(&run.joints)
+            .enumerate()
+            .take(hi + 1)
+            .skip(lo)
+        {
+            out.points.push(PathPoint {
+                s_m: offset + arcs[i],
+                q: j.values(),
+                // Leads are gun-off run-ups: as fast as the joints allow.
+                max_speed_mps: (run.paint_first..=run.paint_last)
+                    .contains(&i)
+                    .then_some(k.speed_mps),
+            });
+        }
+        s = offset + arcs[hi];
+        out.arcs.push(arcs);
+    }
+    out
+}
+
+/// Largest gap (m) and turn of the travel direction (rad) between one
+/// stroke's last rung and the next one's first for the next to carry on
+/// without leads. assumed: a quarter of the default rung spacing, and 20°.
+const CONTINUE_GAP_M: f64 = 0.005;
+const CONTINUE_TURN_RAD: f64 = 0.35;
+
+/// Whether run b starts where run a ends, heading the same way.
+fn continues(a: &Run, b: &Run) -> bool {
+    let (ka, kb) = (&a.knots, &b.knots);
+    let (pa, pb) = (a.paint_last, b.paint_first);
+    if pa == 0 || pb + 1 >= kb.len() {
+        return false;
+    }
+    let gap = (kb[pb].tip - ka[pa].tip).hypot();
+    let da = ka[pa].tip - ka[pa - 1].tip;
+    let db = kb[pb + 1].tip - kb[pb].tip;
+    let turn = (da.cross(db)).atan2(da.dot(db)).abs();
+    gap <= CONTINUE_GAP_M && turn <= CONTINUE_TURN_RAD
+}
+
+struct Blend {
+    /// Waypoints strictly between the two runs: (s from the seam's start, q).
+    inner: Vec<(f64, Q)>,
+    /// s from run a's last knot to run b's first.
+    length: f64,
+}
+
+/// Joint rate per metre of s at knot `at` of a run, leaving it (`out`) or
+/// arriving (one-sided difference).
+fn end_rate(run: &Run, arcs: &[f64], at: usize, out: bool) -> Q {
+    let n = run.joints.len();
+    if n < 2 {
+        return [0.0; 5];
+    }
+    let (i, k) = if out {
+        (at.saturating_sub(1), at.max(1))
+    } else {
+        (at.min(n - 2), at.min(n - 2) + 1)
+    };
+    let (a, b) = (run.joints[i].values(), run.joints[k].values());
+    let ds = arcs[k] - arcs[i];
+    std::array::from_fn(|j| (b[j] - a[j]) / ds)
+}
+
+/// The blend from knot `from` of run a to knot `to` of run b.
+fn blend(
+    robot: &Robot,
+    a: &Run,
+    arcs_a: &[f64],
+    from: usize,
+    b: &Run,
+    arcs_b: &[f64],
+    to: usize,
+) -> (Blend, Option<StopReason>) {
+    let qa = a.joints[from].values();
+    let qb = b.joints[to].values();
+    let ta = end_rate(a, arcs_a, from, true);
+    let tb = end_rate(b, arcs_b, to, false);
+    let pa = robot.fk(&joints_of(&qa));
+    let pb = robot.fk(&joints_of(&qb));
+    let road = (pb.x_m - pa.x_m).hypot(pb.y_m - pa.y_m);
+    let slowest = robot
+        .limits
+        .iter()
+        .enumerate()
+        .map(|(j, (_, l))| (qb[j] - qa[j]).abs() / l.max_vel)
+        .fold(0.0, f64::max);
+    let length = road.max(slowest * BLEND_SPEED_MPS).max(BLEND_MIN_M);
+    let m = ((length / BLEND_STEP_M).ceil() as usize).clamp(2, BLEND_MAX_POINTS);
+    // Each joint's curve is its own cubic: a joint whose curve would leave
+    // its range has its end tangents scaled down (at worst to zero, where it
+    // comes to rest at the seam while the others fly on).
+    // A tangent longer than the joint's own chord would carry it past the
+    // blend's end and back (a loop in that joint that costs time): each end
+    // tangent is cut to the chord, so a joint that keeps its direction flies
+    // on and one that must turn back slows to rest near the seam.
+    let cap = |t: f64, chord: f64| {
+        let full = (length * t).abs();
+        if full > chord {
+            t * chord / full
+        } else {
+            t
+        }
+    };
+    let (ta, tb): (Q, Q) = (
+        std::array::from_fn(|j| cap(ta[j], (qb[j] - qa[j]).abs())),
+        std::array::from_fn(|j| cap(tb[j], (qb[j] - qa[j]).abs())),
+    );
+    let hermite = |j: usize, u: f64, scale: f64| {
+        let (u2, u3) = (u * u, u * u * u);
+        let (h00, h10) = (2.0 * u3 - 3.0 * u2 + 1.0, u3 - 2.0 * u2 + u);
+        let (h01, h11) = (-2.0 * u3 + 3.0 * u2, u3 - u2);
+        h00 * qa[j] + h10 * length * scale * ta[j] + h01 * qb[j] + h11 * length * scale * tb[j]
+    };
+    let mut scales = [1.0; 5];
+    let mut resting = vec![];
+    for (j, (name, l)) in robot.limits.iter().enumerate() {
+        let fits = |scale: f64| {
+            (1..m).all(|k| {
+                let q = hermite(j, k as f64 / m as f64, scale);
+                q >= l.min && q <= l.max
+            })
+        };
+        scales[j] = TANGENT_SCALES
+            .into_iter()
+            .find(|&sc| fits(sc))
+            .unwrap_or(0.0);
+        if scales[j] == 0.0 && (ta[j] != 0.0 || tb[j] != 0.0) {
+            resting.push(name);
+        }
+    }
+    let inner = (1..m)
+        .map(|k| {
+            let u = k as f64 / m as f64;
+            (
+                u * length,
+                std::array::from_fn(|j| hermite(j, u, scales[j])),
+            )
+        })
+        .collect();
+    // The nozzle stops only where every moving joint rests at the seam.
+    let moving = (0..5).filter(|&j| ta[j] != 0.0 || tb[j] != 0.0).count();
+    let stop = (moving > 0 && resting.len() == moving)
+        .then(|| StopReason::JointRange { joint: resting[0] });
+    (Blend { inner, length }, stop)
+}

@@ -1,0 +1,400 @@
+//! Joint paths: every knot of every tour solved for the arm's joints (IK on
+//! one fan branch per pass), with the leads that bring the nozzle up to
+//! speed.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::job::Station;
+use crate::plan::knots::Knot;
+use crate::robot::{Joints, NozzlePose, Robot};
+
+use super::error::CompileError;
+use super::leads::{with_leads, LEAD_M};
+use super::passes::Passes;
+use super::placed::PlacedStrokes;
+use super::stations::{self, StationPlan};
+use super::stow::stow_joints;
+use super::tours::Tours;
+
+/// A pass as the arm runs it: joints at every knot, in painting order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Run {
+    /// Index into the placed strokes.
+    pub stroke: usize,
+    /// Knots including the lead-in and lead-out.
+    pub knots: Vec<Knot>,
+    pub joints: Vec<Joints>,
+    /// Indices of the first and last painting knot in `knots`.
+    pub paint_first: usize,
+    pub paint_last: usize,
+}
+
+/// Every station's runs, in painting order.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct JointPaths {
+    pub stations: Vec<Vec<Run>>,
+}
+
+/// A pass's knots with leads and the joint solutions of each fan branch
+/// and yaw turn that follows the whole pass.
+struct Candidates {
+    stroke: usize,
+    knots: Vec<Knot>,
+    paint_first: usize,
+    paint_last: usize,
+    /// (joint travel inside the pass, joints at every knot) per branch.
+    branches: Vec<(f64, Vec<Joints>)>,
+}
+
+/// Solve every pass of every station for the joints, both ways round, and
+/// choose the painting order, each pass's direction and its fan branch
+/// (ψ, β) / (ψ+π, −β) and yaw turn over the whole station: the tour's order
+/// is the starting point, and moves that reverse a pass, move it or reverse
+/// a run of passes are kept while they shorten the station's joint-time
+/// estimate, each priced with the shortest path over the branches
+/// (`best_branches`, every joint counted). A pass out of reach either way
+/// is refused with the stroke, its item and the place.
+pub fn joint_paths(
+    strokes: &PlacedStrokes,
+    passes: &Passes,
+    plan: &StationPlan,
+    tours: &Tours,
+    robot: &Robot,
+) -> Result<JointPaths, CompileError> {
+    let stow = stow_joints(robot);
+    let mut out = JointPaths::default();
+    for (si, (station, tour)) in plan.stations.iter().zip(&tours.stations).enumerate() {
+        // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
+        let mut ways: Vec<[Option<Candidates>; 2]> = Vec::with_capacity(tour.len());
+        for v in tour {
+            let pass = &passes.passes[v.item];
+            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke);
+            let rev = candidates(robot, station, &pass.knots, true, pass.stroke);
+            match (fwd, rev) {
+                (Err((k, e)), Err(_)) => {
+                    let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
+                    return Err(CompileError::Unreachable(format!(
+                        "stroke {} ({}) cannot be painted from station {si} at ({:.3}, {:.3}) \
+                         m: {e}; use a smaller --letter-height or check the robot description",
+                        pass.stroke,
+                        strokes.owner(pass.stroke),
+                        tip.x,
+                        tip.y
+                    )));
+                }
+                (f, r) => ways.push([f.ok(), r.ok()]),
+            }
+        }
+        // The tour as (index into ways, reversed), each way one that exists.
+        let mut seq: Vec<(usize, bool)> = tour
+            .iter()
+            .enumerate()
+            .map(|(k, v)| {
+                let rev = if ways[k][v.reversed as usize].is_some() {
+                    v.reversed
+                } else {
+                    !v.reversed
+                };
+                (k, rev)
+            })
+            .collect();
+        improve(robot, &stow, &ways, &mut seq);
+        let picked: Vec<&Candidates> = seq
+            .iter()
+            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+            .collect();
+        let (_, choice) = best_branches(robot, &stow, &picked);
+        out.stations.push(
+            picked
+                .into_iter()
+                .zip(choice)
+                .map(|(c, b)| Run {
+                    stroke: c.stroke,
+                    knots: c.knots.clone(),
+                    joints: c.branches[b].1.clone(),
+                    paint_first: c.paint_first,
+                    paint_last: c.paint_last,
+                })
+                .collect(),
+        );
+    }
+    Ok(out)
+}
+
+/// Most improvement sweeps over a station's order (each strictly lowers the
+/// cost; the bound keeps a long station's compile time in hand).
+const MAX_SWEEPS: usize = 8;
+/// Gains below this (s) are ignored, so rounding cannot make the search cycle.
+const MIN_GAIN_S: f64 = 1e-6;
+
+/// Local search over the order and directions (see `joint_paths`).
+fn improve(
+    robot: &Robot,
+    stow: &Joints,
+    ways: &[[Option<Candidates>; 2]],
+    seq: &mut Vec<(usize, bool)>,
+) {
+    let cost_of = |seq: &[(usize, bool)]| -> f64 {
+        let picked: Vec<&Candidates> = seq
+            .iter()
+            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+            .collect();
+        if picked.len() < seq.len() {
+            return f64::INFINITY;
+        }
+        best_branches(robot, stow, &picked).0
+    };
+    let n = seq.len();
+    let mut best = cost_of(seq);
+    for _ in 0..MAX_SWEEPS {
+        let mut gained = false;
+        // Reverse one pass.
+        for i in 0..n {
+            let mut t = seq.clone();
+            t[i].1 = !t[i].1;
+            let c = cost_of(&t);
+            if c < best - MIN_GAIN_S {
+                (*seq, best, gained) = (t, c, true);
+            }
+        }
+        // Reverse a run of passes (2-opt), each pass flipped.
+        for i in 0..n {
+            for j in i + 1..n {
+                let mut t = seq.clone();
+                t[i..=j].reverse();
+                for v in &mut t[i..=j] {
+                    v.1 = !v.1;
+                }
+                let c = cost_of(&t);
+                if c < best - MIN_GAIN_S {
+                    (*seq, best, gained) = (t, c, true);
+                }
+            }
+        }
+        // Move one pass elsewhere (or-opt), either way round.
+        for i in 0..n {
+            for j in 0..n {
+                if i == j {
+                    continue;
+                }
+                for flip in [false, true] {
+                    let mut t = seq.clone();
+                    let mut v = t.remove(i);
+                    v.1 ^= flip;
+                    t.insert(j, v);
+                    let c = cost_of(&t);
+                    if c < best - MIN_GAIN_S {
+                        (*seq, best, gained) = (t, c, true);
+                    }
+                }
+            }
+        }
+        if !gained {
+            break;
+        }
+    }
+}
+
+/// A pass's knots (reversed when asked) with the longest leads the arm
+/// reaches, and every branch that follows it. Err: the painting knot (in
+/// the pass's own order) where the last lead length tried fails, and why.
+fn candidates(
+    robot: &Robot,
+    station: &Station,
+    knots: &[Knot],
+    reversed: bool,
+    stroke: usize,
+) -> Result<Candidates, (usize, crate::robot::Unreachable)> {
+    let mut ks = knots.to_vec();
+    if reversed {
+        ks.reverse();
+    }
+    let mut first_err = None;
+    for lead in [LEAD_M, 0.5 * LEAD_M, 0.0] {
+        let (all, a, b) = with_leads(&ks, lead);
+        match solve_branches(robot, station, &all) {
+            Ok(br) => {
+                return Ok(Candidates {
+                    stroke,
+                    knots: all,
+                    paint_first: a,
+                    paint_last: b,
+                    branches: br,
+                })
+            }
+            Err((k, e)) => {
+                // Report the painting knot, not a lead's.
+                let k = k.saturating_sub(a).min(ks.len() - 1);
+                let k = if reversed { ks.len() - 1 - k } else { k };
+                first_err.get_or_insert((k, e));
+            }
+        }
+    }
+    Err(first_err.unwrap_or((0, unreachable_pose())))
+}
+
+/// The branch of every pass on the cheapest path stow → passes → stow
+/// (Viterbi over the passes; ties to the lower branch index), and its cost.
+fn best_branches(robot: &Robot, stow: &Joints, cands: &[&Candidates]) -> (f64, Vec<usize>) {
+    let n = cands.len();
+    if n == 0 {
+        return (0.0, vec![]);
+    }
+    let first = |c: &Candidates, b: usize| c.branches[b].1[0];
+    let last = |c: &Candidates, b: usize| *c.branches[b].1.last().unwrap_or(stow);
+    // cost[i][b]: cheapest way to have painted passes 0..=i, pass i on branch b.
+    let mut cost: Vec<Vec<f64>> = Vec::with_capacity(n);
+    let mut from: Vec<Vec<usize>> = Vec::with_capacity(n);
+    for (i, c) in cands.iter().enumerate() {
+        let mut row = Vec::with_capacity(c.branches.len());
+        let mut back = Vec::with_capacity(c.branches.len());
+        for (b, (inside, _)) in c.branches.iter().enumerate() {
+            let entry = first(c, b);
+            let (best, arg) = if i == 0 {
+                (travel(robot, stow, &entry), 0)
+            } else {
+                let p = cands[i - 1];
+                (0..p.branches.len())
+                    .map(|a| (cost[i - 1][a] + travel(robot, &last(p, a), &entry), a))
+                    .fold(
+                        (f64::INFINITY, 0),
+                        |m, x| if x.0 < m.0 - 1e-12 { x } else { m },
+                    )
+            };
+            let mut total = best + inside;
+            if i + 1 == n {
+                total += travel(robot, &last(c, b), stow);
+            }
+            row.push(total);
+            back.push(arg);
+        }
+        cost.push(row);
+        from.push(back);
+    }
+    let (mut b, total) = cost[n - 1]
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::INFINITY),
+            |m, (k, &v)| if v < m.1 - 1e-12 { (k, v) } else { m },
+        );
+    let mut choice = vec![0; n];
+    for i in (0..n).rev() {
+        choice[i] = b;
+        b = from[i][b];
+    }
+    (total, choice)
+}
+
+/// Joint travel time between two joint sets: the slowest joint, each
+/// accelerating and braking at its limit up to its speed limit.
+fn travel(robot: &Robot, a: &Joints, b: &Joints) -> f64 {
+    robot
+        .limits
+        .iter()
+        .zip(a.values().into_iter().zip(b.values()))
+        .map(|((_, l), (x, y))| {
+            let d = (x - y).abs();
+            if d * l.max_acc <= l.max_vel * l.max_vel {
+                2.0 * (d / l.max_acc).sqrt()
+            } else {
+                d / l.max_vel + l.max_vel / l.max_acc
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The nozzle pose of a knot in a station's base frame.
+fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
+    let b = stations::road_to_base(station, [k.tip.x, k.tip.y]);
+    NozzlePose {
+        x_m: b[0],
+        y_m: b[1],
+        z_m: k.z_m,
+        yaw_rad: k.yaw_rad - (station.heading_rad - FRAC_PI_2),
+        tilt_rad: k.tilt_rad,
+    }
+}
+
+/// Largest yaw-joint change between two knots of a run (rad). Knots are a
+/// rung spacing apart (20 mm); the tightest turn in the font, a bowl's rung
+/// pivoting about its inner end, turns the fan by well under this. A larger
+/// step is a jump to the other fan branch (π) or yaw turn (2π).
+const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
+
+/// Joints for every knot of a run, per branch: the fan's two branches (ψ
+/// with β, ψ+π with −β) and every yaw turn are tried at the first knot, and
+/// each is followed along the run by the nearest solution; those that hold
+/// to the end come back with their joint travel. Err: no branch does (the
+/// knot index and why).
+#[allow(clippy::type_complexity)]
+fn solve_branches(
+    robot: &Robot,
+    station: &Station,
+    ks: &[Knot],
+) -> Result<Vec<(f64, Vec<Joints>)>, (usize, crate::robot::Unreachable)> {
+    let first = knot_pose(station, &ks[0]);
+    let starts = robot.ik(&first).map_err(|e| (0, e))?;
+    let mut found = vec![];
+    let mut last_err = None;
+    'branch: for start in starts {
+        let mut cost = 0.0;
+        let mut out = Vec::with_capacity(ks.len());
+        out.push(start);
+        for (i, k) in ks.iter().enumerate().skip(1) {
+            let p = *out.last().unwrap_or(&start);
+            match robot.ik_nearest(&knot_pose(station, k), &p) {
+                // The nearest solution is on another branch or yaw turn: the
+                // one this branch follows has left the yaw joint's range.
+                // Turning the fan half or whole way round between two knots
+                // would spray a disc with the gun on, so the branch fails.
+                Ok(j) if (j.ee_yaw_rad - p.ee_yaw_rad).abs() > MAX_KNOT_YAW_STEP_RAD => {
+                    let lim = &robot.limits.ee_yaw_rad;
+                    let step = j.ee_yaw_rad - p.ee_yaw_rad;
+                    // What the branch would have needed: the step less the
+                    // half turns the jump added.
+                    let own = step - std::f64::consts::PI * (step / std::f64::consts::PI).round();
+                    let value = p.ee_yaw_rad + own;
+                    last_err = Some((
+                        i,
+                        crate::robot::Unreachable {
+                            joint: "ee_yaw_rad".into(),
+                            value,
+                            min: lim.min,
+                            max: lim.max,
+                            excess: (lim.min - value).max(value - lim.max).max(0.0),
+                            flipped: false,
+                        },
+                    ));
+                    continue 'branch;
+                }
+                Ok(j) => {
+                    cost += travel(robot, &p, &j);
+                    out.push(j);
+                }
+                Err(e) => {
+                    last_err = Some((i, e));
+                    continue 'branch;
+                }
+            }
+        }
+        found.push((cost, out));
+    }
+    if found.is_empty() {
+        Err(last_err.unwrap_or_else(|| (0, unreachable_pose())))
+    } else {
+        Ok(found)
+    }
+}
+
+/// Placeholder reason when no IK branch was even tried (never expected).
+fn unreachable_pose() -> crate::robot::Unreachable {
+    crate::robot::Unreachable {
+        joint: "pose".into(),
+        value: f64::NAN,
+        min: f64::NAN,
+        max: f64::NAN,
+        excess: f64::NAN,
+        flipped: false,
+    }
+}

@@ -1,0 +1,292 @@
+//! Passes: each stroke's rungs turned into knots (fan direction, height,
+//! tilt, painting speed; `knots`), a stroke wider than one fan split into
+//! parallel passes. A pass is one continuous gun-on path.
+
+use crate::job::StrokeBalance;
+use crate::plan::knots::{self, HeightLaw, Knot, PaintLaw, PlanError, TiltMethod};
+use crate::plan::rungs::Rung;
+use crate::robot::Robot;
+
+use super::error::CompileError;
+use super::placed::PlacedStrokes;
+use super::rungs::StrokeRungs;
+use super::warnings::Note;
+
+/// Knots keep this far inside the tilt range, so the time law's smooth
+/// joint curves between knots (which may overshoot a knot held at a limit
+/// by a fraction of a milliradian) stay inside it. assumed: forty times the
+/// overshoot seen on STOP. (Narrow rungs hold the vertical joint at the
+/// bottom of its stroke, where a millimetre of inset would widen the fan
+/// past 3 %; there the setpoints are clamped instead, see `samples`.)
+const TILT_INSET_RAD: f64 = 0.0044; // 0.25°
+
+/// One continuous gun-on path: a stroke, or one pass of a wide stroke.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pass {
+    /// Index into the placed strokes.
+    pub stroke: usize,
+    pub knots: Vec<Knot>,
+}
+
+/// Every pass of the marking, in stroke order, with each stroke's paint
+/// balance and the notes of this stage.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Passes {
+    pub passes: Vec<Pass>,
+    pub balance: Vec<StrokeBalance>,
+    pub notes: Vec<Note>,
+}
+
+/// Knots of every stroke's passes (001 §2.4–2.5).
+pub fn passes(
+    strokes: &PlacedStrokes,
+    rungs: &StrokeRungs,
+    robot: &Robot,
+    method: TiltMethod,
+) -> Result<Passes, CompileError> {
+    let law = paint_law(robot);
+    let tl = &robot.limits.tilt_rad;
+    let max_tilt = (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0);
+    let mut out = Passes::default();
+    for (sid, stroke_rungs) in rungs.rungs.iter().enumerate() {
+        let owner = strokes.owner(sid);
+        let what =
+            |e: knots::PlanError| CompileError::Knots(format!("stroke {sid} ({owner}): {e}"));
+        let split = split_passes(stroke_rungs, law.max_width_m(), 0.0).map_err(what)?;
+        let mut clamped = 0usize;
+        let mut rung_count = 0usize;
+        let mut worst = 1.0f64;
+        // knots::KnotPlan keeps U in percent; the job keeps fractions.
+        let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
+        let mut u_tilted = u_untilted;
+        for pass in &split {
+            let mut kp = knots::knots(pass, &law, method, max_tilt).map_err(what)?;
+            u_untilted = [
+                u_untilted[0].min(kp.u_before.0 / 100.0),
+                u_untilted[1].max(kp.u_before.1 / 100.0),
+            ];
+            u_tilted = [
+                u_tilted[0].min(kp.u_after.0 / 100.0),
+                u_tilted[1].max(kp.u_after.1 / 100.0),
+            ];
+            let raised = lift_for_tilt(robot, &law, &mut kp.knots);
+            if !raised.is_empty() {
+                // Wider footprints sweep more road: re-pace the pass.
+                knots::pace(pass, &mut kp.knots, law.k_m2ps);
+            }
+            clamped += kp
+                .clamped
+                .iter()
+                .filter(|c| !raised.contains(&c.rung))
+                .count()
+                + raised.len();
+            rung_count += kp.knots.len();
+            for k in &kp.knots {
+                if k.width_m > 0.0 {
+                    worst = worst.max(k.fan_width_m / k.width_m);
+                }
+            }
+            out.passes.push(Pass {
+                stroke: sid,
+                knots: kp.knots,
+            });
+        }
+        if u_untilted[0].is_finite() && u_tilted[0].is_finite() {
+            out.balance.push(StrokeBalance {
+                stroke: sid,
+                char: owner.label.clone(),
+                line: owner.line,
+                u_untilted,
+                u_tilted,
+            });
+        }
+        if split.len() > 1 {
+            out.notes.push(Note::Passes {
+                stroke: sid,
+                owner: owner.clone(),
+                passes: split.len(),
+                max_width_m: law.max_width_m(),
+            });
+        }
+        if clamped > 0 {
+            out.notes.push(Note::HeightClamped {
+                stroke: sid,
+                owner: owner.clone(),
+                clamped,
+                rungs: rung_count,
+                min_height_m: law.min_height_m,
+                worst_ratio: worst,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The paint law of the robot's nozzle and vertical joint. The reachable tip
+/// heights leave room for the tilt's vertical tip offset at any tilt.
+pub fn paint_law(robot: &Robot) -> PaintLaw {
+    let p = &robot.paint;
+    let top = robot.end_effector.tip_height_top_m;
+    let v = &robot.limits.vertical_m;
+    let t = &robot.limits.tilt_rad;
+    // IK: vertical = top + rise(β) − z. A tip that sinks when tilted needs
+    // room at the top of the stroke for every tilt; one that rises is
+    // handled per knot (`lift_for_tilt`).
+    let mut sink: f64 = 0.0;
+    for k in 0..=40 {
+        let b = t.min + (t.max - t.min) * k as f64 / 40.0;
+        let off = robot.tilt_tip_offset(b);
+        if off[1].is_finite() {
+            sink = sink.max(-off[1]);
+        }
+    }
+    PaintLaw {
+        fan_angle_rad: p.fan_angle_rad,
+        k_m2ps: p.k_m2ps(),
+        height: match (p.height_law_c0_m, p.height_law_c1) {
+            (Some(c0), Some(c1)) => HeightLaw::Linear { c0, c1 },
+            _ => HeightLaw::Geometric,
+        },
+        min_height_m: top - v.max,
+        max_height_m: top - v.min - sink,
+    }
+}
+
+/// Raise knots whose tilted tip would need the vertical joint below its
+/// stroke: the tilt four-bar lifts the tip by rise(β), so the lowest tip
+/// height at tilt ±β is `law.min_height_m + max(rise(β), rise(−β))`. The fan then covers
+/// more than the rung, and the speed follows the covered width (as
+/// `knots::knots` does for its own clamp). Returns the knots raised.
+fn lift_for_tilt(robot: &Robot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
+    let mut raised = vec![];
+    for (i, k) in ks.iter_mut().enumerate() {
+        // The fan's other branch (ψ+π, −β) paints the same rung; the four-bar
+        // lifts the tip differently at −β, so the height suits both and the
+        // tour may pick either branch (`joints`).
+        let rise = robot.tilt_tip_offset(k.tilt_rad)[1].max(robot.tilt_tip_offset(-k.tilt_rad)[1]);
+        if !(rise.is_finite() && rise > 0.0) {
+            continue;
+        }
+        let z_min = law.min_height_m + rise;
+        if k.z_m < z_min {
+            let factor = crate::plan::tilt::height_factor(k.tilt_rad, law.fan_angle_rad);
+            k.z_m = z_min;
+            k.fan_width_m = law.width_at_height(z_min / factor).max(k.width_m);
+            raised.push(i);
+        }
+    }
+    raised
+}
+
+/// Splits a stroke too wide for one pass into parallel passes.
+///
+/// The rule: the number of passes n is the same along the whole stroke (so
+/// each pass is one continuous stroke with the gun on from end to end), the
+/// smallest with w_max/n + overlap ≤ `max_width_m`. Every rung is cut at the
+/// fractions j/n of its length; pass j gets the piece from j/n to (j+1)/n,
+/// widened by `overlap_m`/2 into each neighbour (never past the stroke's
+/// edges). With `overlap_m` = 0 the pieces tile every rung exactly: the
+/// passes share their boundaries, cover the stroke and paint no area twice.
+/// A positive overlap trades a band of double film for tolerance to arm
+/// error at the seam. Passes come left to right (pass 0 touches the left
+/// edge); a stroke narrow enough for one pass comes back unchanged.
+pub fn split_passes(
+    rungs: &[Rung],
+    max_width_m: f64,
+    overlap_m: f64,
+) -> Result<Vec<Vec<Rung>>, PlanError> {
+    if !(max_width_m.is_finite()
+        && overlap_m.is_finite()
+        && overlap_m >= 0.0
+        && max_width_m > overlap_m)
+    {
+        return Err(PlanError::BadPassSplit {
+            max_width_m,
+            overlap_m,
+        });
+    }
+    let widest = rungs.iter().map(Rung::width).fold(0.0_f64, f64::max);
+    if !widest.is_finite() {
+        return Err(PlanError::NotFinite {
+            rung: rungs
+                .iter()
+                .position(|r| !r.width().is_finite())
+                .unwrap_or(0),
+        });
+    }
+    if widest <= max_width_m {
+        return Ok(vec![rungs.to_vec()]);
+    }
+    let n = (widest / (max_width_m - overlap_m)).ceil().max(1.0) as usize;
+    Ok((0..n)
+        .map(|j| {
+            rungs
+                .iter()
+                .map(|r| {
+                    let w = r.width();
+                    let ext = if w > 0.0 { 0.5 * overlap_m / w } else { 0.0 };
+                    let f0 = if j == 0 {
+                        0.0
+                    } else {
+                        j as f64 / n as f64 - ext
+                    };
+                    let f1 = if j + 1 == n {
+                        1.0
+                    } else {
+                        (j + 1) as f64 / n as f64 + ext
+                    };
+                    Rung {
+                        left: r.left.lerp(r.right, f0.max(0.0)),
+                        right: r.left.lerp(r.right, f1.min(1.0)),
+                    }
+                })
+                .collect()
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kurbo::{Point, Vec2};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+        #[test]
+        fn passes_tile_every_rung(
+            widths in proptest::collection::vec(0.01f64..1.5, 2..12),
+            max_w in 0.1f64..0.5, overlap_frac in 0.0f64..0.5, angle in -3.0f64..3.0,
+        ) {
+            let overlap = overlap_frac * max_w;
+            let d = Vec2::from_angle(angle);
+            let rungs: Vec<Rung> = widths.iter().enumerate().map(|(k, &w)| {
+                let left = Point::new(0.03 * k as f64, 0.1);
+                Rung { left, right: left + w * d }
+            }).collect();
+            let passes = split_passes(&rungs, max_w, overlap).unwrap();
+            for p in &passes {
+                prop_assert_eq!(p.len(), rungs.len());
+                for r in p { prop_assert!(r.width() <= max_w + 1e-9); }
+            }
+            for (k, r) in rungs.iter().enumerate() {
+                let w = r.width();
+                // Pieces in order, first at the left end, last at the right end,
+                // consecutive ones overlapping by exactly min(overlap, …) and 0 when overlap = 0.
+                prop_assert!((passes[0][k].left - r.left).hypot() < 1e-12);
+                prop_assert!((passes[passes.len() - 1][k].right - r.right).hypot() < 1e-12);
+                let covered: f64 = passes.iter().map(|p| p[k].width()).sum();
+                let seams = (passes.len() - 1) as f64;
+                prop_assert!(covered >= w - 1e-9);
+                prop_assert!(covered <= w + seams * overlap + 1e-9);
+                for pair in passes.windows(2) {
+                    // Next piece starts no later than this one ends: no gap.
+                    let end = (pair[0][k].right - r.left).hypot();
+                    let start = (pair[1][k].left - r.left).hypot();
+                    prop_assert!(start <= end + 1e-12);
+                    if overlap == 0.0 { prop_assert!((start - end).abs() < 1e-12); }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,171 @@
+//! Samples: the timed trajectory as the job's setpoint rows (joints,
+//! actuators, encoders, nozzle pose in the road frame, gun and width), after
+//! the robot's own check of every joint's range and rate: no job that breaks
+//! a limit leaves the compiler.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::job::{self, SampleRow, Samples, Station};
+use crate::plan::knots::Knot;
+use crate::robot::kinematics::wrap_pi;
+use crate::robot::{Joints, NozzlePose, Robot};
+
+use super::error::CompileError;
+use super::joints::{JointPaths, Run};
+use super::stations::{self, StationPlan};
+use super::trajectory::{arc_lengths, joints_of, Timed, TimedTrajectory};
+
+/// Largest joint overshoot `clamp_to_range` absorbs (m or rad); anything
+/// larger is a planning error.
+const CLAMP_MAX: f64 = 1e-3;
+
+/// The job's setpoint rows, station after station.
+pub fn sample(
+    plan: &StationPlan,
+    paths: &JointPaths,
+    timed: TimedTrajectory,
+    robot: &Robot,
+    period_s: f64,
+) -> Result<Samples, CompileError> {
+    let mut samples = Samples::default();
+    for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
+        clamp_to_range(robot, &mut rows)?;
+        // The robot's own check of the sampled joints (speeds, accelerations,
+        // ball-nut speed).
+        let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
+        robot
+            .check_rates(&js, period_s)
+            .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
+        for (k, j) in js.iter().enumerate() {
+            robot.check_joints(j).map_err(|e| {
+                CompileError::Timing(format!(
+                    "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
+                     range ({e})"
+                ))
+            })?;
+        }
+        append_samples(
+            &mut samples,
+            robot,
+            station,
+            si as u32,
+            &paths.stations[si],
+            &rows,
+            period_s,
+        );
+    }
+    Ok(samples)
+}
+
+/// Clamp setpoints that the smooth joint curves carry a hair past a joint's
+/// range (a knot held at the bottom of the vertical stroke); the rate
+/// checks that follow still see every clamped sample.
+fn clamp_to_range(robot: &Robot, timed: &mut [Timed]) -> Result<(), CompileError> {
+    for (k, p) in timed.iter_mut().enumerate() {
+        for (j, (name, l)) in robot.limits.iter().enumerate() {
+            let v = p.q[j];
+            let c = v.clamp(l.min, l.max);
+            if (c - v).abs() > CLAMP_MAX {
+                return Err(CompileError::Timing(format!(
+                    "setpoint {k}: {name} = {v} leaves its range [{}, {}] between knots",
+                    l.min, l.max
+                )));
+            }
+            p.q[j] = c;
+        }
+    }
+    Ok(())
+}
+
+/// Append a station's samples to the job's columns.
+fn append_samples(
+    samples: &mut Samples,
+    robot: &Robot,
+    station: &Station,
+    station_index: u32,
+    runs: &[Run],
+    timed: &[Timed],
+    period: f64,
+) {
+    let t0 = samples.len();
+    let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
+    // Nozzle in the road frame at every sample.
+    let poses: Vec<(NozzlePose, [f64; 2], f64)> = timed
+        .iter()
+        .map(|p| {
+            let pose = robot.fk(&joints_of(&p.q));
+            let r = stations::base_to_road(station, [pose.x_m, pose.y_m]);
+            let yaw = wrap_pi(pose.yaw_rad + station.heading_rad - FRAC_PI_2);
+            (pose, r, yaw)
+        })
+        .collect();
+    for (i, p) in timed.iter().enumerate() {
+        let (pose, r, yaw) = &poses[i];
+        let j = joints_of(&p.q);
+        // Central difference of the nozzle position (one-sided at the ends).
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(timed.len() - 1));
+        let speed = if b > a {
+            let (pa, pb) = (&poses[a], &poses[b]);
+            (pb.1[0] - pa.1[0]).hypot(pb.1[1] - pa.1[1]) / ((b - a) as f64 * period)
+        } else {
+            0.0
+        };
+        let act = robot.actuators(&j);
+        let enc = robot.encoders(&j);
+        let (stroke, paint, width) = match p.gun {
+            Some(ri) => {
+                let run = &runs[ri];
+                // Before the run's motion (a gun lead) the width is the first rung's.
+                let s = if p.run == Some(ri) {
+                    p.s
+                } else {
+                    arcs[ri][run.paint_first]
+                };
+                let (w, _) = interp_knot(&run.knots, &arcs[ri], s);
+                (run.stroke as i64, 1u8, w)
+            }
+            None => (-1, 0u8, 0.0),
+        };
+        samples.push(&SampleRow {
+            t_s: job::tick_time(t0 + i, period),
+            station: station_index,
+            stroke,
+            paint,
+            x_m: r[0],
+            y_m: r[1],
+            z_m: pose.z_m,
+            yaw_rad: *yaw,
+            tilt_rad: j.tilt_rad,
+            speed_mps: speed,
+            width_m: width,
+            base_rot_rad: j.base_rot_rad,
+            extension_m: j.extension_m,
+            cylinder_m: act.cylinder_m,
+            vertical_m: j.vertical_m,
+            ee_yaw_rad: j.ee_yaw_rad,
+            tilt_nut_m: act.tilt_nut_m,
+            enc_base: enc.base,
+            enc_extension: enc.extension,
+            enc_yaw: enc.yaw,
+            enc_tilt: enc.tilt,
+            enc_vertical: enc.vertical,
+        });
+    }
+}
+
+/// Rung width and painting speed at arc length `s`, linear between knots.
+fn interp_knot(ks: &[Knot], arcs: &[f64], s: f64) -> (f64, f64) {
+    let n = ks.len();
+    let i = arcs.partition_point(|&a| a < s).clamp(1, n - 1);
+    let (s0, s1) = (arcs[i - 1], arcs[i]);
+    let f = if s1 > s0 {
+        ((s - s0) / (s1 - s0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let lerp = |a: f64, b: f64| a + f * (b - a);
+    (
+        lerp(ks[i - 1].swept_width_m, ks[i].swept_width_m),
+        lerp(ks[i - 1].speed_mps, ks[i].speed_mps),
+    )
+}

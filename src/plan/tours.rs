@@ -1,0 +1,116 @@
+//! Tours: per station, the order and direction in which its passes are
+//! painted, starting from the stow pose (`order` solves the open tour).
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use crate::job::Station;
+use crate::plan::knots::Knot;
+use crate::robot::kinematics::wrap_pi;
+use crate::robot::Robot;
+
+use super::order::{self, Ends, Visit};
+use super::passes::Passes;
+use super::stations::{self, StationPlan};
+use super::stow::stow_joints;
+
+/// The painting order of every station.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Tours {
+    /// `stations[s]`: visits in painting order; `Visit::item` indexes
+    /// `passes`, `reversed` paints the pass end → start.
+    pub stations: Vec<Vec<Visit>>,
+}
+
+/// Order each station's passes to minimise the estimated air time.
+pub fn tours(passes: &Passes, plan: &StationPlan, robot: &Robot) -> Tours {
+    let stow_pose = robot.fk(&stow_joints(robot));
+    let stations = plan
+        .stations
+        .iter()
+        .enumerate()
+        .map(|(si, station)| {
+            let mine: Vec<usize> = (0..passes.passes.len())
+                .filter(|&i| plan.station_of[i] == si)
+                .collect();
+            let ends: Vec<Ends<EndPose>> = mine
+                .iter()
+                .map(|&i| {
+                    let k = &passes.passes[i].knots;
+                    let at = |k: Option<&Knot>| {
+                        k.map(|k| EndPose {
+                            xy: [k.tip.x, k.tip.y],
+                            yaw: k.yaw_rad,
+                            tilt: k.tilt_rad,
+                        })
+                        .unwrap_or_default()
+                    };
+                    Ends {
+                        start: at(k.first()),
+                        end: at(k.last()),
+                    }
+                })
+                .collect();
+            let from = EndPose {
+                xy: stations::base_to_road(station, [stow_pose.x_m, stow_pose.y_m]),
+                yaw: stow_pose.yaw_rad + station.heading_rad - FRAC_PI_2,
+                tilt: stow_pose.tilt_rad,
+            };
+            let cost = |a: EndPose, b: EndPose| air_time_estimate(robot, station, a, b);
+            order::order(&ends, from, cost)
+                .into_iter()
+                .map(|v| Visit {
+                    item: mine[v.item],
+                    reversed: v.reversed,
+                })
+                .collect()
+        })
+        .collect();
+    Tours { stations }
+}
+
+/// Base-frame polar coordinates (θ1, R) of a road point.
+fn polar(station: &Station, p: [f64; 2]) -> (f64, f64) {
+    let b = stations::road_to_base(station, p);
+    (b[1].atan2(b[0]), b[0].hypot(b[1]))
+}
+
+/// Where a pass starts or ends: the nozzle's road point, the fan's
+/// direction ψ (road frame) and its tilt β there.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EndPose {
+    pub xy: [f64; 2],
+    pub yaw: f64,
+    pub tilt: f64,
+}
+
+/// Estimated time of an air move of the arm between two pass ends: the
+/// slowest of base rotation, extension, and the fan's yaw and tilt joints
+/// (on whichever fan branch, (ψ, β) or (ψ+π, −β), turns them least), each
+/// accelerating and braking at its limit (symmetric, as the ordering needs).
+fn air_time_estimate(robot: &Robot, station: &Station, a: EndPose, b: EndPose) -> f64 {
+    let (ta, ra) = polar(station, a.xy);
+    let (tb, rb) = polar(station, b.xy);
+    let l = &robot.limits;
+    let t = |d: f64, v: f64, acc: f64| {
+        let d = d.abs();
+        if d * acc <= v * v {
+            2.0 * (d / acc).sqrt()
+        } else {
+            d / v + v / acc
+        }
+    };
+    // The yaw joint turns ψ less the base rotation (ψ = θ1 + yaw joint).
+    let turn = wrap_pi((b.yaw - a.yaw) - (tb - ta));
+    let fan = |dyaw: f64, dtilt: f64| {
+        t(dyaw, l.ee_yaw_rad.max_vel, l.ee_yaw_rad.max_acc).max(t(
+            dtilt,
+            l.tilt_rad.max_vel,
+            l.tilt_rad.max_acc,
+        ))
+    };
+    let same = fan(turn, b.tilt - a.tilt);
+    let flipped = fan(wrap_pi(turn + PI), b.tilt + a.tilt);
+    t(tb - ta, l.base_rot_rad.max_vel, l.base_rot_rad.max_acc)
+        .max(t(rb - ra, l.extension_m.max_vel, l.extension_m.max_acc))
+        .max(same.min(flipped))
+}

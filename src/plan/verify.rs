@@ -1,0 +1,66 @@
+//! Verification: every job compile writes is run through the closed-loop
+//! simulator (`sim::simulate`, the default controller, the job's robot
+//! dynamics) before it is written; a job whose nozzle strays more than
+//! `VERIFY_SHARE` of the tolerance while painting, or that breaks a limit
+//! of the plant, is re-timed slower by the caller or refused.
+
+use crate::job::Job;
+use crate::sim::{self, SimModel};
+
+use super::error::CompileError;
+
+/// Share of the tolerance the verified error may use (issue 11: 0.75 ×
+/// 6.35 mm), leaving the rest for what the model does not know.
+pub const VERIFY_SHARE: f64 = 0.75;
+
+/// What the simulator made of a job.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    pub max_error_m: f64,
+    /// Within `VERIFY_SHARE` of the tolerance and no plant limit broken.
+    pub ok: bool,
+    /// Where and why it failed (empty when `ok`).
+    pub why: String,
+    /// Station and stroke of the worst error (stroke −1 in an air move).
+    pub worst: (u32, i64),
+}
+
+/// Simulate `job` with the default options and judge it.
+pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
+    let model = SimModel::from_robot(&job.robot)
+        .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
+    let opts = sim::Options::default();
+    let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let r = &outcome.report;
+    let bound = VERIFY_SHARE * opts.tolerance_m;
+    let broken: Vec<&str> = r
+        .limits
+        .iter()
+        .filter(|l| l.fails)
+        .map(|l| l.message.as_str())
+        .collect();
+    let ok = r.max_error_m <= bound && broken.is_empty();
+    let why = if ok {
+        String::new()
+    } else {
+        let mut w = format!(
+            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
+             × the {:.2} mm tolerance) at {}",
+            r.max_error_m * 1e3,
+            bound * 1e3,
+            opts.tolerance_m * 1e3,
+            r.worst.describe()
+        );
+        if !broken.is_empty() {
+            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
+        }
+        w
+    };
+    Ok(Verdict {
+        max_error_m: r.max_error_m,
+        ok,
+        why,
+        worst: (r.worst.station, r.worst.stroke),
+    })
+}

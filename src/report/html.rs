@@ -1,0 +1,262 @@
+//! The sheet as one self-contained HTML page: inline CSS, the film picture
+//! as inline SVG, no script, nothing fetched (a truck has no network). It
+//! prints on A4 or Letter; sections do not break across pages.
+
+use std::fmt::Write as _;
+
+use super::{Sheet, SimVerdict};
+
+/// Text for HTML: `&`, `<`, `>`, `"` escaped.
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+const STYLE: &str = "
+body { font-family: 'DejaVu Sans', Arial, sans-serif; color: #1a1a1a; margin: 2em auto;
+       max-width: 60em; padding: 0 1em; line-height: 1.35; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { font-size: 1.15em; border-bottom: 2px solid #1a1a1a; padding-bottom: 0.1em; margin-top: 1.4em; }
+table { border-collapse: collapse; margin: 0.4em 0; }
+th, td { border: 1px solid #999; padding: 0.2em 0.6em; text-align: left; vertical-align: top; }
+th { background: #eee; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.overall { font-size: 1.3em; font-weight: bold; padding: 0.4em 0.8em; display: inline-block;
+           border: 3px solid; }
+.ready { color: #1a7f37; } .ready-with-notes { color: #9a6700; } .not-ready { color: #cf222e; }
+.pass { color: #1a7f37; font-weight: bold; } .fail { color: #cf222e; font-weight: bold; }
+.problem { color: #cf222e; } .notice { color: #9a6700; } .info { color: #57606a; }
+ol.stops li { margin-bottom: 0.5em; }
+figure { margin: 0.5em 0; }
+figure svg { max-width: 100%; height: auto; border: 1px solid #ccc; }
+section { break-inside: avoid; }
+.sign td { height: 2.2em; min-width: 14em; }
+@media print { body { margin: 0; max-width: none; } a { color: inherit; } }
+";
+
+fn minutes(s: f64) -> String {
+    format!("{:.1} min", s / 60.0)
+}
+
+fn pass_fail(pass: bool) -> &'static str {
+    if pass {
+        "<span class=\"pass\">PASS</span>"
+    } else {
+        "<span class=\"fail\">FAIL</span>"
+    }
+}
+
+fn row(out: &mut String, label: &str, value_html: &str) {
+    let _ = writeln!(
+        out,
+        "<tr><th>{}</th><td>{value_html}</td></tr>",
+        escape(label)
+    );
+}
+
+fn summary(out: &mut String, s: &Sheet) {
+    out.push_str("<section id=\"summary\"><h2>At a glance</h2><table>\n");
+    row(out, "time on site", &minutes(s.time_on_site_s));
+    row(
+        out,
+        "paint",
+        &format!("{:.2} L (have at least this in the tank)", s.paint_m3 * 1e3),
+    );
+    let tip =
+        match s.tip_left_m3 {
+            Some((lo, hi)) if lo <= 0.0 => format!(
+            "<span class=\"fail\">replace the tip{}</span>: after this job {:.1}–{:.1} L of its \
+             {:.0}–{:.0} L life are left",
+            if hi <= 0.0 { " before this job" } else { " soon" },
+            lo.max(0.0) * 1e3,
+            hi.max(0.0) * 1e3,
+            s.tip_life_m3.0 * 1e3,
+            s.tip_life_m3.1 * 1e3
+        ),
+            Some((lo, hi)) => format!(
+                "{:.1}–{:.1} L of the tip's {:.0}–{:.0} L life left after this job",
+                lo * 1e3,
+                hi * 1e3,
+                s.tip_life_m3.0 * 1e3,
+                s.tip_life_m3.1 * 1e3
+            ),
+            None => format!(
+            "a tip lasts {:.0}–{:.0} L; keep a tally (<code>--tip-tally FILE</code>) to see what \
+             is left",
+            s.tip_life_m3.0 * 1e3,
+            s.tip_life_m3.1 * 1e3
+        ),
+        };
+    row(out, "spray tip", &tip);
+    let film = if s.film_verdict.pass() {
+        format!(
+            "{} (evenness, coverage and overspray within the limits)",
+            pass_fail(true)
+        )
+    } else {
+        format!(
+            "{}: {}",
+            pass_fail(false),
+            escape(&s.film_verdict.reasons())
+        )
+    };
+    row(out, "paint film (preview)", &film);
+    row(out, "arm accuracy (simulate)", &sim_text(s.sim.as_ref()));
+    out.push_str("</table></section>\n");
+}
+
+fn sim_text(sim: Option<&SimVerdict>) -> String {
+    match sim {
+        None => "not simulated (run without <code>--no-sim</code>, or give \
+                 <code>--sim FILE</code> from <code>basr simulate --json</code>)"
+            .into(),
+        Some(v) => {
+            let mut t = format!(
+                "{}: nozzle within {:.2} mm of the plan (RMS {:.2} mm) against {:.2} mm, \
+                 controller {}",
+                pass_fail(v.verdict == "pass"),
+                v.max_error_m * 1e3,
+                v.rms_error_m * 1e3,
+                v.tolerance_m * 1e3,
+                escape(&v.controller)
+            );
+            for r in &v.reasons {
+                let _ = write!(t, "<br>{}", escape(r));
+            }
+            t
+        }
+    }
+}
+
+fn stops(out: &mut String, s: &Sheet) {
+    out.push_str("<section id=\"stops\"><h2>Where the truck stops</h2><ol class=\"stops\">\n");
+    for st in &s.stops {
+        let _ = writeln!(
+            out,
+            "<li><strong>Stop {}.</strong> {} <em>The arm works here {}.</em></li>",
+            st.number,
+            escape(&st.instruction),
+            minutes(st.work_s)
+        );
+    }
+    out.push_str("</ol></section>\n");
+}
+
+fn film(out: &mut String, s: &Sheet) {
+    out.push_str("<section id=\"film\"><h2>The paint film</h2><table>\n");
+    for (k, v) in &s.film_lines {
+        row(out, k, &escape(v));
+    }
+    out.push_str("</table>\n<figure>\n");
+    out.push_str(&s.film_svg);
+    out.push_str(
+        "<figcaption>The film the plan lays (preview): colour by thickness against the \
+         target, letter outlines in red, the nozzle's path.</figcaption></figure>\n",
+    );
+    out.push_str(
+        "<table id=\"letters\"><tr><th>line</th><th>letter</th><th></th><th>mean film</th>\
+         <th>evenness (cv)</th><th>coverage</th><th>overspray</th><th>verdict</th></tr>\n",
+    );
+    let pct = |v: Option<f64>| v.map_or("–".into(), |v| format!("{:.1} %", v * 100.0));
+    for l in &s.letters {
+        let _ = writeln!(
+            out,
+            "<tr><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{}</td><td>{}</td></tr>",
+            l.line,
+            l.place,
+            escape(&l.char),
+            l.mean_film_m
+                .map_or("–".into(), |f| format!("{:.0} µm", f * 1e6)),
+            pct(l.cv),
+            pct(l.coverage),
+            pct(l.overspray),
+            pass_fail(l.pass)
+        );
+    }
+    out.push_str("</table></section>\n");
+}
+
+fn warnings(out: &mut String, s: &Sheet) {
+    out.push_str("<section id=\"warnings\"><h2>Warnings</h2>\n");
+    if s.notes.is_empty() {
+        out.push_str("<p>None.</p>");
+    }
+    for (sev, heading) in [
+        ("problem", "Problems: fix before painting"),
+        (
+            "notice",
+            "Notices: the marking comes out, slightly off the target here",
+        ),
+        ("info", "For information"),
+    ] {
+        let list: Vec<_> = s.notes.iter().filter(|n| n.severity == sev).collect();
+        if list.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "<h3 class=\"{sev}\">{heading} ({})</h3><ul>",
+            list.len()
+        );
+        for n in list {
+            let _ = writeln!(out, "<li class=\"{sev}\">{}</li>", escape(&n.text));
+        }
+        out.push_str("</ul>\n");
+    }
+    out.push_str("</section>\n");
+}
+
+/// The page.
+pub fn render(s: &Sheet) -> String {
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>basr job sheet: {t}</title><style>{STYLE}</style></head><body>\n\
+         <header><h1>Job sheet: {t}</h1>\n<p class=\"overall {cls}\" id=\"overall\">{word}</p>\n\
+         </header>\n",
+        t = escape(&s.title),
+        cls = s.overall.replace(' ', "-"),
+        word = s.overall.to_uppercase(),
+    );
+    summary(&mut out, s);
+    out.push_str("<section id=\"items\"><h2>What to paint</h2><ul>\n");
+    for i in &s.items {
+        let _ = writeln!(out, "<li>{}</li>", escape(i));
+    }
+    out.push_str("</ul></section>\n");
+    stops(&mut out, s);
+    film(&mut out, s);
+    warnings(&mut out, s);
+    out.push_str("<section id=\"job\"><h2>The job</h2><table>\n");
+    for (k, v) in &s.facts {
+        row(&mut out, k, &escape(v));
+    }
+    out.push_str(
+        "</table>\n<table class=\"sign\"><tr><th>checked by</th><td></td><th>date</th><td></td>\
+         </tr><tr><th>painted by</th><td></td><th>date</th><td></td></tr></table>\n\
+         </section>\n</body></html>\n",
+    );
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escape_covers_markup() {
+        assert_eq!(escape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;");
+    }
+}

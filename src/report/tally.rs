@@ -1,0 +1,108 @@
+//! The tip tally: a small TOML file the crew keeps with the paint that has
+//! gone through the current spray tip, one entry per job, so the job sheet
+//! can say how much of the tip's 113–190 L life (001 §2.4) is left. A job
+//! is counted once however often its sheet is printed; a new tip starts a
+//! new file (delete or rename the old one).
+//!
+//! ```toml
+//! # basr tip tally: paint through the current tip
+//! [[job]]
+//! sha256 = "3f1c…"
+//! message = "STOP"
+//! paint_l = 0.82
+//! ```
+
+use serde::{Deserialize, Serialize};
+
+/// The file's contents.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tally {
+    #[serde(default, rename = "job")]
+    pub jobs: Vec<Entry>,
+}
+
+/// One job's paint through the tip.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Entry {
+    pub sha256: String,
+    pub message: String,
+    /// Litres: the unit on the paint can (the file is for people).
+    pub paint_l: f64,
+}
+
+impl Tally {
+    /// Read a tally; `origin` names it in messages.
+    pub fn parse(text: &str, origin: &str) -> Result<Tally, String> {
+        let t: Tally = toml::from_str(text).map_err(|e| {
+            format!(
+                "{origin}: not a tip tally ({}); it holds [[job]] tables with sha256, message \
+                 and paint_l (docs/report.md)",
+                crate::io::one_line(&e.to_string())
+            )
+        })?;
+        for (k, e) in t.jobs.iter().enumerate() {
+            if !(e.paint_l.is_finite() && e.paint_l >= 0.0) {
+                return Err(format!(
+                    "{origin}: job {} ({:?}) has paint_l = {}: give the litres used, 0 or more",
+                    k + 1,
+                    e.message,
+                    e.paint_l
+                ));
+            }
+        }
+        Ok(t)
+    }
+
+    /// Litres through the tip, the job `sha256` excluded.
+    pub fn used_m3_without(&self, sha256: &str) -> f64 {
+        self.jobs
+            .iter()
+            .filter(|e| e.sha256 != sha256)
+            .map(|e| e.paint_l * 1e-3)
+            .sum()
+    }
+
+    /// The tally with this job counted (once).
+    pub fn with_job(mut self, sha256: &str, message: &str, paint_m3: f64) -> Tally {
+        if !self.jobs.iter().any(|e| e.sha256 == sha256) {
+            self.jobs.push(Entry {
+                sha256: sha256.into(),
+                message: message.replace('\n', " / "),
+                paint_l: (paint_m3 * 1e6).round() / 1e3,
+            });
+        }
+        self
+    }
+
+    pub fn to_toml(&self) -> String {
+        let body = toml::to_string(self).unwrap_or_default();
+        format!("# basr tip tally: paint through the current tip (docs/report.md)\n{body}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_job_is_counted_once_and_the_file_reads_back() {
+        let t = Tally::default()
+            .with_job("aa", "STOP", 0.82e-3)
+            .with_job("aa", "STOP", 0.82e-3)
+            .with_job("bb", "STOP\nAHEAD", 1.98e-3);
+        assert_eq!(t.jobs.len(), 2);
+        assert!((t.used_m3_without("cc") - 2.80e-3).abs() < 1e-12);
+        assert!((t.used_m3_without("aa") - 1.98e-3).abs() < 1e-12);
+        let back = Tally::parse(&t.to_toml(), "t.toml").unwrap();
+        assert_eq!(back, t);
+        assert!(Tally::parse("used = 3", "t.toml")
+            .unwrap_err()
+            .contains("not a tip tally"));
+        let neg = "[[job]]\nsha256 = \"a\"\nmessage = \"X\"\npaint_l = -1\n";
+        assert!(Tally::parse(neg, "t.toml")
+            .unwrap_err()
+            .contains("paint_l = -1"));
+    }
+}
