@@ -1,5 +1,6 @@
-//! Canonical bytes of a JSON value, the form every document and description
-//! hash is taken over (job `sha256`, `robot_sha256`): compact JSON of a
+//! Compact canonical bytes of a JSON value, the form description hashes are
+//! taken over (`robot_sha256`; a job's own `sha256` and signature cover the
+//! job's file form, `job::canonical`, docs/job-canonical-form.md): compact JSON of a
 //! `serde_json::Value`, object keys in byte order (serde_json's default
 //! sorted map), numbers in serde_json's shortest round-trip form. A module of
 //! its own so `robot` and `job` both use it without importing each other.

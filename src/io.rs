@@ -45,17 +45,84 @@ pub fn stage_outputs() {
     outputs().staging = true;
 }
 
-/// Rename every staged output over its target, in the order written. Call
-/// once, when the run has succeeded (or reached its verdict).
+/// Rename every staged output over its target, in the order written
+/// (commands write their job last, so a job never stands beside a CSV
+/// older or newer than itself). All or none: when a rename fails, the
+/// targets already replaced get their earlier contents back and the rest
+/// are not touched. Call once, when the run has succeeded (or reached its
+/// verdict). The lock is held throughout, so a signal waits for the end.
 pub fn commit_outputs() -> Result<(), WriteError> {
     let mut out = outputs();
-    out.committed = true;
+    let staged = std::mem::take(&mut out.staged);
+    let result = commit_all(staged);
+    out.committed = result.is_ok();
     out.in_flight.clear();
-    for (tmp, path) in std::mem::take(&mut out.staged) {
-        tmp.persist(&path).map_err(|e| WriteError::Io {
-            path: path.clone(),
-            source: e.error,
-        })?;
+    result
+}
+
+/// A target replaced during a commit, and the earlier file under it.
+struct Replaced {
+    target: PathBuf,
+    /// A hard link (or copy) of the earlier file, `None` when there was none.
+    backup: Option<PathBuf>,
+}
+
+/// Keep the earlier file at `target` under a new name beside it (a hard
+/// link: nothing is copied), so a failed commit can put it back.
+fn keep_earlier(target: &Path, n: usize) -> std::io::Result<Option<PathBuf>> {
+    match std::fs::symlink_metadata(target) {
+        Ok(m) if m.is_file() => {}
+        _ => return Ok(None),
+    }
+    let backup = folder_of(target).join(format!(".basr-{}-{n}.old", std::process::id()));
+    let _ = std::fs::remove_file(&backup);
+    if std::fs::hard_link(target, &backup).is_err() {
+        std::fs::copy(target, &backup)?;
+    }
+    Ok(Some(backup))
+}
+
+/// Rename each staged temporary over its target; on the first failure put
+/// back what was replaced (see [`commit_outputs`]).
+fn commit_all(staged: Vec<(tempfile::NamedTempFile, PathBuf)>) -> Result<(), WriteError> {
+    let mut done: Vec<Replaced> = Vec::new();
+    let mut failure = None;
+    for (n, (tmp, target)) in staged.into_iter().enumerate() {
+        let step = keep_earlier(&target, n).and_then(|backup| match tmp.persist(&target) {
+            Ok(_) => Ok(backup),
+            Err(e) => {
+                if let Some(b) = &backup {
+                    let _ = std::fs::remove_file(b);
+                }
+                Err(e.error)
+            }
+        });
+        match step {
+            Ok(backup) => done.push(Replaced { target, backup }),
+            Err(source) => {
+                failure = Some(WriteError::Io {
+                    path: target,
+                    source: without_temp_name(source),
+                });
+                break;
+            }
+        }
+        // The temporaries not reached are deleted when the loop's
+        // remaining items drop.
+    }
+    if let Some(e) = failure {
+        for r in done.iter().rev() {
+            let _ = match &r.backup {
+                Some(b) => std::fs::rename(b, &r.target),
+                None => std::fs::remove_file(&r.target),
+            };
+        }
+        return Err(e);
+    }
+    for r in &done {
+        if let Some(b) = &r.backup {
+            let _ = std::fs::remove_file(b);
+        }
     }
     Ok(())
 }
@@ -79,26 +146,109 @@ pub enum WriteError {
         #[source]
         source: std::io::Error,
     },
+    #[error("cannot write {path}: {why}")]
+    Unwritable { path: PathBuf, why: String },
 }
 
-/// Install a Ctrl-C handler that deletes this run's temporary files (being
-/// written or staged), then exits with 130. After [`commit_outputs`] the
-/// signal is ignored: the outputs are complete and the run is ending. Call
-/// once at start-up; later calls are ignored.
+/// Check before the work starts that `path` can be written as an output:
+/// not a folder, in a folder that exists and takes new files (tried with a
+/// temporary that is removed at once). A device or FIFO is written in place
+/// and passes. Commands call it for every output path before computing.
+pub fn check_writable(path: &Path) -> Result<(), WriteError> {
+    let bad = |why: String| WriteError::Unwritable {
+        path: path.to_path_buf(),
+        why,
+    };
+    if path == Path::new("-") {
+        return Ok(());
+    }
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => {
+            return Err(bad(
+                "it is a folder; give a file name inside it (e.g. FOLDER/NAME)".to_string(),
+            ))
+        }
+        Ok(m) if !m.is_file() => return Ok(()),
+        _ => {}
+    }
+    let folder = folder_of(path);
+    match std::fs::metadata(folder) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => {
+            return Err(bad(format!(
+                "{} is not a folder; give a path in an existing folder",
+                folder.display()
+            )))
+        }
+        Err(_) => {
+            return Err(bad(format!(
+                "the folder {} does not exist; create it first or give another path",
+                folder.display()
+            )))
+        }
+    }
+    // Held while the probe exists: an interrupt waits until it is gone.
+    let _out = outputs();
+    tempfile::Builder::new()
+        .prefix(".basr-")
+        .suffix(".part")
+        .tempfile_in(folder)
+        .map(drop)
+        .map_err(|e| {
+            bad(format!(
+                "the folder {} does not take new files ({}); give a writable folder",
+                folder.display(),
+                without_temp_name(e)
+            ))
+        })
+}
+
+/// The signals that end a run like Ctrl-C: interrupt, terminate (`kill`, a
+/// CI timeout), hang-up (a closed terminal) and quit.
+pub const INTERRUPTS: [i32; 4] = [
+    signal_hook::consts::SIGINT,
+    signal_hook::consts::SIGTERM,
+    signal_hook::consts::SIGHUP,
+    signal_hook::consts::SIGQUIT,
+];
+
+fn signal_name(sig: i32) -> &'static str {
+    match sig {
+        signal_hook::consts::SIGINT => "SIGINT",
+        signal_hook::consts::SIGTERM => "SIGTERM",
+        signal_hook::consts::SIGHUP => "SIGHUP",
+        _ => "SIGQUIT",
+    }
+}
+
+/// Install a handler for [`INTERRUPTS`] that deletes this run's temporary
+/// files (being written or staged), then exits with 128 + the signal
+/// (130 for Ctrl-C, 143 for SIGTERM, 129 for SIGHUP, 131 for SIGQUIT).
+/// After [`commit_outputs`] a signal is ignored: the outputs are complete
+/// and the run is ending. Call once at start-up.
 pub fn install_interrupt_cleanup() {
-    let _ = ctrlc::set_handler(|| {
-        // Held until exit: no writer creates or renames a file after this.
-        let out = outputs();
-        if out.committed {
-            return;
+    let Ok(mut signals) = signal_hook::iterator::Signals::new(INTERRUPTS) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        for sig in signals.forever() {
+            // Held until exit: no writer creates or renames a file after this.
+            let out = outputs();
+            if out.committed {
+                continue;
+            }
+            for p in &out.in_flight {
+                let _ = std::fs::remove_file(p);
+            }
+            // Not eprintln!: with stderr closed it would panic in the
+            // handler's thread and the process would carry on.
+            let _ = writeln!(
+                std::io::stderr(),
+                "interrupted ({}): no output file was written",
+                signal_name(sig)
+            );
+            std::process::exit(128 + sig);
         }
-        for p in &out.in_flight {
-            let _ = std::fs::remove_file(p);
-        }
-        // Not eprintln!: with stderr closed it would panic in the handler's
-        // thread and the process would carry on instead of exiting.
-        let _ = writeln!(std::io::stderr(), "interrupted: no output file was written");
-        std::process::exit(130);
     });
 }
 
@@ -127,6 +277,72 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
 /// Write to `path` atomically through `fill`, which receives a buffered writer.
 pub fn write_atomic_with(
     path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<(), WriteError> {
+    write_output(path, None, fill).map(drop)
+}
+
+/// Permissions of a Unix mode (ignored elsewhere).
+fn mode_perms(mode: u32) -> std::fs::Permissions {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::Permissions::from_mode(mode)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = mode;
+        std::fs::metadata(".")
+            .map(|m| m.permissions())
+            .expect("cwd")
+    }
+}
+
+/// A writer that hashes what passes through it.
+struct Hashing<'a> {
+    inner: &'a mut dyn Write,
+    hash: sha2::Sha256,
+}
+
+impl Write for Hashing<'_> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        use sha2::Digest;
+        let n = self.inner.write(buf)?;
+        self.hash.update(&buf[..n]);
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// Write to `path` atomically through `fill` and return the SHA-256 (hex)
+/// of the bytes written, for a job to record (SPEC §7 `outputs`). `mode`
+/// sets the file's Unix mode (a secret key's 0600); without it a replaced
+/// file keeps its mode and a new one is 0644.
+pub fn write_output(
+    path: &Path,
+    mode: Option<u32>,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<String, WriteError> {
+    let hash = std::cell::RefCell::new(None);
+    let hashing = |w: &mut dyn Write| {
+        use sha2::Digest;
+        let mut h = Hashing {
+            inner: w,
+            hash: sha2::Sha256::new(),
+        };
+        fill(&mut h)?;
+        *hash.borrow_mut() = Some(hex(&h.hash.finalize()));
+        Ok(())
+    };
+    write_atomic_inner(path, mode, hashing)?;
+    Ok(hash.into_inner().unwrap_or_default())
+}
+
+fn write_atomic_inner(
+    path: &Path,
+    mode: Option<u32>,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<(), WriteError> {
     let err = |source| WriteError::Io {
@@ -163,16 +379,22 @@ pub fn write_atomic_with(
     let mut builder = tempfile::Builder::new();
     builder.prefix(".basr-").suffix(".part");
     // tempfile creates 0600 files; an output file is an ordinary document
-    // the crew shares, so give it the usual rw-r--r--.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o644));
-    }
+    // the crew shares, so give it the usual rw-r--r--, or the mode of the
+    // file it replaces (a 0600 job stays 0600), or the one asked for.
+    let perms = match (mode, std::fs::metadata(path)) {
+        (Some(m), _) => mode_perms(m),
+        (None, Ok(meta)) if meta.is_file() => meta.permissions(),
+        _ => mode_perms(0o644),
+    };
     let (tmp, tmp_path) = {
         let mut out = outputs();
         let tmp = builder
+            .permissions(perms.clone())
             .tempfile_in(folder_of(path))
+            .map_err(|e| err(without_temp_name(e)))?;
+        // The creation mode passed through the umask; give the exact one.
+        tmp.as_file()
+            .set_permissions(perms)
             .map_err(|e| err(without_temp_name(e)))?;
         let tmp_path = tmp.path().to_path_buf();
         out.in_flight.push(tmp_path.clone());
@@ -214,9 +436,21 @@ pub fn print_stdout(text: &str) -> std::io::Result<()> {
 
 /// Lower-case hex SHA-256 of `bytes`.
 pub fn sha256_hex(bytes: &[u8]) -> String {
+    sha256_hex_of([bytes])
+}
+
+/// Lower-case hex SHA-256 of `pieces` one after the other (no copy).
+pub fn sha256_hex_of<'a>(pieces: impl IntoIterator<Item = &'a [u8]>) -> String {
     use sha2::{Digest, Sha256};
-    let digest = Sha256::digest(bytes);
-    let mut s = String::with_capacity(64);
+    let mut h = Sha256::new();
+    for piece in pieces {
+        h.update(piece);
+    }
+    hex(&h.finalize())
+}
+
+fn hex(digest: &[u8]) -> String {
+    let mut s = String::with_capacity(2 * digest.len());
     for b in digest {
         s.push_str(&format!("{b:02x}"));
     }
@@ -281,51 +515,90 @@ pub fn show_num(v: f64) -> String {
 /// machine ran out of memory).
 pub const MAX_INPUT_BYTES: u64 = 2 << 30;
 
-/// Read a whole input file as UTF-8 text, or `-` for standard input, with an
-/// error that names the file and says what to do; text that is not UTF-8 is
-/// refused at `file:line:col` of its first invalid byte. At most
-/// [`MAX_INPUT_BYTES`] are read.
-pub fn read_text(path: &Path) -> anyhow::Result<String> {
+/// Read a whole input file, or `-` for standard input, with an error that
+/// names the file and says what to do. A file over [`MAX_INPUT_BYTES`] is
+/// refused from its size before anything is read; standard input is read
+/// to at most one byte past the limit. A file's buffer is allocated once, at
+/// its size (no growth by doubling: a job's bytes are the largest thing its
+/// readers hold).
+pub fn read_bytes(path: &Path) -> anyhow::Result<Vec<u8>> {
     use anyhow::Context;
     use std::io::Read;
-    let (name, bytes) = if path == Path::new("-") {
+    let too_big = |name: &str| {
+        anyhow::anyhow!(
+            "{name} is larger than {} GiB, more than any file basr reads (the largest job \
+             basr writes is about 0.9 GB): give a font, robot, marking or job file",
+            MAX_INPUT_BYTES >> 30
+        )
+    };
+    if path == Path::new("-") {
         let mut bytes = Vec::new();
         std::io::stdin()
             .take(MAX_INPUT_BYTES + 1)
             .read_to_end(&mut bytes)
             .context("cannot read standard input")?;
-        ("standard input".to_string(), bytes)
-    } else {
-        let why = || {
-            format!(
-                "cannot read {}: check the path and that the file is readable",
-                path.display()
-            )
-        };
-        let file = std::fs::File::open(path).with_context(why)?;
-        let mut bytes = Vec::new();
-        file.take(MAX_INPUT_BYTES + 1)
-            .read_to_end(&mut bytes)
-            .with_context(why)?;
-        (path.display().to_string(), bytes)
-    };
-    anyhow::ensure!(
-        bytes.len() as u64 <= MAX_INPUT_BYTES,
-        "{name} is larger than {} GiB, more than any file basr reads (the largest job \
-         basr writes is about 0.9 GB): give a font, robot, marking or job file",
-        MAX_INPUT_BYTES >> 30
-    );
-    String::from_utf8(bytes).map_err(|e| {
-        let at = e.utf8_error().valid_up_to();
-        let bytes = e.as_bytes();
-        // Everything before `at` is valid UTF-8 by definition.
-        let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
-        let (line, col) = line_col(before, at);
-        anyhow::anyhow!(
-            "{name}:{line}:{col}: not UTF-8 text (invalid byte 0x{:02x}); save the file as UTF-8",
-            bytes[at]
+        if bytes.len() as u64 > MAX_INPUT_BYTES {
+            return Err(too_big("standard input"));
+        }
+        return Ok(bytes);
+    }
+    let why = || {
+        format!(
+            "cannot read {}: check the path and that the file is readable",
+            path.display()
         )
-    })
+    };
+    let file = std::fs::File::open(path).with_context(why)?;
+    let size = file.metadata().map(|m| m.len()).unwrap_or(0);
+    if size > MAX_INPUT_BYTES {
+        return Err(too_big(&path.display().to_string()));
+    }
+    // A device or pipe says 0 and may never end: the limit still holds.
+    let mut bytes = Vec::with_capacity(size as usize + 1);
+    file.take(MAX_INPUT_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .with_context(why)?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(too_big(&path.display().to_string()));
+    }
+    Ok(bytes)
+}
+
+/// Read a whole input file as UTF-8 text ([`read_bytes`]); text that is
+/// not UTF-8 is refused at `file:line:col` of its first invalid byte.
+pub fn read_text(path: &Path) -> anyhow::Result<String> {
+    let bytes = read_bytes(path)?;
+    utf8_text(bytes, &shown_name(path))
+}
+
+/// How messages name an input: its path, or `standard input` for `-`.
+pub fn shown_name(path: &Path) -> String {
+    if path == Path::new("-") {
+        "standard input".to_string()
+    } else {
+        path.display().to_string()
+    }
+}
+
+/// `bytes` as UTF-8 text, or an error at `name:line:col` of the first
+/// invalid byte.
+pub fn utf8_text(bytes: Vec<u8>, name: &str) -> anyhow::Result<String> {
+    String::from_utf8(bytes)
+        .map_err(|e| anyhow::anyhow!(utf8_problem(e.as_bytes(), name).unwrap_or_default()))
+}
+
+/// Where `bytes` stop being UTF-8, as `name:line:col: not UTF-8 text …`,
+/// or `None` when they are UTF-8 throughout.
+pub fn utf8_problem(bytes: &[u8], name: &str) -> Option<String> {
+    let e = std::str::from_utf8(bytes).err()?;
+    let at = e.valid_up_to();
+    // Everything before `at` is valid UTF-8 by definition.
+    let before = std::str::from_utf8(&bytes[..at]).unwrap_or_default();
+    let (line, col) = line_col(before, at);
+    Some(format!(
+        "{name}:{line}:{col}: not UTF-8 text (invalid byte 0x{:02x}); save the file as UTF-8",
+        bytes[at]
+    ))
 }
 
 /// A parser's message on one line: toml spreads some over several
@@ -417,6 +690,92 @@ mod tests {
         );
         assert!(!text.contains(".basr-"), "{text}");
         assert_eq!(text.matches("os error").count(), 1, "{text}");
+    }
+
+    /// A staged temporary holding `text`, in `dir`.
+    fn staged(dir: &Path, text: &str) -> tempfile::NamedTempFile {
+        let mut t = tempfile::Builder::new()
+            .prefix(".basr-")
+            .suffix(".part")
+            .tempfile_in(dir)
+            .unwrap();
+        t.write_all(text.as_bytes()).unwrap();
+        t
+    }
+
+    #[test]
+    fn a_rename_failing_part_way_puts_back_what_was_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::write(d.join("a.csv"), "EARLIER a").unwrap();
+        std::fs::create_dir(d.join("folder")).unwrap();
+        std::fs::create_dir(d.join("folder").join("x")).unwrap();
+        let run = vec![
+            (staged(d, "new a"), d.join("a.csv")),
+            (staged(d, "new b"), d.join("b.v2")),
+            // Renaming a file over a non-empty folder fails.
+            (staged(d, "new job"), d.join("folder")),
+            (staged(d, "never"), d.join("c.json")),
+        ];
+        let e = commit_all(run).unwrap_err();
+        assert!(e.to_string().contains("folder"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(d.join("a.csv")).unwrap(),
+            "EARLIER a"
+        );
+        let mut left: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(
+            left,
+            ["a.csv", "folder"],
+            "no new file, no temporary, no backup"
+        );
+        // And when every rename succeeds: all new, no backup left.
+        let run = vec![
+            (staged(d, "new a"), d.join("a.csv")),
+            (staged(d, "new c"), d.join("c.json")),
+        ];
+        commit_all(run).unwrap();
+        assert_eq!(std::fs::read_to_string(d.join("a.csv")).unwrap(), "new a");
+        assert_eq!(std::fs::read_dir(d).unwrap().count(), 3);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_replaced_file_keeps_its_mode_and_a_key_gets_its_own() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("job.json");
+        std::fs::write(&p, "old").unwrap();
+        std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o600)).unwrap();
+        let sha = write_output(&p, None, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(sha, sha256_hex(b"new"));
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&p), 0o600);
+        let k = dir.path().join("key");
+        write_output(&k, Some(0o600), |w| w.write_all(b"secret")).unwrap();
+        assert_eq!(mode(&k), 0o600);
+    }
+
+    #[test]
+    fn unwritable_outputs_are_found_before_the_work() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        assert!(check_writable(&d.join("new.json")).is_ok());
+        let e = check_writable(d).unwrap_err().to_string();
+        assert!(e.contains("is a folder"), "{e}");
+        let e = check_writable(&d.join("no").join("x.csv"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("does not exist"), "{e}");
+        assert_eq!(
+            std::fs::read_dir(d).unwrap().count(),
+            0,
+            "the probe is gone"
+        );
     }
 
     #[test]

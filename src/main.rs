@@ -2,7 +2,7 @@
 //!
 //! Each subcommand lives in `src/cmd/<name>.rs` with its own `Args` and `run`.
 //! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage,
-//! 130 interrupted (Ctrl-C).
+//! 128 + signal interrupted (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP, 131 SIGQUIT).
 
 // println!/eprintln! panic when the reader has gone (`| head`): machine
 // output goes through basr::io::print_stdout, human text through note!.
@@ -43,10 +43,12 @@ Examples:
   basr compile --symbol arrow-left       # one symbol alone
   basr compile --shape logo.svg --shape-height-m 2   # any filled outline
   basr pose 0 3 --tilt-deg 10            # one nozzle pose to joints and encoders
+  basr keygen -o crew.key                # a key pair; then compile --sign crew.key
   basr completions bash > basr.bash      # shell completions
 
 Exit codes: 0 success, 1 verdict negative (simulate over tolerance, check found
-problems), 2 bad input or usage, 130 interrupted (no output file is left).
+problems), 2 bad input or usage, 130 interrupted by Ctrl-C (128 + the signal:
+143 SIGTERM, 129 SIGHUP, 131 SIGQUIT); an interrupted run leaves no output file.
 A reader that stops early (`basr glyphs --json | head`) is not an error.";
 
 /// Offline trajectory-planning compiler for the Big Articulated Stenciling Robot.
@@ -80,6 +82,7 @@ enum Command {
     Workspace(cmd::workspace::Args),
     Pose(cmd::pose::Args),
     Check(cmd::check::Args),
+    Keygen(cmd::keygen::Args),
     Design(cmd::design::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Examples:
@@ -137,6 +140,7 @@ fn main() -> ExitCode {
         Command::Workspace(a) => cmd::workspace::run(a, &global),
         Command::Pose(a) => cmd::pose::run(a, &global),
         Command::Check(a) => cmd::check::run(a, &global),
+        Command::Keygen(a) => cmd::keygen::run(a, &global),
         Command::Design(a) => cmd::design::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;

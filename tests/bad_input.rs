@@ -530,9 +530,7 @@ fn job_with_a_stale_robot_hash_is_refused_everywhere() {
         // The robot changes after sealing; the document hash is made to
         // match again, so only robot_sha256 tells.
         j.robot.name = "BASR-edited".into();
-        let mut v = serde_json::to_value(&*j).unwrap();
-        v.as_object_mut().unwrap().remove("sha256");
-        j.sha256 = basr::io::sha256_hex(&basr::job::canonical_json(&v));
+        j.sha256 = basr::job::document_sha256(serde_json::to_value(&*j).unwrap());
     });
     let needles = ["stale.job.json", "robot_sha256", "compile the job again"];
     s.refuses(&["preview", "stale.job.json"], &needles);

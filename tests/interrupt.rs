@@ -12,6 +12,9 @@
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 
+mod process_common;
+use process_common::entries;
+
 /// Messages of growing size: one word per line, so each one adds a line of
 /// letters (and seconds of computing, and megabytes of job to write).
 const MESSAGES: [&str; 4] = [
@@ -32,16 +35,9 @@ fn spawn_compile(dir: &Path, message: &str) -> Child {
         .unwrap()
 }
 
-/// Whether process `pid` catches SIGINT yet (bit 1 of SigCgt: signal 2).
+/// Whether process `pid` catches SIGINT yet.
 fn catches_sigint(pid: u32) -> bool {
-    let Ok(status) = std::fs::read_to_string(format!("/proc/{pid}/status")) else {
-        return false;
-    };
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("SigCgt:"))
-        .and_then(|hex| u64::from_str_radix(hex.trim(), 16).ok())
-        .is_some_and(|mask| mask & (1 << 1) != 0)
+    process_common::catches(pid, 2)
 }
 
 fn send_sigint(pid: u32) {
@@ -50,15 +46,6 @@ fn send_sigint(pid: u32) {
         .status()
         .unwrap();
     assert!(sent.success(), "kill -INT {pid}");
-}
-
-fn entries(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
 }
 
 fn has_temp(dir: &Path) -> bool {

@@ -1,6 +1,7 @@
 //! `basr check FILE...`: validate font, robot, marking, job and CSV files,
 //! reporting every problem found (exit 1 when any file has problems, 2 when
-//! any could not be read; the others are still checked).
+//! any could not be read; the others are still checked). A CSV given with
+//! its job is checked to be the one written with it (SPEC §7).
 
 use std::path::PathBuf;
 
@@ -11,15 +12,21 @@ use super::{Global, Outcome};
 ///
 /// Fonts (.toml), robot descriptions (.toml), marking files (.toml), jobs
 /// (.json) and the setpoint CSVs `compile --csv` writes; the kind is
-/// recognised from the content. `-` reads standard input.
+/// recognised from the content. `-` reads standard input. A CSV given with
+/// a job must be the one written with it: its SHA-256 is the one the job
+/// records, else the first row and column that differ are named. Under
+/// `--trust`, a job not signed by that key is a problem.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  basr check STOP.job.json STOP.csv     # a job and its setpoint CSV\n  basr check fonts/basr.toml markings/*.toml\n  basr robot --toml | basr check -\n\nExit codes: 0 all valid, 1 problems found (all listed), 2 a file could not be read\n(the others are still checked)."
+    after_help = "Examples:\n  basr check STOP.job.json STOP.csv     # a job and the CSV written with it\n  basr check --trust crew.key.pub STOP.job.json\n  basr check fonts/basr.toml markings/*.toml\n  basr robot --toml | basr check -\n\nExit codes: 0 all valid, 1 problems found (all listed), 2 a file could not be read\n(the others are still checked)."
 )]
 pub struct Args {
     /// Files to check (`-` for standard input).
     #[arg(required = true)]
     pub files: Vec<PathBuf>,
+
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
 }
 
 /// What kind of basr file a text is.
@@ -31,6 +38,7 @@ enum Kind {
     Marking,
     Csv,
     Symbols,
+    Adept,
 }
 
 fn kind_of(text: &str) -> Option<Kind> {
@@ -40,6 +48,9 @@ fn kind_of(text: &str) -> Option<Kind> {
     }
     if basr::job::csv::looks_like_csv(text) {
         return Some(Kind::Csv);
+    }
+    if basr::job::adept::looks_like_program(text) {
+        return Some(Kind::Adept);
     }
     let table: toml::Table = toml::from_str(text).ok()?;
     if table.contains_key("symbols") {
@@ -58,8 +69,68 @@ fn kind_of(text: &str) -> Option<Kind> {
     }
 }
 
+/// A checked file kept for pairing a CSV with its job.
+enum Kept {
+    Job(Box<basr::job::Job>),
+    Csv(String),
+    Adept(String),
+    Other,
+}
+
+/// Problems in one file's bytes (empty when valid), and what to keep of it.
+fn problems(
+    bytes: Vec<u8>,
+    origin: &str,
+    trusted: Option<&basr::job::trust::PublicKey>,
+) -> (Vec<String>, Kept) {
+    if bytes.trim_ascii_start().first() == Some(&b'{') {
+        return match basr::job::Job::from_bytes(bytes, origin, trusted) {
+            Ok(job) => (
+                basr::job::verify::problems(&job, origin),
+                Kept::Job(Box::new(job)),
+            ),
+            Err(e) => (vec![e.to_string()], Kept::Other),
+        };
+    }
+    match basr::io::utf8_text(bytes, origin) {
+        Ok(text) => {
+            let found = text_problems(&text, origin);
+            let kept = match kind_of(&text) {
+                Some(Kind::Csv) => Kept::Csv(text),
+                Some(Kind::Adept) => Kept::Adept(text),
+                _ => Kept::Other,
+            };
+            (found, kept)
+        }
+        Err(e) => (vec![format!("{e:#}")], Kept::Other),
+    }
+}
+
+/// The job a CSV or program (`kind`) is checked against: the one that
+/// recorded its bytes, else the one that recorded its file name, else the
+/// only job given.
+fn job_for<'a>(
+    text: &str,
+    origin: &str,
+    kind: &str,
+    jobs: &'a [(String, Box<basr::job::Job>)],
+) -> Option<&'a (String, Box<basr::job::Job>)> {
+    let sha = basr::io::sha256_hex(text.as_bytes());
+    let name = std::path::Path::new(origin)
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned());
+    let recorded = |j: &basr::job::Job| j.outputs.get(kind).cloned();
+    jobs.iter()
+        .find(|(_, j)| recorded(j).is_some_and(|b| b.sha256 == sha))
+        .or_else(|| {
+            jobs.iter()
+                .find(|(_, j)| recorded(j).map(|b| b.file) == name)
+        })
+        .or(if jobs.len() == 1 { jobs.first() } else { None })
+}
+
 /// Problems in one file's text (empty when valid).
-fn problems(text: &str, origin: &str) -> Vec<String> {
+fn text_problems(text: &str, origin: &str) -> Vec<String> {
     if text.trim().is_empty() {
         return vec![format!(
             "{origin}: the file is empty: give a job, setpoint CSV, font, robot or marking file"
@@ -72,6 +143,8 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
         },
         Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),
         Some(Kind::Csv) => basr::job::csv::check_source(text, origin),
+        // Checked against its job when one is given.
+        Some(Kind::Adept) => vec![],
         None if basr::layout::looks_like_marking(text) => {
             basr::layout::check_marking_source(text, origin)
         }
@@ -93,13 +166,18 @@ fn problems(text: &str, origin: &str) -> Vec<String> {
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    let trusted = args.trust.key()?;
     // Every file is checked, an unreadable one included: the README promises
     // all problems at once. Unreadable files decide the exit code (2) at the
     // end, ahead of problems found (1).
     let (mut bad, mut unreadable) = (0usize, 0usize);
+    let mut jobs: Vec<(String, Box<basr::job::Job>)> = vec![];
+    let mut csvs: Vec<(String, String, bool)> = vec![];
+    let mut programs: Vec<(String, String)> = vec![];
+    let mut report: Vec<(String, Vec<String>)> = vec![];
     for path in &args.files {
         let origin = path.display().to_string();
-        let text = match basr::io::read_text(path) {
+        let bytes = match basr::io::read_bytes(path) {
             Ok(t) => t,
             Err(e) => {
                 unreadable += 1;
@@ -107,10 +185,47 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 continue;
             }
         };
-        let found = problems(&text, &origin);
+        let (found, kept) = problems(bytes, &origin, trusted.as_ref());
+        match kept {
+            Kept::Job(j) => jobs.push((origin.clone(), j)),
+            Kept::Csv(text) => csvs.push((origin.clone(), text, found.is_empty())),
+            Kept::Adept(text) => programs.push((origin.clone(), text)),
+            Kept::Other => {}
+        }
+        report.push((origin, found));
+    }
+    // A CSV beside a job: it must be the job's own.
+    for (origin, text, sound) in &csvs {
+        if !sound {
+            continue;
+        }
+        if let Some((job_origin, job)) = job_for(text, origin, "csv", &jobs) {
+            let found = basr::job::csv::compare(job, text, origin, job_origin);
+            if let Some((_, r)) = report.iter_mut().find(|(o, _)| o == origin) {
+                r.extend(found);
+            }
+        }
+    }
+    // An Adept program beside a job: the same, by the program's hash.
+    for (origin, text) in &programs {
+        let found = match job_for(text, origin, "adept", &jobs) {
+            Some((job_origin, job)) => basr::job::adept::compare(job, text, origin, job_origin),
+            None => vec![],
+        };
+        if let Some((_, r)) = report.iter_mut().find(|(o, _)| o == origin) {
+            r.extend(found);
+        }
+    }
+    for (origin, found) in report {
         if found.is_empty() {
             if !global.quiet {
-                note!("{origin}: ok");
+                let signed = jobs
+                    .iter()
+                    .find(|(o, _)| *o == origin)
+                    .and_then(|(_, j)| j.signature.as_ref())
+                    .map(|s| format!(" (signed by key {})", s.key_id))
+                    .unwrap_or_default();
+                note!("{origin}: ok{signed}");
             }
         } else {
             bad += 1;

@@ -36,7 +36,8 @@ Examples:
   basr compile BUS --letter-height 1.83 --tilt none --json
   basr compile --symbol arrow-left                # writes arrow-left.job.json
   basr compile --marking markings/stop_line.toml  # a scene: stop line and STOP
-  basr compile --shape logo.svg --shape-height-m 2 -o logo.job.json")]
+  basr compile --shape logo.svg --shape-height-m 2 -o logo.job.json
+  basr compile STOP --sign crew.key --csv stop.csv # signed; stop.csv bound to it")]
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
@@ -122,6 +123,10 @@ pub struct Args {
         default_value_t = 0.0
     )]
     pub gun_lag_s: f64,
+    /// Sign the job with this secret key (written by `basr keygen -o NAME`),
+    /// so readers under `--trust NAME.pub` accept it.
+    #[arg(long, value_name = "NAME")]
+    pub sign: Option<PathBuf>,
     /// Print the summary as JSON on stdout (every warning, with its
     /// severity).
     #[arg(long)]
@@ -283,6 +288,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 && args.shape_size.shape_width_m.is_none()),
         "--shape-height-m and --shape-width-m size a --shape FILE; give the shape too"
     );
+    // Every output path and the key are checked before the work, which
+    // can take minutes.
+    let key = args
+        .sign
+        .as_deref()
+        .map(basr::job::trust::SecretKey::load)
+        .transpose()?;
+    for p in [&args.output, &args.csv, &args.adept].into_iter().flatten() {
+        basr::io::check_writable(p)?;
+    }
     let hints = feet_hints(&args);
     if !global.quiet {
         for h in &hints {
@@ -301,7 +316,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         }
         _ => compile_job(&req),
     };
-    let job = compiled.map_err(|e| {
+    let mut job = compiled.map_err(|e| {
         let e = anyhow::Error::from(e);
         match hints.is_empty() {
             true => e,
@@ -327,13 +342,23 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.job.json")));
     super::outputs::check("the job", &out, &["json"])?;
     refuse_clashing_paths(&args, &out)?;
+    basr::io::check_writable(&out)?;
     // main renames all three into place together when the run succeeds, and
-    // drops them all when any fails or the run is interrupted.
+    // drops them all when any fails or the run is interrupted; the job,
+    // written last, is renamed last.
     if let Some(csv) = &args.csv {
-        basr::job::csv::write(&job.samples, csv)?;
+        let sha256 = basr::job::csv::write(&job.samples, csv)?;
+        job.bind_output("csv", csv, sha256);
     }
     if let Some(adept) = &args.adept {
-        basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+        let sha256 = basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+        job.bind_output("adept", adept, sha256);
+    }
+    if !job.outputs.is_empty() {
+        job.seal();
+    }
+    if let Some(key) = &key {
+        job.sign(key);
     }
     // WriteError names the path and the OS reason.
     job.write(&out)?;
@@ -349,6 +374,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "control_period_s": job.control_period_s,
             "summary": s,
             "sha256": job.sha256,
+            "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
         });
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
@@ -422,6 +448,9 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         .collect();
     if !written.is_empty() {
         lines.push(format!("  also wrote {}", written.join(", ")));
+    }
+    if let Some(sig) = &job.signature {
+        lines.push(format!("  signed by key {}", sig.key_id));
     }
     let count = |sev: &str| s.warnings.iter().filter(|w| w.severity == sev).count();
     let (problems, notices, infos) = (count("problem"), count("notice"), count("info"));

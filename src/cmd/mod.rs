@@ -6,6 +6,7 @@ pub mod compile;
 pub mod design;
 pub mod glyphs;
 pub mod import;
+pub mod keygen;
 pub mod outputs;
 pub mod pose;
 pub mod preview;
@@ -70,8 +71,13 @@ pub fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {
 }
 
 /// Read a job, saying what the file is when it is a setpoint CSV or
-/// another of basr's outputs rather than a job.
-pub fn read_job(path: &Path) -> anyhow::Result<basr::job::Job> {
+/// another of basr's outputs rather than a job; under `--trust` (the
+/// command's flattened [`basr::job::trust::TrustOptions`]) only a job the
+/// trusted key signed.
+pub fn read_job(
+    path: &Path,
+    trust: &basr::job::trust::TrustOptions,
+) -> anyhow::Result<basr::job::Job> {
     if let Some(what) = not_a_job(path) {
         anyhow::bail!(
             "{}: this is {what}, not a job file; give the job that `basr compile` wrote \
@@ -79,7 +85,7 @@ pub fn read_job(path: &Path) -> anyhow::Result<basr::job::Job> {
             path.display()
         );
     }
-    basr::job::Job::read(path)
+    trust.read_job(path)
 }
 
 /// What a file given as a job is instead, from its name or first bytes.

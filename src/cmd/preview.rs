@@ -40,6 +40,9 @@ pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
 
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
+
     /// SVG to write (default: the job's name with .svg, in the current folder).
     #[arg(short, long, value_name = "SVG")]
     pub output: Option<PathBuf>,
@@ -238,7 +241,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
     super::outputs::check("-o", &out, &["svg"])?;
-    let job = super::read_job(&args.job)?;
+    basr::io::check_writable(&out)?;
+    let job = super::read_job(&args.job, &args.trust)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {

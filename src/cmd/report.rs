@@ -32,6 +32,9 @@ pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
 
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
+
     /// The page to write (.html) [default: the job's name with .html, here].
     #[arg(short, long, value_name = "FILE.html")]
     pub output: Option<PathBuf>,
@@ -101,7 +104,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(t) = &args.tip_tally {
         super::outputs::check("--tip-tally", t, &["toml"])?;
     }
-    let job = super::read_job(&args.job)?;
+    basr::io::check_writable(&out)?;
+    let job = super::read_job(&args.job, &args.trust)?;
     let origin = args.job.display().to_string();
     let sim = match (&args.sim, args.no_sim) {
         (Some(p), _) => Some(read_sim(p)?),

@@ -50,6 +50,9 @@ pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
 
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
+
     /// Controller program to run.
     #[arg(long, value_enum, default_value = "sjct")]
     pub controller: ControllerArg,
@@ -147,7 +150,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(p) = &args.svg {
         super::outputs::check("--svg", p, &["svg"])?;
     }
-    let job = super::read_job(&args.job)?;
+    for (_, p) in &outputs {
+        basr::io::check_writable(p)?;
+    }
+    let job = super::read_job(&args.job, &args.trust)?;
     let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {

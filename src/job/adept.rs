@@ -112,14 +112,55 @@ fn wrap_deg(d: f64) -> f64 {
     }
 }
 
-/// Write the program atomically to `path`.
+/// Whether a text is an Adept program `basr compile --adept` wrote.
+pub fn looks_like_program(text: &str) -> bool {
+    text.starts_with("; basr job ")
+}
+
+/// Problems of an Adept program given beside its job (`basr check JOB
+/// PROGRAM`): its SHA-256 against the one the job recorded, and when they
+/// differ, the first line that is not the job's program. Empty when it is.
+pub fn compare(job: &super::Job, text: &str, origin: &str, job_origin: &str) -> Vec<String> {
+    let actual = crate::io::sha256_hex(text.as_bytes());
+    let Some(recorded) = job.outputs.get("adept") else {
+        return vec![format!(
+            "{origin}: {job_origin} records no Adept program written with it (compile it \
+             again with --adept to bind one)"
+        )];
+    };
+    if recorded.sha256 == actual {
+        return vec![];
+    }
+    let want = program(&job.message, &job.samples, &job.stations);
+    let mut out = vec![format!(
+        "{origin}: not the Adept program written with {job_origin} (its SHA-256 is {actual}, \
+         the job records {} for {})",
+        recorded.sha256, recorded.file
+    )];
+    let mut got = text.split('\n');
+    for (n, w) in want.split('\n').enumerate() {
+        let g = got.next();
+        if g != Some(w) {
+            out.push(format!(
+                "{origin}:{}: the program has {:?}, {job_origin} gives {w:?}",
+                n + 1,
+                g.unwrap_or("(the end of the file)")
+            ));
+            break;
+        }
+    }
+    out
+}
+
+/// Write the program atomically to `path`; the SHA-256 of its bytes.
 pub fn write(
     message: &str,
     samples: &Samples,
     stations: &[Station],
     path: &Path,
-) -> Result<(), crate::io::WriteError> {
-    crate::io::write_atomic(path, program(message, samples, stations).as_bytes())
+) -> Result<String, crate::io::WriteError> {
+    let text = program(message, samples, stations);
+    crate::io::write_output(path, None, |w| w.write_all(text.as_bytes()))
 }
 
 #[cfg(test)]

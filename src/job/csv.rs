@@ -5,9 +5,9 @@ use std::path::Path;
 
 use super::{Samples, COLUMNS};
 
-/// Write `samples` as CSV atomically to `path`.
-pub fn write(samples: &Samples, path: &Path) -> anyhow::Result<()> {
-    crate::io::write_atomic_with(path, |w| {
+/// Write `samples` as CSV atomically to `path`; the SHA-256 of its bytes.
+pub fn write(samples: &Samples, path: &Path) -> anyhow::Result<String> {
+    Ok(crate::io::write_output(path, None, |w| {
         let mut out = ::csv::Writer::from_writer(w);
         out.write_record(COLUMNS).map_err(std::io::Error::other)?;
         for i in 0..samples.len() {
@@ -15,8 +15,7 @@ pub fn write(samples: &Samples, path: &Path) -> anyhow::Result<()> {
                 .map_err(std::io::Error::other)?;
         }
         out.flush()
-    })?;
-    Ok(())
+    })?)
 }
 
 /// Columns that hold integers (the rest are finite decimals).
@@ -137,6 +136,86 @@ pub fn check_source(text: &str, origin: &str) -> Vec<String> {
         out.push(format!("{origin}: … and {more} more problem(s)"));
     }
     out
+}
+
+/// Problems of a setpoint CSV given beside its job (`basr check JOB CSV`,
+/// SPEC §7): its bytes against the SHA-256 the job recorded for its CSV,
+/// and when they differ, its rows against the job's samples, naming the
+/// first row and column that differ. Empty when the CSV is the job's.
+pub fn compare(job: &super::Job, text: &str, origin: &str, job_origin: &str) -> Vec<String> {
+    let actual = crate::io::sha256_hex(text.as_bytes());
+    let recorded = job.outputs.get("csv");
+    if recorded.is_some_and(|b| b.sha256 == actual) {
+        return vec![];
+    }
+    let mismatch = first_difference(job, text, origin, job_origin);
+    let record = match recorded {
+        Some(b) => format!(
+            "{origin}: not the CSV written with {job_origin} (its SHA-256 is {actual}, the job \
+             records {} for {})",
+            b.sha256, b.file
+        ),
+        None => format!(
+            "{origin}: {job_origin} records no CSV written with it (compile it again with \
+             --csv to bind one)"
+        ),
+    };
+    match (mismatch, recorded) {
+        (Some(m), _) => vec![record, m],
+        (None, Some(_)) => vec![record],
+        (None, None) => vec![],
+    }
+}
+
+/// The first line of `text` that differs from the CSV the job's samples
+/// make, as `origin:line: row R, column C: …`.
+fn first_difference(
+    job: &super::Job,
+    text: &str,
+    origin: &str,
+    job_origin: &str,
+) -> Option<String> {
+    let s = &job.samples;
+    let mut lines = text.split('\n');
+    let header = COLUMNS.join(",");
+    if lines.next() != Some(header.as_str()) {
+        return Some(format!("{origin}:1: the header is not the job's columns"));
+    }
+    for i in 0..s.len() {
+        let line = i + 2;
+        let want = s.csv_fields(i);
+        let Some(got) = lines.next().filter(|l| !l.is_empty()) else {
+            return Some(format!(
+                "{origin}:{line}: the CSV ends after {i} rows but {job_origin} has {}",
+                s.len()
+            ));
+        };
+        let got: Vec<&str> = got.split(',').collect();
+        for (c, name) in COLUMNS.iter().enumerate() {
+            let g = got.get(c).copied().unwrap_or("(nothing)");
+            if g != want[c] {
+                return Some(format!(
+                    "{origin}:{line}: row {i}, column {name}: the CSV has {g}, {job_origin} has {}",
+                    want[c]
+                ));
+            }
+        }
+        if got.len() != COLUMNS.len() {
+            return Some(format!(
+                "{origin}:{line}: row {i} has {} fields, the job's rows {}",
+                got.len(),
+                COLUMNS.len()
+            ));
+        }
+    }
+    match lines.next() {
+        Some("") | None if lines.next().is_none() => None,
+        _ => Some(format!(
+            "{origin}:{}: the CSV has more rows than the {} of {job_origin}",
+            s.len() + 2,
+            s.len()
+        )),
+    }
 }
 
 #[cfg(test)]

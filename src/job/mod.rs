@@ -2,15 +2,21 @@
 //! `simulate` and `check` read. Reading verifies the format, the version,
 //! the document hash and the robot hash before anything else trusts it.
 //!
-//! Canonical form (used for `sha256` and `robot_sha256`): the value as
-//! compact JSON (`serde_json::to_vec` of a `serde_json::Value`), object keys
-//! in byte order (serde_json's default sorted map), numbers in serde_json's
-//! shortest round-trip form; for the document hash the top-level `sha256`
-//! key is removed first.
+//! The file's bytes are its canonical form ([`canonical`],
+//! docs/job-canonical-form.md): pretty JSON, keys in byte order, one line
+//! end. `sha256` is the SHA-256 of those bytes without the `sha256` and
+//! `signature` members; `signature` ([`trust`]) signs them without itself.
+//! `robot_sha256` hashes the robot description's compact form
+//! ([`canonical_json`]).
 
 pub mod adept;
+pub mod canonical;
 pub mod csv;
+mod read;
+pub mod trust;
 pub mod verify;
+
+use std::collections::BTreeMap;
 
 use std::path::Path;
 
@@ -33,6 +39,8 @@ pub enum JobError {
         path: String,
         detail: serde_json::Error,
     },
+    #[error("{0}")]
+    NotUtf8(String),
     #[error("{path} is empty: it holds no job; compile it again")]
     Empty { path: String },
     #[error("{path}: not a basr job (format is {found}, expected \"basr-job\"); give a job written by `basr compile`")]
@@ -58,6 +66,23 @@ pub enum JobError {
     },
     #[error("{path}: job invalid: {what}")]
     Invalid { path: String, what: String },
+    #[error("{path}:{line}:{col}: integrity check failed: the bytes are not the job's canonical form ({what}); the job was edited or saved again by another program: compile it again (docs/job-canonical-form.md)")]
+    NotCanonical {
+        path: String,
+        line: usize,
+        col: usize,
+        what: String,
+    },
+    #[error("{path}: the job is not signed, and only jobs signed by the trusted key {trusted} are accepted (--trust or BASR_TRUST): compile it with `--sign` and that key's secret")]
+    Unsigned { path: String, trusted: String },
+    #[error("{path}: the job is signed by key {found}, not by the trusted key {trusted} (--trust or BASR_TRUST): compile it with `--sign` and the trusted key's secret, or trust key {found} if it is yours")]
+    ForeignKey {
+        path: String,
+        found: String,
+        trusted: String,
+    },
+    #[error("{path}: integrity check failed: the signature does not match the job for key {key_id}: the job was edited after it was signed: compile it again")]
+    BadSignature { path: String, key_id: String },
 }
 
 /// Paint settings the job was planned for (SPEC §3).
@@ -320,6 +345,15 @@ pub fn round_ns(t: f64) -> f64 {
     (t * 1e9).round() / 1e9
 }
 
+/// A file written with the job (SPEC §7): its name when written and the
+/// SHA-256 of its bytes, so `basr check JOB FILE` can tell it is the pair.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BoundFile {
+    /// File name as written (without its folder).
+    pub file: String,
+    pub sha256: String,
+}
+
 /// The whole job document.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Job {
@@ -335,7 +369,13 @@ pub struct Job {
     pub stations: Vec<Station>,
     pub samples: Samples,
     pub summary: Summary,
+    /// Files written with this job, by kind (`csv`, `adept`).
+    #[serde(default)]
+    pub outputs: BTreeMap<String, BoundFile>,
     pub sha256: String,
+    /// Ed25519 signature over the canonical bytes without this member.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub signature: Option<trust::Signature>,
 }
 
 pub use crate::canon::canonical_json;
@@ -353,30 +393,51 @@ impl Paint {
     }
 }
 
-fn document_hash(mut v: serde_json::Value) -> String {
+/// The `sha256` of a job document given as a JSON value: the SHA-256 of its
+/// canonical bytes without the `sha256` and `signature` members.
+pub fn document_sha256(mut v: serde_json::Value) -> String {
     if let Some(obj) = v.as_object_mut() {
         obj.remove("sha256");
+        obj.remove("signature");
     }
-    crate::io::sha256_hex(&canonical_json(&v))
+    crate::io::sha256_hex(&canonical::to_canonical(&v))
 }
 
 impl Job {
-    /// Fill `robot_sha256` and `sha256` from the content. Call last, after
-    /// every other field is final.
+    /// Fill `robot_sha256` and `sha256` from the content, and drop any
+    /// signature (it signed other content). Call last, after every other
+    /// field is final; then [`Job::sign`] if the job is to be signed.
     pub fn seal(&mut self) {
         self.robot_sha256 = self.robot.sha256();
+        self.signature = None;
         self.sha256.clear();
         let v = serde_json::to_value(&*self).expect("job serialises");
-        self.sha256 = document_hash(v);
+        self.sha256 = document_sha256(v);
     }
 
-    /// The document as written to disk: pretty JSON with sorted keys and a
-    /// final newline. Deterministic for a given job.
+    /// Record a file written with the job (`kind`: `csv`, `adept`) and the
+    /// SHA-256 of its bytes; [`Job::seal`] again afterwards.
+    pub fn bind_output(&mut self, kind: &str, path: &Path, sha256: String) {
+        let file = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        self.outputs
+            .insert(kind.to_string(), BoundFile { file, sha256 });
+    }
+
+    /// Sign the sealed job with `key`: the signature covers the canonical
+    /// bytes without the `signature` member.
+    pub fn sign(&mut self, key: &trust::SecretKey) {
+        self.signature = None;
+        self.signature = Some(key.sign(&self.to_bytes()));
+    }
+
+    /// The document as written to disk: its canonical bytes (pretty JSON
+    /// with sorted keys and a final line end). Deterministic for a given job.
     pub fn to_bytes(&self) -> Vec<u8> {
         let v = serde_json::to_value(self).expect("job serialises");
-        let mut out = serde_json::to_vec_pretty(&v).expect("value serialises");
-        out.push(b'\n');
-        out
+        canonical::to_canonical(&v)
     }
 
     /// Write atomically to `path`.
@@ -386,72 +447,22 @@ impl Job {
 
     /// Parse and verify a job from text; `path` is used in messages only.
     pub fn from_str_verified(text: &str, path: &str) -> Result<Job, JobError> {
-        let p = || path.to_string();
-        if text.trim().is_empty() {
-            return Err(JobError::Empty { path: p() });
-        }
-        let v: serde_json::Value =
-            serde_json::from_str(text).map_err(|detail| JobError::Syntax { path: p(), detail })?;
-        let format = v.get("format").map(|f| f.to_string()).unwrap_or_default();
-        if v.get("format").and_then(|f| f.as_str()) != Some(FORMAT) {
-            return Err(JobError::Format {
-                path: p(),
-                found: if format.is_empty() {
-                    "missing".into()
-                } else {
-                    format
-                },
-            });
-        }
-        match v.get("version").and_then(|x| x.as_u64()) {
-            Some(n) if n == VERSION as u64 => {}
-            _ => {
-                return Err(JobError::Version {
-                    path: p(),
-                    found: v
-                        .get("version")
-                        .map(|x| x.to_string())
-                        .unwrap_or_else(|| "missing".into()),
-                })
-            }
-        }
-        let stated = v
-            .get("sha256")
-            .and_then(|s| s.as_str())
-            .unwrap_or("")
-            .to_string();
-        let actual = document_hash(v.clone());
-        if stated != actual {
-            return Err(JobError::Hash {
-                path: p(),
-                stated: if stated.is_empty() {
-                    "nothing".into()
-                } else {
-                    stated
-                },
-                actual,
-            });
-        }
-        let job: Job = serde_json::from_value(v)
-            .map_err(|detail| JobError::Structure { path: p(), detail })?;
-        let robot_actual = job.robot.sha256();
-        if robot_actual != job.robot_sha256 {
-            return Err(JobError::RobotHash {
-                path: p(),
-                stated: job.robot_sha256.clone(),
-                actual: robot_actual,
-            });
-        }
-        job.samples
-            .check_lengths()
-            .map_err(|what| JobError::Invalid { path: p(), what })?;
-        Ok(job)
+        Job::from_bytes(text.as_bytes().to_vec(), path, None)
     }
 
-    /// Read and verify a job file.
+    /// Read and verify a job file (signed or not).
     pub fn read(path: &Path) -> anyhow::Result<Job> {
-        let text = crate::io::read_text(path)?;
-        Ok(Job::from_str_verified(&text, &path.display().to_string())?)
+        Job::read_trusted(path, None)
+    }
+
+    /// Read and verify a job file; with `trusted`, only a job that key signed.
+    pub fn read_trusted(path: &Path, trusted: Option<&trust::PublicKey>) -> anyhow::Result<Job> {
+        let bytes = crate::io::read_bytes(path)?;
+        Ok(Job::from_bytes(
+            bytes,
+            &path.display().to_string(),
+            trusted,
+        )?)
     }
 }
 
@@ -511,7 +522,9 @@ mod tests {
                 verified_max_error_m: None,
                 truck_moves_m: vec![],
             },
+            outputs: BTreeMap::new(),
             sha256: String::new(),
+            signature: None,
         };
         job.seal();
         job
@@ -548,6 +561,13 @@ mod tests {
         for empty in ["", " \n"] {
             let err = Job::from_str_verified(empty, "t").unwrap_err();
             assert!(err.to_string().contains("t is empty"), "{err}");
+        }
+        // A duplicate key said as one, wherever it stands (a duplicate
+        // `format` also trips serde's own check of the head).
+        for key in ["\"format\": \"basr-job\"", "\"message\": \"I\""] {
+            let twice = text.replacen(key, &format!("{key},\n  {key}"), 1);
+            let err = Job::from_str_verified(&twice, "t").unwrap_err().to_string();
+            assert!(err.contains("appears twice"), "{err}");
         }
         let v2 = text.replacen("\"version\": 1", "\"version\": 2", 1);
         let err = Job::from_str_verified(&v2, "t").unwrap_err();

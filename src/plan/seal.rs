@@ -82,7 +82,9 @@ pub fn seal(p: Planned<'_>) -> Job {
         stations: p.stations.stations,
         samples: p.samples,
         summary,
+        outputs: Default::default(),
         sha256: String::new(),
+        signature: None,
     };
     job.seal();
     job

@@ -283,7 +283,9 @@ fn sealed(
             verified_max_error_m: None,
             truck_moves_m: vec![],
         },
+        outputs: Default::default(),
         sha256: String::new(),
+        signature: None,
     };
     job.seal();
     job

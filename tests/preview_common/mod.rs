@@ -141,7 +141,9 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             verified_max_error_m: None,
             truck_moves_m: vec![],
         },
+        outputs: Default::default(),
         sha256: String::new(),
+        signature: None,
     };
     job.seal();
     job
