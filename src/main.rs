@@ -73,6 +73,7 @@ struct Cli {
 enum Command {
     Compile(cmd::compile::Args),
     Glyphs(cmd::glyphs::Args),
+    /// List the symbol library (arrows, lines, crosswalks, RXR …); draw its sheet
     Symbols(cmd::symbols::Args),
     Import(cmd::import::Args),
     Preview(cmd::preview::Args),

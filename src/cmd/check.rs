@@ -185,6 +185,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 continue;
             }
         };
+        // Text that is not UTF-8 cannot be read as any of basr's formats:
+        // unreadable (exit 2), as every other command says of it.
+        if let Some(e) = basr::io::utf8_problem(&bytes, &origin) {
+            unreadable += 1;
+            note!("{e}");
+            continue;
+        }
         let (found, kept) = problems(bytes, &origin, trusted.as_ref());
         match kept {
             Kept::Job(j) => jobs.push((origin.clone(), j)),

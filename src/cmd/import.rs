@@ -33,8 +33,10 @@ impl SizeArgs {
     }
 }
 
-/// Decompose a filled outline (SVG or DXF) into strokes the fan paints
-/// evenly, and write them as a font file to review, edit and compile.
+/// Decompose a filled outline (SVG or DXF) into strokes, as an editable font file
+///
+/// The strokes are bands the fan paints evenly, written as a font file to
+/// review, edit and compile.
 ///
 /// Each region of the shape (an outline with its holes) is cut into bands
 /// by a boustrophedon sweep along its long axis or across it, or, around a
