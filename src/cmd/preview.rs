@@ -170,10 +170,10 @@ fn replan_font(job: &Job, origin: &str, font: Option<&str>) -> anyhow::Result<Op
 /// The job re-planned with another tilt method, with its own robot
 /// description, font, message, letter height, lane width and period.
 fn replan(job: &Job, tilt: Tilt, font: Option<String>) -> anyhow::Result<Job> {
-    use basr::robot::Robot;
+    use basr::robot::AnyRobot;
     // The job's description passed its hash check; read it back through the
     // validator so a sealed job with a broken robot is refused, not planned.
-    let robot = Robot::from_toml_str(&job.robot.to_toml_string(), "the job's robot description")
+    let robot = AnyRobot::from_toml_str(&job.robot.to_toml_text(), "the job's robot description")
         .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
     let mut req = CompileRequest::message(&job.message.replace('\n', " "));
     req.source = Source::Message(job.message.replace('\n', " "));
@@ -413,11 +413,12 @@ fn preview_simulated(
 ) -> anyhow::Result<Preview> {
     use basr::paint::spray::{equivalent_fan, Pose};
     use basr::sim;
-    let model = sim::SimModel::from_robot(&job.robot)
+    let robot = super::basr_of(job, "preview --simulated")?;
+    let model = sim::SimModel::from_robot(robot)
         .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
     let sim_opts = sim::Options {
         controller: sim::ControllerKind::Sjct,
-        tolerance_m: job.robot.control.accuracy_m,
+        tolerance_m: robot.control.accuracy_m,
         keep_trace: true,
         substeps: None,
     };
@@ -446,7 +447,7 @@ fn preview_simulated(
     };
     // What the simulated joints add at a tick: the actual nozzle point, and
     // the deviations of height, fan direction and tilt from the planned.
-    let tilt_of = |nut: f64| job.robot.tilt_from_nut(nut).ok();
+    let tilt_of = |nut: f64| robot.tilt_from_nut(nut).ok();
     let actual: Vec<[f64; 5]> = trace
         .iter()
         .map(|r| {

@@ -12,6 +12,7 @@ pub mod plant;
 pub mod plants;
 pub mod report;
 pub mod servo;
+pub mod servo_job;
 pub mod svg;
 pub mod synthetic;
 
@@ -351,6 +352,13 @@ pub fn simulate_plant(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
     validate_job(job)?;
+    // The hydraulic plant is BASR's; the electric kinds have theirs (`servo_job`).
+    let robot = job.robot.basr().ok_or_else(|| {
+        SimError::Job(format!(
+            "its robot is of the {} kind, which the hydraulic plant does not model",
+            job.robot.kind().name()
+        ))
+    })?;
     nominal.validate().map_err(SimError::Model)?;
     model.validate().map_err(SimError::Model)?;
     if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
@@ -417,7 +425,7 @@ pub fn simulate_plant(
         }
     };
 
-    let nut_to_tilt = NutTable::new(&job.robot);
+    let nut_to_tilt = NutTable::new(robot);
     let m0 = measure(&state, 0.0, reference_at(0.0));
     let mut ctrl = opts.controller.build(nominal, &m0);
 
@@ -491,7 +499,7 @@ pub fn simulate_plant(
         // linkage's deflection
         let r_act = model.arm.r_of_x(state[plant::X]);
         let tilt = nut_to_tilt.tilt(nut.pos);
-        let pose = job.robot.fk(&Joints {
+        let pose = robot.fk(&Joints {
             base_rot_rad: state[plant::TH],
             extension_m: r_act,
             vertical_m: vert.pos,
