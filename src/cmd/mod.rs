@@ -10,6 +10,7 @@ pub mod keygen;
 pub mod outputs;
 pub mod pose;
 pub mod preview;
+pub mod replan;
 pub mod report;
 pub mod robot;
 pub mod simulate;
