@@ -43,6 +43,7 @@ impl From<ControllerArg> for ControllerKind {
   basr simulate STOP.job.json --controller pid --svg stop-sim.svg --trace stop-sim.csv
   basr simulate STOP.job.json --json | jq .max_error_m
   basr simulate STOP.job.json --plants 40 --spread 0.1 --seed 7   # verdict on p95 of 40 plants
+  basr simulate STOP.job.json --fault valve-stuck@30   # does the arm stop, where, how much paint off the path
 
 Exit codes: 0 pass, 1 over tolerance or a limit violated, 2 bad input
 (unreadable or edited job, job for another robot description).")]
@@ -98,10 +99,22 @@ pub struct Args {
     #[arg(long, default_value_t = 1, value_name = "S")]
     pub seed: u64,
 
+    /// Inject a hardware fault at a time of the job: supply-drop@T (the
+    /// supply vents to tank), encoder-glitch@T (the base encoder jumps by
+    /// 1000 counts), valve-stuck@T (the base motor's spool jams). May be
+    /// given up to 8 times. The report says when the safety monitor stopped
+    /// the arm, where it came to rest and how much paint went off the path.
+    #[arg(long, value_name = "KIND@T", value_parser = parse_fault)]
+    pub fault: Vec<sim::fault::Fault>,
+
     /// RK4 sub-steps per 5 ms control period (default: the model's, 1 ms steps), 1–100.
     #[arg(allow_hyphen_values = true, long, hide = true,
           value_parser = clap::value_parser!(u32).range(1..=100))]
     pub substeps: Option<u32>,
+}
+
+fn parse_fault(s: &str) -> Result<sim::fault::Fault, String> {
+    s.parse()
 }
 
 /// Before any work, the same content checks as `basr check` (time base,
@@ -130,6 +143,20 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         anyhow::bail!(
             "--tolerance-mm {} must be a positive number of millimetres",
             args.tolerance_mm
+        );
+    }
+    if !args.fault.is_empty() && args.plants > 1 {
+        anyhow::bail!(
+            "--fault and --plants {} together: a fault is simulated on the description's plant \
+             alone; leave one of them out",
+            args.plants
+        );
+    }
+    if args.fault.len() > sim::fault::MAX_FAULTS {
+        anyhow::bail!(
+            "{} --fault flags: give at most {}",
+            args.fault.len(),
+            sim::fault::MAX_FAULTS
         );
     }
     let mut outputs: Vec<(&str, &std::path::Path)> = vec![];
@@ -193,7 +220,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     } else {
         indicatif::ProgressBar::hidden()
     };
-    let outcome = sim::simulate(&job, &model, &opts, &mut |done, total| {
+    let outcome = sim::simulate_faulted(&job, &model, &opts, &args.fault, &mut |done, total| {
         bar.set_length(total);
         bar.set_position(done);
     })?;
