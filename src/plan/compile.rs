@@ -46,7 +46,7 @@ pub fn compile_strokes(
                 period_s: req.period_s,
                 gun_lead_s: req.gun_lead_s,
                 gun_lag_s: req.gun_lag_s,
-                pace,
+                pace: pace.clone(),
             },
         )?;
         let mut notes = strokes.notes.clone();
@@ -69,6 +69,16 @@ pub fn compile_strokes(
             return Ok(job);
         }
         let verdict = verify::verify(&job)?;
+        if std::env::var_os("BASR_DEBUG_VERIFY").is_some() {
+            eprintln!(
+                "verify: pace {:?} duration {:.2} error {:.2} mm worst {:?} {}",
+                pace,
+                job.summary.duration_s,
+                verdict.max_error_m * 1e3,
+                verdict.worst,
+                verdict.why
+            );
+        }
         if verdict.ok {
             job.summary.verified_max_error_m = Some(verdict.max_error_m);
             job.seal();
@@ -76,11 +86,23 @@ pub fn compile_strokes(
         }
         // Slow where the arm fell behind: the move out of stow when the
         // worst error is on a station's first stroke, else the strokes' path.
+        // The join into a stroke alone where the arm arrives behind at its
+        // first rungs.
         let (si, stroke) = verdict.worst;
         let first = paths.stations.get(si as usize).and_then(|r| r.first());
-        let after_stow = first.is_some_and(|r| r.stroke as i64 == stroke) && pace.air > MIN_PACE;
+        let first_of_station = first.is_some_and(|r| r.stroke as i64 == stroke);
+        let after_stow = first_of_station && pace.air > MIN_PACE;
+        let arrival = !first_of_station
+            && paint_start(&job, stroke).is_some_and(|t0| verdict.worst_t_s - t0 < ARRIVAL_S);
+        let join = pace.joins.iter().position(|(s, _)| *s as i64 == stroke);
+        let join_share = join.map_or(1.0, |k| pace.joins[k].1);
         if after_stow {
             pace.air *= PACE_STEP;
+        } else if arrival && join_share > MIN_PACE {
+            match join {
+                Some(k) => pace.joins[k].1 *= PACE_STEP,
+                None => pace.joins.push((stroke as usize, PACE_STEP)),
+            }
         } else if pace.path > MIN_PACE {
             pace.path *= PACE_STEP;
         } else {
@@ -91,6 +113,19 @@ pub fn compile_strokes(
         }
     }
 }
+
+/// Job time at which stroke `stroke` starts painting.
+fn paint_start(job: &Job, stroke: i64) -> Option<f64> {
+    let s = &job.samples;
+    (0..s.stroke.len())
+        .find(|&i| s.stroke[i] == stroke && s.paint[i] == 1)
+        .map(|i| s.t_s[i])
+}
+
+/// An error this soon after a stroke starts painting is the join's into
+/// it (s). assumed: about the hydraulic arm's settling after a fast join
+/// (the verified errors sit within 0.1 s of the first rung).
+const ARRIVAL_S: f64 = 1.0;
 
 /// Each re-timing uses this share of the last one's accelerations.
 /// assumed: a few steps reach `MIN_PACE` while each still gains.

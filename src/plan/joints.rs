@@ -74,10 +74,11 @@ pub fn joint_paths(
                 (Err((k, e)), Err(_)) => {
                     let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
                     return Err(CompileError::Unreachable(format!(
-                        "stroke {} ({}) cannot be painted from station {si} at ({:.3}, {:.3}) \
+                        "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
                          m: {e}; use a smaller --letter-height or check the robot description",
                         pass.stroke,
                         strokes.owner(pass.stroke),
+                        si + 1,
                         tip.x,
                         tip.y
                     )));

@@ -50,12 +50,13 @@ pub fn sample(
         let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
         robot
             .check_rates(&js, period_s)
-            .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
+            .map_err(|e| CompileError::Timing(format!("station {}: {e}", si + 1)))?;
         for (k, j) in js.iter().enumerate() {
             robot.check_joints(j).map_err(|e| {
                 CompileError::Timing(format!(
-                    "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
-                     range ({e})"
+                    "station {}, setpoint {k}: the joint path between knots leaves a joint's \
+                     range ({e})",
+                    si + 1
                 ))
             })?;
         }

@@ -23,6 +23,8 @@ pub struct Verdict {
     pub why: String,
     /// Station and stroke of the worst error (stroke −1 in an air move).
     pub worst: (u32, i64),
+    /// Job time of the worst error (s).
+    pub worst_t_s: f64,
 }
 
 /// Simulate `job` with the default options and judge it.
@@ -72,5 +74,6 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
         ok,
         why,
         worst: (r.worst.station, r.worst.stroke),
+        worst_t_s: r.worst.t_s,
     })
 }
