@@ -270,6 +270,16 @@ fn flown(
     };
     let m = synced(&ends)?;
     let t_end = m.duration_s;
+    if std::env::var_os("BASR_DEBUG_JOINS").is_some() {
+        eprintln!(
+            "join {} -> {}: va {va:.3} vb {vb:.3} T {t_end:.3} v0 {:?} v1 {:?} dq {:?}",
+            a.stroke,
+            b.stroke,
+            ends.v0.map(|v| (v * 1e3).round() / 1e3),
+            ends.v1.map(|v| (v * 1e3).round() / 1e3),
+            std::array::from_fn::<f64, 5, _>(|j| ((ends.p1[j] - ends.p0[j]) * 1e3).round() / 1e3)
+        );
+    }
     let length = 0.5 * (va + vb) * t_end;
     if length < FLOWN_MIN_M {
         return None;

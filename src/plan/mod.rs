@@ -21,6 +21,7 @@ pub mod seal;
 pub mod stations;
 pub mod stow;
 pub mod tilt;
+pub mod turn;
 pub mod timing;
 pub mod tours;
 pub mod trajectory;
