@@ -15,7 +15,7 @@
 use crate::robot::Robot;
 
 use super::joints::Run;
-use super::timing::sync::{synced, Ends};
+use super::timing::sync::{min_time, synced, Ends};
 use super::timing::{JointLimits, PathPoint};
 use super::trajectory::{arc_lengths, joints_of, Q};
 
@@ -230,12 +230,97 @@ pub fn chain(
 /// time law (its own 3 % margin and the spline through the join's
 /// waypoints) can follow it at the design speed. assumed: 10 %.
 const DESIGN_SHARE: f64 = 0.9;
+/// Share of that a flown join's last phase (arriving at the next stroke)
+/// accelerates at: the hydraulic arm lags a hard stop-and-go into the first
+/// rungs (the verified errors sat at the strokes' first rungs). assumed:
+/// half, chosen on STOP's and SCHOOL's verified errors.
+const ARRIVAL_SHARE: f64 = 0.5;
 /// Time between a flown join's waypoints (s). assumed: a quarter of the
 /// yaw servo's 0.1 s to full speed (000 app. C §3.2.1), so the spline
 /// through them keeps the ramps.
 const FLOWN_STEP_S: f64 = 0.025;
 /// Shortest flown join (m of s); below it the runs meet as they are.
 const FLOWN_MIN_M: f64 = 1e-3;
+
+/// One end of a join: a run's knots, joints and arc lengths, and the rung
+/// the join leaves from or arrives at.
+#[derive(Clone, Copy)]
+pub struct Side<'a> {
+    knots: &'a [super::knots::Knot],
+    joints: &'a [crate::robot::Joints],
+    arcs: &'a [f64],
+    at: usize,
+    leaving: bool,
+}
+
+impl<'a> Side<'a> {
+    pub fn leaving(
+        knots: &'a [super::knots::Knot],
+        joints: &'a [crate::robot::Joints],
+        arcs: &'a [f64],
+        at: usize,
+    ) -> Self {
+        Side {
+            knots,
+            joints,
+            arcs,
+            at,
+            leaving: true,
+        }
+    }
+
+    pub fn arriving(
+        knots: &'a [super::knots::Knot],
+        joints: &'a [crate::robot::Joints],
+        arcs: &'a [f64],
+        at: usize,
+    ) -> Self {
+        Side {
+            leaving: false,
+            ..Side::leaving(knots, joints, arcs, at)
+        }
+    }
+
+    /// Painting speed and joints' rates (per s) at the rung.
+    fn state(&self) -> Option<(f64, Q, Q)> {
+        let v = self.knots.get(self.at)?.speed_mps;
+        let rate = end_rate(self.joints, self.arcs, self.at, self.leaving);
+        (v > 0.0).then(|| (v, self.joints[self.at].values(), rate.map(|r| r * v)))
+    }
+}
+
+/// The end states of the join from `a` to `b` and its design limits, with
+/// the painting speeds at both rungs.
+fn seam_ends(limits: &JointLimits<5>, a: Side, b: Side) -> Option<(Ends<5>, f64, f64)> {
+    let ((va, p0, v0), (vb, p1, v1)) = (a.state()?, b.state()?);
+    let ends = Ends {
+        p0,
+        v0,
+        p1,
+        v1,
+        vel: limits.vel.map(|v| v * DESIGN_SHARE),
+        acc: limits.acc.map(|v| v * DESIGN_SHARE),
+        acc_end: limits.acc.map(|v| v * DESIGN_SHARE * ARRIVAL_SHARE),
+    };
+    Some((ends, va, vb))
+}
+
+/// Duration (s) of the join flown from `a` into `b` as `chain` designs it
+/// at full pace, estimated for ordering strokes; None where none is found.
+pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side) -> Option<f64> {
+    let (e, _, _) = seam_ends(limits, a, b)?;
+    // The slowest joint alone (the synchronised move can take a little
+    // longer where another joint cannot stretch to it).
+    Some(
+        (0..5)
+            .map(|j| {
+                let acc = [e.acc[j], e.acc_end[j]];
+                min_time((e.p0[j], e.v0[j]), (e.p1[j], e.v1[j]), e.vel[j], acc)
+            })
+            .fold(0.0, f64::max),
+    )
+    .filter(|t| t.is_finite())
+}
 
 /// The join flown from run a's last rung at its painting speed into run
 /// b's first at its own: every joint from its rate there to its rate at
@@ -251,35 +336,17 @@ fn flown(
     (a, arcs_a, b, arcs_b): (&Run, &[f64], &Run, &[f64]),
     capped: bool,
 ) -> Option<Blend> {
-    let (from, to) = (a.paint_last, b.paint_first);
-    let (va, vb) = (a.knots[from].speed_mps, b.knots[to].speed_mps);
-    if !(va > 0.0 && vb > 0.0) {
-        return None;
-    }
-    let (ra, rb) = (
-        end_rate(a, arcs_a, from, true),
-        end_rate(b, arcs_b, to, false),
+    let (ends, va, vb) = seam_ends(
+        limits,
+        Side::leaving(&a.knots, &a.joints, arcs_a, a.paint_last),
+        Side::arriving(&b.knots, &b.joints, arcs_b, b.paint_first),
+    )?;
+    let (ra, rb): (Q, Q) = (
+        std::array::from_fn(|j| ends.v0[j] / va),
+        std::array::from_fn(|j| ends.v1[j] / vb),
     );
-    let ends = Ends {
-        p0: a.joints[from].values(),
-        v0: std::array::from_fn(|j| ra[j] * va),
-        p1: b.joints[to].values(),
-        v1: std::array::from_fn(|j| rb[j] * vb),
-        vel: limits.vel.map(|v| v * DESIGN_SHARE),
-        acc: limits.acc.map(|v| v * DESIGN_SHARE),
-    };
     let m = synced(&ends)?;
     let t_end = m.duration_s;
-    if std::env::var_os("BASR_DEBUG_JOINS").is_some() {
-        eprintln!(
-            "join {} -> {}: va {va:.3} vb {vb:.3} T {t_end:.3} v0 {:?} v1 {:?} dq {:?}",
-            a.stroke,
-            b.stroke,
-            ends.v0.map(|v| (v * 1e3).round() / 1e3),
-            ends.v1.map(|v| (v * 1e3).round() / 1e3),
-            std::array::from_fn::<f64, 5, _>(|j| ((ends.p1[j] - ends.p0[j]) * 1e3).round() / 1e3)
-        );
-    }
     let length = 0.5 * (va + vb) * t_end;
     if length < FLOWN_MIN_M {
         return None;
@@ -340,8 +407,8 @@ struct Blend {
 
 /// Joint rate per metre of s at knot `at` of a run, leaving it (`out`) or
 /// arriving (one-sided difference).
-fn end_rate(run: &Run, arcs: &[f64], at: usize, out: bool) -> Q {
-    let n = run.joints.len();
+fn end_rate(joints: &[crate::robot::Joints], arcs: &[f64], at: usize, out: bool) -> Q {
+    let n = joints.len();
     if n < 2 {
         return [0.0; 5];
     }
@@ -350,7 +417,7 @@ fn end_rate(run: &Run, arcs: &[f64], at: usize, out: bool) -> Q {
     } else {
         (at.min(n - 2), at.min(n - 2) + 1)
     };
-    let (a, b) = (run.joints[i].values(), run.joints[k].values());
+    let (a, b) = (joints[i].values(), joints[k].values());
     let ds = arcs[k] - arcs[i];
     std::array::from_fn(|j| (b[j] - a[j]) / ds)
 }
@@ -367,8 +434,8 @@ fn blend(
 ) -> (Blend, Option<StopReason>) {
     let qa = a.joints[from].values();
     let qb = b.joints[to].values();
-    let ta = end_rate(a, arcs_a, from, true);
-    let tb = end_rate(b, arcs_b, to, false);
+    let ta = end_rate(&a.joints, arcs_a, from, true);
+    let tb = end_rate(&b.joints, arcs_b, to, false);
     let pa = robot.fk(&joints_of(&qa));
     let pb = robot.fk(&joints_of(&qb));
     let road = (pb.x_m - pa.x_m).hypot(pb.y_m - pa.y_m);

@@ -154,7 +154,7 @@ pub struct TimeLaw {
 
 /// `pace` (0–1] scales every acceleration and jerk limit, and the speed
 /// limits by its square root.
-fn timing_limits(robot: &Robot, pace: f64) -> timing::JointLimits<5> {
+pub(super) fn timing_limits(robot: &Robot, pace: f64) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
     for (j, (_, l)) in robot.limits.iter().enumerate() {

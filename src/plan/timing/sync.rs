@@ -29,16 +29,16 @@ pub struct Ramp {
 }
 
 impl Ramp {
-    fn with_cruise(p0: f64, v0: f64, v1: f64, vc: f64, duration: f64, acc: f64) -> Ramp {
-        let (t1, t3) = ((vc - v0).abs() / acc, (v1 - vc).abs() / acc);
+    fn with_cruise(p0: f64, v0: f64, v1: f64, vc: f64, duration: f64, acc: [f64; 2]) -> Ramp {
+        let (t1, t3) = ((vc - v0).abs() / acc[0], (v1 - vc).abs() / acc[1]);
         Ramp {
             p0,
             v0,
-            a1: acc.copysign(vc - v0),
+            a1: acc[0].copysign(vc - v0),
             t1,
             vc,
             t2: (duration - t1 - t3).max(0.0),
-            a3: acc.copysign(v1 - vc),
+            a3: acc[1].copysign(v1 - vc),
             t3,
         }
     }
@@ -92,21 +92,45 @@ pub struct Ends<const N: usize> {
     pub v1: [f64; N],
     pub vel: [f64; N],
     pub acc: [f64; N],
+    /// Acceleration of the last phase, arriving (at most `acc`).
+    pub acc_end: [f64; N],
 }
 
-/// The profile of one joint that takes exactly `duration`, if there is one.
-fn ramp_in(p0: f64, v0: f64, p1: f64, v1: f64, vel: f64, acc: f64, duration: f64) -> Option<Ramp> {
-    if (v1 - v0).abs() > acc * duration * (1.0 + 1e-12) {
+/// The profile of one joint that takes exactly `duration`, if there is one
+/// (`acc`: leaving and arriving accelerations).
+fn ramp_in(
+    (p0, v0): (f64, f64),
+    (p1, v1): (f64, f64),
+    vel: f64,
+    acc: [f64; 2],
+    duration: f64,
+) -> Option<Ramp> {
+    // The ramps' time is convex and piecewise linear in the cruise speed,
+    // least at v0 or v1: the cruise speeds whose ramps fit in the duration
+    // form an interval around that, cut to the speed limit (a little above
+    // it where an end state already is).
+    let ramps = |vc: f64| (vc - v0).abs() / acc[0] + (v1 - vc).abs() / acc[1];
+    let best = if ramps(v0) <= ramps(v1) { v0 } else { v1 };
+    if ramps(best) > duration * (1.0 + 1e-12) + 1e-15 {
         return None;
     }
-    // The cruise speed's range: the ramps fit in the duration, and the
-    // speed limit (a little above it where an end state already is).
     let vmax = vel.max(v0.abs()).max(v1.abs());
-    let lo = (-vmax).max(0.5 * (v0 + v1 - acc * duration));
-    let hi = vmax.min(0.5 * (v0 + v1 + acc * duration));
-    if lo > hi {
-        return None;
-    }
+    let edge = |far: f64| {
+        if ramps(far) <= duration {
+            return far;
+        }
+        let (mut a, mut b) = (best, far);
+        for _ in 0..80 {
+            let m = 0.5 * (a + b);
+            if ramps(m) <= duration {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        a
+    };
+    let (lo, hi) = (edge(-vmax), edge(vmax));
     let dist = |vc: f64| Ramp::with_cruise(p0, v0, v1, vc, duration, acc).distance();
     let d = p1 - p0;
     let tol = 1e-12 * (1.0 + d.abs());
@@ -127,9 +151,10 @@ fn ramp_in(p0: f64, v0: f64, p1: f64, v1: f64, vel: f64, acc: f64, duration: f64
 
 /// Every joint's profile for one duration, if each has one.
 fn ramps_in<const N: usize>(e: &Ends<N>, duration: f64) -> Option<[Ramp; N]> {
-    let mut out = [Ramp::with_cruise(0.0, 0.0, 0.0, 0.0, 0.0, 1.0); N];
+    let mut out = [Ramp::with_cruise(0.0, 0.0, 0.0, 0.0, 0.0, [1.0; 2]); N];
     for (j, r) in out.iter_mut().enumerate() {
-        *r = ramp_in(e.p0[j], e.v0[j], e.p1[j], e.v1[j], e.vel[j], e.acc[j], duration)?;
+        let acc = [e.acc[j], e.acc_end[j].min(e.acc[j])];
+        *r = ramp_in((e.p0[j], e.v0[j]), (e.p1[j], e.v1[j]), e.vel[j], acc, duration)?;
     }
     Some(out)
 }
@@ -191,6 +216,41 @@ impl<const N: usize> Synced<N> {
     }
 }
 
+/// Shortest time one joint takes from (p₀, v₀) to (p₁, v₁) within `vel`,
+/// leaving at `acc[0]` and arriving at `acc[1]`, in closed form: speed up
+/// to a peak and brake (or the mirror image), cruising at the speed limit
+/// if the peak would pass it. The ordering's join cost (the slowest
+/// joint's); `synced` finds the common duration.
+pub fn min_time((p0, v0): (f64, f64), (p1, v1): (f64, f64), vel: f64, acc: [f64; 2]) -> f64 {
+    let d = p1 - p0;
+    let vel = vel.max(v0.abs()).max(v1.abs());
+    let (h0, h1) = (0.5 / acc[0], 0.5 / acc[1]);
+    let time = |top: f64| (top - v0).abs() / acc[0] + (top - v1).abs() / acc[1];
+    // sign +1: up to a peak ≥ both speeds; −1: down to a trough ≤ both.
+    let family = |sign: f64| -> Option<f64> {
+        let x = (sign * d + v0 * v0 * h0 + v1 * v1 * h1) / (h0 + h1);
+        if x < 0.0 {
+            return None;
+        }
+        let peak = sign * x.sqrt();
+        let (hi, lo) = (v0.max(v1), v0.min(v1));
+        if (sign > 0.0 && peak < hi - 1e-12) || (sign < 0.0 && peak > lo + 1e-12) {
+            return None;
+        }
+        if peak.abs() <= vel {
+            return Some(time(peak));
+        }
+        let top = sign * vel;
+        let ramp_d = sign * ((vel * vel - v0 * v0) * h0 + (vel * vel - v1 * v1) * h1);
+        Some(time(top) + (d - ramp_d).abs() / vel)
+    };
+    match (family(1.0), family(-1.0)) {
+        (Some(a), Some(b)) => a.min(b),
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => f64::INFINITY,
+    }
+}
+
 /// Longest move looked for (s). assumed: far above any join of a station
 /// (a yaw turn of 4π at 30°/s takes 24 s).
 const MAX_DURATION_S: f64 = 120.0;
@@ -204,15 +264,25 @@ const DURATION_TOL_S: f64 = 1e-6;
 /// `MAX_DURATION_S` or a number is not finite.
 pub fn synced<const N: usize>(e: &Ends<N>) -> Option<Synced<N>> {
     let finite = |a: &[f64; N]| a.iter().all(|v| v.is_finite());
-    if ![e.p0, e.v0, e.p1, e.v1, e.vel, e.acc].iter().all(finite)
-        || e.vel.iter().chain(&e.acc).any(|&l| l <= 0.0)
+    if ![e.p0, e.v0, e.p1, e.v1, e.vel, e.acc, e.acc_end]
+        .iter()
+        .all(finite)
+        || e.vel.iter().chain(&e.acc).chain(&e.acc_end).any(|&l| l <= 0.0)
     {
         return None;
     }
-    // No duration below the largest speed change at full acceleration.
+    // No duration below the slowest joint's own shortest.
     let mut lo = (0..N)
-        .map(|j| (e.v1[j] - e.v0[j]).abs() / e.acc[j])
+        .map(|j| {
+            let acc = [e.acc[j], e.acc_end[j].min(e.acc[j])];
+            min_time((e.p0[j], e.v0[j]), (e.p1[j], e.v1[j]), e.vel[j], acc)
+        })
         .fold(0.0, f64::max);
+    if !lo.is_finite() {
+        return None;
+    }
+    // Rounding: start a hair below.
+    lo *= 1.0 - 1e-9;
     if let Some(ramps) = ramps_in(e, lo) {
         return Some(Synced {
             duration_s: lo,
@@ -256,6 +326,7 @@ mod tests {
             v1: [v1],
             vel: [1.0],
             acc: [2.0],
+            acc_end: [2.0],
         }
     }
 
@@ -284,11 +355,25 @@ mod tests {
             v1: [0.0, -0.5],
             vel: [1.0, 1.0],
             acc: [2.0, 2.0],
+            acc_end: [2.0, 2.0],
         };
         let m = synced(&e).unwrap();
         assert!((m.duration_s - 2.5).abs() < 1e-5);
         let (q, qd) = m.at(m.duration_s);
         assert!((q[1] - 0.1).abs() < 1e-6 && (qd[1] + 0.5).abs() < 1e-9);
+    }
+
+    proptest! {
+        /// The closed form is the single-joint move's duration.
+        #[test]
+        fn min_time_is_the_one_joint_move(
+            p0 in -3.0..3.0f64, v0 in -1.0..1.0f64, p1 in -3.0..3.0f64, v1 in -1.0..1.0f64,
+        ) {
+            let e = Ends { acc_end: [0.7], ..ends(p0, v0, p1, v1) };
+            let m = synced(&e).unwrap();
+            let t = min_time((p0, v0), (p1, v1), 1.0, [2.0, 0.7]);
+            prop_assert!((t - m.duration_s).abs() < 1e-5, "{t} vs {}", m.duration_s);
+        }
     }
 
     proptest! {
@@ -300,7 +385,7 @@ mod tests {
         ) {
             let e = Ends {
                 p0: [p0, p0b], v0: [v0, v0b], p1: [p1, p1b], v1: [v1, v1b],
-                vel: [1.0, 0.5], acc: [2.0, 5.0],
+                vel: [1.0, 0.5], acc: [2.0, 5.0], acc_end: [1.0, 5.0],
             };
             let m = synced(&e).unwrap();
             let (q, qd) = m.at(m.duration_s);
