@@ -109,6 +109,10 @@ fn ramp_in(
     // least at v0 or v1: the cruise speeds whose ramps fit in the duration
     // form an interval around that, cut to the speed limit (a little above
     // it where an end state already is).
+    if p0 == p1 && v0 == 0.0 && v1 == 0.0 {
+        // A joint at rest stays exactly where it is.
+        return Some(Ramp::with_cruise(p0, 0.0, 0.0, 0.0, duration, acc));
+    }
     let ramps = |vc: f64| (vc - v0).abs() / acc[0] + (v1 - vc).abs() / acc[1];
     let best = if ramps(v0) <= ramps(v1) { v0 } else { v1 };
     if ramps(best) > duration * (1.0 + 1e-12) + 1e-15 {
@@ -247,7 +251,39 @@ pub fn min_time((p0, v0): (f64, f64), (p1, v1): (f64, f64), vel: f64, acc: [f64;
     match (family(1.0), family(-1.0)) {
         (Some(a), Some(b)) => a.min(b),
         (Some(a), None) | (None, Some(a)) => a,
-        (None, None) => f64::INFINITY,
+        // Arriving slower than leaving, the fastest move may ramp the same
+        // way twice (harder first): found by search.
+        (None, None) => {
+            let fits = |t: f64| ramp_in((p0, v0), (p1, v1), vel, acc, t).is_some();
+            first_feasible(0.0, &fits).unwrap_or(f64::INFINITY)
+        }
+    }
+}
+
+/// The first duration from `lo` on for which `fits` holds: 1 % steps, then
+/// bisection to `DURATION_TOL_S`; None past `MAX_DURATION_S`.
+fn first_feasible(mut lo: f64, fits: &dyn Fn(f64) -> bool) -> Option<f64> {
+    if fits(lo) {
+        return Some(lo);
+    }
+    loop {
+        let hi = lo * GROWTH + 1e-3;
+        if hi > MAX_DURATION_S {
+            return None;
+        }
+        if fits(hi) {
+            let (mut a, mut b) = (lo, hi);
+            while b - a > DURATION_TOL_S {
+                let m = 0.5 * (a + b);
+                if fits(m) {
+                    b = m;
+                } else {
+                    a = m;
+                }
+            }
+            return Some(b);
+        }
+        lo = hi;
     }
 }
 
@@ -281,36 +317,14 @@ pub fn synced<const N: usize>(e: &Ends<N>) -> Option<Synced<N>> {
     if !lo.is_finite() {
         return None;
     }
-    // Rounding: start a hair below.
-    lo *= 1.0 - 1e-9;
-    if let Some(ramps) = ramps_in(e, lo) {
-        return Some(Synced {
-            duration_s: lo,
-            ramps,
-        });
-    }
-    loop {
-        let hi = lo * GROWTH + 1e-3;
-        if hi > MAX_DURATION_S {
-            return None;
-        }
-        if ramps_in(e, hi).is_some() {
-            let (mut a, mut b) = (lo, hi);
-            while b - a > DURATION_TOL_S {
-                let m = 0.5 * (a + b);
-                if ramps_in(e, m).is_some() {
-                    b = m;
-                } else {
-                    a = m;
-                }
-            }
-            return ramps_in(e, b).map(|ramps| Synced {
-                duration_s: b,
-                ramps,
-            });
-        }
-        lo = hi;
-    }
+    // Rounding: a hair above (the slowest joint's window can be that thin:
+    // one arriving fast may not be able to take a little longer).
+    lo = lo * (1.0 + 1e-9) + 1e-12;
+    let t = first_feasible(lo, &|t| ramps_in(e, t).is_some())?;
+    ramps_in(e, t).map(|ramps| Synced {
+        duration_s: t,
+        ramps,
+    })
 }
 
 #[cfg(test)]
