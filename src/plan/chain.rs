@@ -366,7 +366,12 @@ fn flown(
         let rate = va + (vb - va) * t / t_end;
         let cap = capped.then_some(rate);
         let dq_ds = qd.map(|v| v / rate);
-        inner.push((va * t + (vb - va) * t * t / (2.0 * t_end), q, cap, Some(dq_ds)));
+        inner.push((
+            va * t + (vb - va) * t * t / (2.0 * t_end),
+            q,
+            cap,
+            Some(dq_ds),
+        ));
     }
     Some(Blend {
         inner,

@@ -69,16 +69,6 @@ pub fn compile_strokes(
             return Ok(job);
         }
         let verdict = verify::verify(&job)?;
-        if std::env::var_os("BASR_DEBUG_VERIFY").is_some() {
-            eprintln!(
-                "verify: pace {:?} duration {:.2} error {:.2} mm worst {:?} {}",
-                pace,
-                job.summary.duration_s,
-                verdict.max_error_m * 1e3,
-                verdict.worst,
-                verdict.why
-            );
-        }
         if verdict.ok {
             job.summary.verified_max_error_m = Some(verdict.max_error_m);
             job.seal();

@@ -8,13 +8,13 @@ use crate::job::Station;
 use crate::plan::knots::Knot;
 use crate::robot::{Joints, NozzlePose, Robot};
 
+use super::chain::Side;
 use super::error::CompileError;
 use super::leads::{with_leads, LEAD_M};
 use super::passes::Passes;
 use super::placed::PlacedStrokes;
 use super::stations::{self, StationPlan};
 use super::stow::stow_joints;
-use super::chain::Side;
 use super::tours::Tours;
 
 /// A pass as the arm runs it: joints at every knot, in painting order.

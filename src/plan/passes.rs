@@ -12,7 +12,6 @@ use super::placed::PlacedStrokes;
 use super::rungs::StrokeRungs;
 use super::warnings::Note;
 
-
 /// Rounds of turn limiting and re-pacing per pass. assumed: the speeds
 /// settle in two; the third is slack.
 const TURN_TRIES: usize = 3;

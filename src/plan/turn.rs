@@ -134,7 +134,9 @@ mod tests {
 
     #[test]
     fn a_turn_within_the_rate_is_kept() {
-        let mut ks: Vec<Knot> = (0..10).map(|i| knot(0.02 * i as f64, 0.01 * i as f64)).collect();
+        let mut ks: Vec<Knot> = (0..10)
+            .map(|i| knot(0.02 * i as f64, 0.01 * i as f64))
+            .collect();
         let before = ks.clone();
         assert!(!limit_turn_rate(&mut ks, 0.5));
         assert_eq!(ks, before);

@@ -158,7 +158,13 @@ fn ramps_in<const N: usize>(e: &Ends<N>, duration: f64) -> Option<[Ramp; N]> {
     let mut out = [Ramp::with_cruise(0.0, 0.0, 0.0, 0.0, 0.0, [1.0; 2]); N];
     for (j, r) in out.iter_mut().enumerate() {
         let acc = [e.acc[j], e.acc_end[j].min(e.acc[j])];
-        *r = ramp_in((e.p0[j], e.v0[j]), (e.p1[j], e.v1[j]), e.vel[j], acc, duration)?;
+        *r = ramp_in(
+            (e.p0[j], e.v0[j]),
+            (e.p1[j], e.v1[j]),
+            e.vel[j],
+            acc,
+            duration,
+        )?;
     }
     Some(out)
 }
@@ -303,7 +309,11 @@ pub fn synced<const N: usize>(e: &Ends<N>) -> Option<Synced<N>> {
     if ![e.p0, e.v0, e.p1, e.v1, e.vel, e.acc, e.acc_end]
         .iter()
         .all(finite)
-        || e.vel.iter().chain(&e.acc).chain(&e.acc_end).any(|&l| l <= 0.0)
+        || e.vel
+            .iter()
+            .chain(&e.acc)
+            .chain(&e.acc_end)
+            .any(|&l| l <= 0.0)
     {
         return None;
     }
