@@ -12,12 +12,12 @@
 //! joint's range is flattened (tangents scaled down, at worst to zero: the
 //! arm then stops at the seam, and the stop is reported with its reason).
 
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 use super::joints::Run;
 use super::timing::sync::{min_time, synced, Ends};
 use super::timing::{JointLimits, PathPoint};
-use super::trajectory::{arc_lengths, joints_of, Q};
+use super::trajectory::{arc_lengths, Q};
 
 /// Path-parameter rate standing in for the joints' own motion in a blend
 /// (m of s per s of the slowest joint at its speed limit). assumed: about
@@ -109,7 +109,7 @@ impl Chain {
 /// speeds) and flown no faster, where the verification found the arm
 /// arriving behind.
 pub fn chain(
-    robot: &Robot,
+    robot: &AnyRobot,
     runs: &[Run],
     limits: &JointLimits<5>,
     slow_joins: &[(usize, f64)],
@@ -207,7 +207,7 @@ pub fn chain(
         {
             out.points.push(PathPoint {
                 s_m: offset + arcs[i],
-                q: j.values(),
+                q: *j,
                 // Leads are gun-off run-ups: as fast as the joints allow.
                 max_speed_mps: (run.paint_first..=run.paint_last)
                     .contains(&i)
@@ -247,7 +247,7 @@ const FLOWN_MIN_M: f64 = 1e-3;
 #[derive(Clone, Copy)]
 pub struct Side<'a> {
     knots: &'a [super::knots::Knot],
-    joints: &'a [crate::robot::Joints],
+    joints: &'a [Q],
     arcs: &'a [f64],
     at: usize,
     leaving: bool,
@@ -256,7 +256,7 @@ pub struct Side<'a> {
 impl<'a> Side<'a> {
     pub fn leaving(
         knots: &'a [super::knots::Knot],
-        joints: &'a [crate::robot::Joints],
+        joints: &'a [Q],
         arcs: &'a [f64],
         at: usize,
     ) -> Self {
@@ -271,7 +271,7 @@ impl<'a> Side<'a> {
 
     pub fn arriving(
         knots: &'a [super::knots::Knot],
-        joints: &'a [crate::robot::Joints],
+        joints: &'a [Q],
         arcs: &'a [f64],
         at: usize,
     ) -> Self {
@@ -285,7 +285,7 @@ impl<'a> Side<'a> {
     fn state(&self) -> Option<(f64, Q, Q)> {
         let v = self.knots.get(self.at)?.speed_mps;
         let rate = end_rate(self.joints, self.arcs, self.at, self.leaving);
-        (v > 0.0).then(|| (v, self.joints[self.at].values(), rate.map(|r| r * v)))
+        (v > 0.0).then(|| (v, self.joints[self.at], rate.map(|r| r * v)))
     }
 }
 
@@ -331,7 +331,7 @@ pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side) -> Option<f64> {
 /// would leave a joint's range.
 /// With `capped`, no waypoint of it may be flown faster than designed.
 fn flown(
-    robot: &Robot,
+    robot: &AnyRobot,
     limits: &JointLimits<5>,
     (a, arcs_a, b, arcs_b): (&Run, &[f64], &Run, &[f64]),
     capped: bool,
@@ -356,10 +356,10 @@ fn flown(
     for &t in &times[1..times.len().saturating_sub(1)] {
         let (q, qd) = m.at(t);
         let inside = robot
-            .limits
+            .limits()
             .iter()
             .zip(q)
-            .all(|((_, l), v)| v >= l.min && v <= l.max);
+            .all(|(l, v)| v >= l.min && v <= l.max);
         if !inside {
             return None;
         }
@@ -412,7 +412,7 @@ struct Blend {
 
 /// Joint rate per metre of s at knot `at` of a run, leaving it (`out`) or
 /// arriving (one-sided difference).
-fn end_rate(joints: &[crate::robot::Joints], arcs: &[f64], at: usize, out: bool) -> Q {
+fn end_rate(joints: &[Q], arcs: &[f64], at: usize, out: bool) -> Q {
     let n = joints.len();
     if n < 2 {
         return [0.0; 5];
@@ -422,14 +422,14 @@ fn end_rate(joints: &[crate::robot::Joints], arcs: &[f64], at: usize, out: bool)
     } else {
         (at.min(n - 2), at.min(n - 2) + 1)
     };
-    let (a, b) = (joints[i].values(), joints[k].values());
+    let (a, b) = (joints[i], joints[k]);
     let ds = arcs[k] - arcs[i];
     std::array::from_fn(|j| (b[j] - a[j]) / ds)
 }
 
 /// The blend from knot `from` of run a to knot `to` of run b.
 fn blend(
-    robot: &Robot,
+    robot: &AnyRobot,
     a: &Run,
     arcs_a: &[f64],
     from: usize,
@@ -437,18 +437,18 @@ fn blend(
     arcs_b: &[f64],
     to: usize,
 ) -> (Blend, Option<StopReason>) {
-    let qa = a.joints[from].values();
-    let qb = b.joints[to].values();
+    let qa = a.joints[from];
+    let qb = b.joints[to];
     let ta = end_rate(&a.joints, arcs_a, from, true);
     let tb = end_rate(&b.joints, arcs_b, to, false);
-    let pa = robot.fk(&joints_of(&qa));
-    let pb = robot.fk(&joints_of(&qb));
+    let pa = robot.fk(&qa);
+    let pb = robot.fk(&qb);
     let road = (pb.x_m - pa.x_m).hypot(pb.y_m - pa.y_m);
     let slowest = robot
-        .limits
+        .limits()
         .iter()
         .enumerate()
-        .map(|(j, (_, l))| (qb[j] - qa[j]).abs() / l.max_vel)
+        .map(|(j, l)| (qb[j] - qa[j]).abs() / l.max_vel)
         .fold(0.0, f64::max);
     let length = road.max(slowest * BLEND_SPEED_MPS).max(BLEND_MIN_M);
     let m = ((length / BLEND_STEP_M).ceil() as usize).clamp(2, BLEND_MAX_POINTS);
@@ -479,7 +479,12 @@ fn blend(
     };
     let mut scales = [1.0; 5];
     let mut resting = vec![];
-    for (j, (name, l)) in robot.limits.iter().enumerate() {
+    for (j, (name, l)) in robot
+        .joint_names()
+        .into_iter()
+        .zip(robot.limits())
+        .enumerate()
+    {
         let fits = |scale: f64| {
             (1..m).all(|k| {
                 let q = hermite(j, k as f64 / m as f64, scale);

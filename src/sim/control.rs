@@ -39,6 +39,8 @@ pub struct Measurement {
     pub motor_pa: [f64; 2],
     /// Cylinder chamber pressures A, B (Pa).
     pub cylinder_pa: [f64; 2],
+    /// Supply pressure at the valves' manifold (Pa): the low-pressure switch.
+    pub supply_pa: f64,
     pub reference: Reference,
 }
 
@@ -166,9 +168,24 @@ pub mod gains {
     /// pressure loop see their 180 Hz line mode (30–120 tried; 45 best).
     pub const KF: f64 = 45.0;
     /// SCCT Cartesian gains (section II eq. 24): 2 Hz critically damped was
-    /// 46 mm on STOP; 1.6 Hz (100, 20) 15 mm.
+    /// 46 mm on STOP; 1.6 Hz (100, 20) 15 mm. Higher (130–250) saturated
+    /// the motor valve on the delay estimate's noise.
     pub const SCCT_KP: f64 = 100.0;
     pub const SCCT_KD: f64 = 20.0;
+    /// Where in the stroke SCCT's constant base inertia Ā11 is taken (0 =
+    /// retracted, 1 = full reach). Changed from mid reach (0.5): the delay
+    /// estimate's noise, Ā·q̈ of a quantised encoder, saturated the motor
+    /// valve for 6 s on STOP; at 0.35 (R ≈ 2.9 m) it is 0.7 s (0.2 loses
+    /// the base's tracking: 13.7 mm; 0.4: SCHOOL 5.2, full reach 13 mm).
+    pub const SCCT_A11_STROKE: f64 = 0.35;
+    /// Share of the planned extension rate in the flow term ẋ·M of the
+    /// cylinder's pressure law (000 eq. 29 has the measured ẋ only, 0).
+    /// Changed: with the measured rate alone the extension overshot every
+    /// reversal of an air move by 13 mm (the force loop answers the oil's
+    /// compression a tick late); half the planned rate feeds the flow
+    /// forward as the extension PID of SJCT does: STOP 14.1 → 4.8 mm
+    /// (0.3: 8.5 mm, 0.7: 6.6 mm, 1: 8.3 mm).
+    pub const SCCT_PLANNED_RATE: f64 = 0.5;
 }
 
 /// Fading-memory (discounted least squares) second-order polynomial filter:
@@ -671,8 +688,8 @@ impl Controller for DynInvPid {
 
 /// SCCT (000 section II eq. 18–25): Cartesian PD on the nozzle point,
 /// joint accelerations through J⁻¹, constant inertia Ā (the model's A at
-/// mid reach: "only the bounds of the inertia matrix"), time-delay estimate
-/// of the rest, Sohl–Bobrow on both actuators.
+/// a third of the stroke: "only the bounds of the inertia matrix"),
+/// time-delay estimate of the rest, Sohl–Bobrow on both actuators.
 pub struct Scct {
     model: SimModel,
     est: Estimates,
@@ -684,20 +701,23 @@ pub struct Scct {
 impl Scct {
     pub fn new(model: &SimModel, m0: &Measurement) -> Scct {
         // Ā: "only knowledge of the bounds of the inertia matrix" (000 §II
-        // 5.1): the base's A at mid reach, the extension's at full
+        // 5.1): the base's A at `SCCT_A11_STROKE`, the extension's at full
         // retraction (its A grows without bound as the pantograph opens).
         // The seed's code pairs Ā·q̈ with the *desired* τ of λ ago, which
         // diverged on every job (000 §III: "very unstable … should not be
         // used without changes"); changed as in SJCT to the measured
         // efforts, with the low-pass of the delay estimate.
         let lo = mass_matrix(model, model.arm.x_min_m);
-        let mid = mass_matrix(model, model.arm.x_min_m + 0.5 * model.arm.stroke_m);
+        let base = mass_matrix(
+            model,
+            model.arm.x_min_m + gains::SCCT_A11_STROKE * model.arm.stroke_m,
+        );
         let tau0 = [motor_torque(model, m0), cyl_force(model, m0)];
         let x0 = model.arm.x_of_r(m0.extension_m);
         Scct {
             model: model.clone(),
             est: Estimates::new(model, m0),
-            a_bar: [mid.a11, lo.a22],
+            a_bar: [base.a11, lo.a22],
             tde: [
                 TimeDelayEstimate::new(model, m0.base_rot_rad, tau0[0]),
                 TimeDelayEstimate::new(model, x0, tau0[1]),
@@ -730,11 +750,10 @@ impl Controller for Scct {
             (-r * s + a2 * c) * thd * thd + 2.0 * (k * c) * thd * xd,
         ];
         let rf = &m.reference.nozzle;
+        let (kp, kd) = (gains::SCCT_KP, gains::SCCT_KD);
         let nu = [
-            rf[2][0] + gains::SCCT_KD * (rf[1][0] - wd[0]) + gains::SCCT_KP * (rf[0][0] - w[0])
-                - jdqd[0],
-            rf[2][1] + gains::SCCT_KD * (rf[1][1] - wd[1]) + gains::SCCT_KP * (rf[0][1] - w[1])
-                - jdqd[1],
+            rf[2][0] + kd * (rf[1][0] - wd[0]) + kp * (rf[0][0] - w[0]) - jdqd[0],
+            rf[2][1] + kd * (rf[1][1] - wd[1]) + kp * (rf[0][1] - w[1]) - jdqd[1],
         ];
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         let u = if det.abs() > 1e-9 {
@@ -778,7 +797,8 @@ impl Controller for Scct {
                 md,
                 &md.cylinder,
                 x - md.arm.x_min_m,
-                xd,
+                // the flow term ẋ·M of eq. 29 half from the planned rate
+                xd + gains::SCCT_PLANNED_RATE * (m.reference.extension[1] / k - xd),
                 m.cylinder_pa[0],
                 m.cylinder_pa[1],
                 tau[1],

@@ -7,11 +7,14 @@
 pub mod circuit;
 pub mod control;
 pub mod ee;
+pub mod fault;
 pub mod model;
 pub mod plant;
 pub mod plants;
 pub mod report;
+pub mod safety;
 pub mod servo;
+pub mod servo_job;
 pub mod svg;
 pub mod synthetic;
 
@@ -341,6 +344,18 @@ pub fn simulate(
     simulate_plant(job, model, model, opts, progress)
 }
 
+/// [`simulate`] with hardware faults injected (`--fault`): the report's
+/// `safety` says what happened, when and where, and how the arm stopped.
+pub fn simulate_faulted(
+    job: &Job,
+    model: &SimModel,
+    opts: &Options,
+    faults: &[fault::Fault],
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
+    run(job, model, model, opts, faults, progress)
+}
+
 /// [`simulate`] with the controller built for the `nominal` model (the
 /// robot description) driving another `model` (a plant drawn around it).
 pub fn simulate_plant(
@@ -350,7 +365,25 @@ pub fn simulate_plant(
     opts: &Options,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
+    run(job, nominal, model, opts, &[], progress)
+}
+
+fn run(
+    job: &Job,
+    nominal: &SimModel,
+    model: &SimModel,
+    opts: &Options,
+    faults: &[fault::Fault],
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
     validate_job(job)?;
+    // The hydraulic plant is BASR's; the electric kinds have theirs (`servo_job`).
+    let robot = job.robot.basr().ok_or_else(|| {
+        SimError::Job(format!(
+            "its robot is of the {} kind, which the hydraulic plant does not model",
+            job.robot.kind().name()
+        ))
+    })?;
     nominal.validate().map_err(SimError::Model)?;
     model.validate().map_err(SimError::Model)?;
     if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
@@ -365,6 +398,11 @@ pub fn simulate_plant(
         )));
     }
     let substeps = opts.substeps.unwrap_or(model.substeps);
+    fault::check(
+        faults,
+        (job.samples.len().saturating_sub(1)) as f64 * job.control_period_s,
+    )
+    .map_err(SimError::Option)?;
     let s = &job.samples;
     let n = s.len();
     let dt_job = job.control_period_s;
@@ -390,18 +428,19 @@ pub fn simulate_plant(
     let sens = &model.sensors;
     let base_q = std::f64::consts::TAU / sens.base_counts_per_turn;
     let p_q = sens.adc_step_v * sens.pressure_pa_per_volt;
-    let measure = |st: &State, t: f64, reference: Reference| -> Measurement {
+    let measure = |st: &State, t: f64, reference: Reference, f: &fault::Active| -> Measurement {
         let quant = |v: f64, q: f64| if sens.exact { v } else { (v / q).round() * q };
         // pressures go through the transducer's volts and the ADC's steps
         let pres = |p: f64| quant(p * sens.pressure_gain, p_q);
         let r = model.arm.r_of_x(st[plant::X]);
         Measurement {
             t_s: t,
-            base_rot_rad: quant(st[plant::TH], base_q),
+            base_rot_rad: quant(st[plant::TH] + f.encoder_offset_rad, base_q),
             extension_m: model.arm.r_min_m
                 + quant(r - model.arm.r_min_m, sens.extension_m_per_count),
             motor_pa: [pres(st[plant::PA1]), pres(st[plant::PB1])],
             cylinder_pa: [pres(st[plant::PA2]), pres(st[plant::PB2])],
+            supply_pa: pres(st[plant::PS]),
             reference,
         }
     };
@@ -417,8 +456,13 @@ pub fn simulate_plant(
         }
     };
 
-    let nut_to_tilt = NutTable::new(&job.robot);
-    let m0 = measure(&state, 0.0, reference_at(0.0));
+    let nut_to_tilt = NutTable::new(robot);
+    let m0 = measure(
+        &state,
+        0.0,
+        reference_at(0.0),
+        &fault::Active::at(faults, 0.0, sens.base_counts_per_turn),
+    );
     let mut ctrl = opts.controller.build(nominal, &m0);
 
     let mut all = ErrStats::default();
@@ -479,11 +523,13 @@ pub fn simulate_plant(
     let r_max = model.arm.r_of_x(model.arm.x_max_m());
 
     let mut diverged: Option<f64> = None;
+    let mut monitor = safety::Monitor::new(model, faults);
     for k in 0..ticks {
         let t = k as f64 * period;
         let row = ((t / dt_job + 1e-9).floor() as usize).min(n - 1);
         let reference = reference_at(t);
-        let meas = measure(&state, t, reference);
+        let active = fault::Active::at(faults, t, sens.base_counts_per_turn);
+        let meas = measure(&state, t, reference, &active);
         let cmd = ctrl.step(&meas);
         let station = s.station[row];
         let station_pose = &poses[station as usize];
@@ -491,7 +537,7 @@ pub fn simulate_plant(
         // linkage's deflection
         let r_act = model.arm.r_of_x(state[plant::X]);
         let tilt = nut_to_tilt.tilt(nut.pos);
-        let pose = job.robot.fk(&Joints {
+        let pose = robot.fk(&Joints {
             base_rot_rad: state[plant::TH],
             extension_m: r_act,
             vertical_m: vert.pos,
@@ -515,7 +561,21 @@ pub fn simulate_plant(
             y_m: des_road[1],
         };
         let painting = s.paint[row] != 0;
-        all.add(err, &place);
+        // the safety monitor: the nozzle off its path by the encoders
+        monitor.note_faults(t, period, &place);
+        let w_meas = nozzle_base(model, meas.base_rot_rad, meas.extension_m);
+        let w_ref = nozzle_base(model, reference.base_rot[0], reference.extension[0]);
+        let follow = (w_meas[0] - w_ref[0]).hypot(w_meas[1] - w_ref[1]);
+        let before_stop = !monitor.stopped();
+        let estop = monitor.check(model, &meas, follow, &place);
+        let gun = monitor.gun_open(painting, follow, opts.tolerance_m);
+        monitor.nozzle(t, station_pose.to_road(act), err, gun, opts.tolerance_m);
+        let cmd = if estop { Command::default() } else { cmd };
+        // the job's painting ends where the arm was stopped
+        let painting = painting && before_stop;
+        if before_stop {
+            all.add(err, &place);
+        }
         if painting {
             painting_ticks += 1;
             paint.add(err, &place);
@@ -652,6 +712,8 @@ pub fn simulate_plant(
         let inputs = Inputs {
             u_motor: cmd.u_motor,
             u_cyl: cmd.u_cyl,
+            estop,
+            faults: active,
         };
         let (mut ys, mut ts, mut vs) = (false, false, false);
         let clip = |v: f64, a: &model::ServoAxis| v.clamp(a.min, a.max);
@@ -677,6 +739,9 @@ pub fn simulate_plant(
         }
         if k % 2000 == 0 {
             progress(k, ticks);
+        }
+        if monitor.done(t) {
+            break;
         }
     }
     progress(ticks, ticks);
@@ -724,6 +789,14 @@ pub fn simulate_plant(
             "the closed loop diverged (the arm's state grew without bound) at t = {t:.3} s: \
              the {} controller is unstable on this job",
             opts.controller.name()
+        ));
+    }
+    let safety = monitor.finish();
+    if let Some(stop) = safety.as_ref().and_then(|s| s.stop.as_ref()) {
+        reasons.push(format!(
+            "the safety monitor stopped the arm at {}: {}",
+            stop.at.describe(),
+            stop.cause
         ));
     }
     if verdict_stats.max > opts.tolerance_m {
@@ -780,6 +853,7 @@ pub fn simulate_plant(
         control_period_s: period,
         integrator_step_s: h,
         plants: None,
+        safety,
     };
     Ok(Outcome { report, trace })
 }
