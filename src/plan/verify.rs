@@ -46,36 +46,48 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
     let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
         .map_err(|e| CompileError::Verify(e.to_string()))?;
     let r = &outcome.report;
-    let bound = VERIFY_SHARE * opts.tolerance_m;
     let broken: Vec<&str> = r
         .limits
         .iter()
         .filter(|l| l.fails)
         .map(|l| l.message.as_str())
         .collect();
-    let ok = r.max_error_m <= bound && broken.is_empty();
+    Ok(judge(r.max_error_m, &r.worst, &broken, opts.tolerance_m))
+}
+
+/// The verdict on a simulated job: its painting error within
+/// `VERIFY_SHARE` of `tolerance_m` and no limit `broken`.
+fn judge(
+    max_error_m: f64,
+    worst: &sim::report::Place,
+    broken: &[impl AsRef<str>],
+    tolerance_m: f64,
+) -> Verdict {
+    let bound = VERIFY_SHARE * tolerance_m;
+    let ok = max_error_m <= bound && broken.is_empty();
     let why = if ok {
         String::new()
     } else {
         let mut w = format!(
             "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
              × the {:.2} mm tolerance) at {}",
-            r.max_error_m * 1e3,
+            max_error_m * 1e3,
             bound * 1e3,
-            opts.tolerance_m * 1e3,
-            r.worst.describe()
+            tolerance_m * 1e3,
+            worst.describe()
         );
         if !broken.is_empty() {
-            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
+            let b: Vec<&str> = broken.iter().map(AsRef::as_ref).collect();
+            w.push_str(&format!("; limits broken: {}", b.join("; ")));
         }
         w
     };
-    Ok(Verdict {
-        max_error_m: r.max_error_m,
+    Verdict {
+        max_error_m,
         ok,
         why,
-        worst: (r.worst.station, r.worst.stroke),
-    })
+        worst: (worst.station, worst.stroke),
+    }
 }
 
 /// An electric kind's job through its servo plant (`sim::servo_job`),
@@ -85,29 +97,10 @@ fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
     let tolerance = sim::Options::default().tolerance_m;
     let r = sim::servo_job::simulate_job(job, tolerance)
         .map_err(|e| CompileError::Verify(e.to_string()))?;
-    let bound = VERIFY_SHARE * tolerance;
-    let broken = r.broken_limits();
-    let ok = r.max_error_m <= bound && broken.is_empty();
-    let why = if ok {
-        String::new()
-    } else {
-        let mut w = format!(
-            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
-             × the {:.2} mm tolerance) at {}",
-            r.max_error_m * 1e3,
-            bound * 1e3,
-            tolerance * 1e3,
-            r.worst.describe()
-        );
-        if !broken.is_empty() {
-            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
-        }
-        w
-    };
-    Ok(Verdict {
-        max_error_m: r.max_error_m,
-        ok,
-        why,
-        worst: (r.worst.station, r.worst.stroke),
-    })
+    Ok(judge(
+        r.max_error_m,
+        &r.worst,
+        &r.broken_limits(),
+        tolerance,
+    ))
 }
