@@ -360,11 +360,12 @@ fn preview_simulated(
 ) -> anyhow::Result<Preview> {
     use basr::paint::spray::{equivalent_fan, Pose};
     use basr::sim;
-    let model = sim::SimModel::from_robot(&job.robot)
+    let robot = super::basr_of(job, "preview --simulated")?;
+    let model = sim::SimModel::from_robot(robot)
         .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
     let sim_opts = sim::Options {
         controller: sim::ControllerKind::Sjct,
-        tolerance_m: job.robot.control.accuracy_m,
+        tolerance_m: robot.control.accuracy_m,
         keep_trace: true,
         substeps: None,
     };
@@ -393,7 +394,7 @@ fn preview_simulated(
     };
     // What the simulated joints add at a tick: the actual nozzle point, and
     // the deviations of height, fan direction and tilt from the planned.
-    let tilt_of = |nut: f64| job.robot.tilt_from_nut(nut).ok();
+    let tilt_of = |nut: f64| robot.tilt_from_nut(nut).ok();
     let actual: Vec<[f64; 5]> = trace
         .iter()
         .map(|r| {

@@ -399,7 +399,7 @@ fn page(panels: &[Panel]) -> Page {
         header.push(("message".into(), p.job.message.replace('\n', " / ")));
         header.push((
             "robot".into(),
-            format!("{} ({} stations)", p.job.robot.name, p.job.stations.len()),
+            format!("{} ({} stations)", p.job.robot.name(), p.job.stations.len()),
         ));
         if panels.len() == 1 {
             header.push(("tilt method".into(), p.job.layout.tilt_method.clone()));

@@ -12,11 +12,11 @@
 //! joint's range is flattened (tangents scaled down, at worst to zero: the
 //! arm then stops at the seam, and the stop is reported with its reason).
 
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 use super::joints::Run;
 use super::timing::PathPoint;
-use super::trajectory::{arc_lengths, joints_of, Q};
+use super::trajectory::{arc_lengths, Q};
 
 /// Path-parameter rate standing in for the joints' own motion in a blend
 /// (m of s per s of the slowest joint at its speed limit). assumed: about
@@ -100,7 +100,7 @@ impl Chain {
 }
 
 /// Chain `runs` (at least one) into one path.
-pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
+pub fn chain(robot: &AnyRobot, runs: &[Run]) -> Chain {
     let mut out = Chain {
         points: vec![],
         spans: vec![],
@@ -156,7 +156,7 @@ pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
         {
             out.points.push(PathPoint {
                 s_m: offset + arcs[i],
-                q: j.values(),
+                q: *j,
                 // Leads are gun-off run-ups: as fast as the joints allow.
                 max_speed_mps: (run.paint_first..=run.paint_last)
                     .contains(&i)
@@ -208,14 +208,14 @@ fn end_rate(run: &Run, arcs: &[f64], at: usize, out: bool) -> Q {
     } else {
         (at.min(n - 2), at.min(n - 2) + 1)
     };
-    let (a, b) = (run.joints[i].values(), run.joints[k].values());
+    let (a, b) = (run.joints[i], run.joints[k]);
     let ds = arcs[k] - arcs[i];
     std::array::from_fn(|j| (b[j] - a[j]) / ds)
 }
 
 /// The blend from knot `from` of run a to knot `to` of run b.
 fn blend(
-    robot: &Robot,
+    robot: &AnyRobot,
     a: &Run,
     arcs_a: &[f64],
     from: usize,
@@ -223,18 +223,18 @@ fn blend(
     arcs_b: &[f64],
     to: usize,
 ) -> (Blend, Option<StopReason>) {
-    let qa = a.joints[from].values();
-    let qb = b.joints[to].values();
+    let qa = a.joints[from];
+    let qb = b.joints[to];
     let ta = end_rate(a, arcs_a, from, true);
     let tb = end_rate(b, arcs_b, to, false);
-    let pa = robot.fk(&joints_of(&qa));
-    let pb = robot.fk(&joints_of(&qb));
+    let pa = robot.fk(&qa);
+    let pb = robot.fk(&qb);
     let road = (pb.x_m - pa.x_m).hypot(pb.y_m - pa.y_m);
     let slowest = robot
-        .limits
+        .limits()
         .iter()
         .enumerate()
-        .map(|(j, (_, l))| (qb[j] - qa[j]).abs() / l.max_vel)
+        .map(|(j, l)| (qb[j] - qa[j]).abs() / l.max_vel)
         .fold(0.0, f64::max);
     let length = road.max(slowest * BLEND_SPEED_MPS).max(BLEND_MIN_M);
     let m = ((length / BLEND_STEP_M).ceil() as usize).clamp(2, BLEND_MAX_POINTS);
@@ -265,7 +265,12 @@ fn blend(
     };
     let mut scales = [1.0; 5];
     let mut resting = vec![];
-    for (j, (name, l)) in robot.limits.iter().enumerate() {
+    for (j, (name, l)) in robot
+        .joint_names()
+        .into_iter()
+        .zip(robot.limits())
+        .enumerate()
+    {
         let fits = |scale: f64| {
             (1..m).all(|k| {
                 let q = hermite(j, k as f64 / m as f64, scale);

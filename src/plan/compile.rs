@@ -27,11 +27,12 @@ pub fn compile_strokes(
     req: &CompileRequest,
     marking: &layout::Marking,
     font: &crate::font::Font,
-    robot: crate::robot::Robot,
+    robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
     let rungs = rungs::rungs(strokes, req.rung_spacing_m);
-    let passes = passes::passes(strokes, &rungs, &robot, req.tilt.method())?;
+    let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
+    let passes = passes::passes(strokes, &rungs, &robot, tilt.method())?;
     let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)?;
     let tours = tours::tours(&passes, &plan, &robot);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
@@ -50,6 +51,7 @@ pub fn compile_strokes(
             },
         )?;
         let mut notes = strokes.notes.clone();
+        notes.extend(tilt_note.iter().cloned());
         notes.extend(passes.notes.iter().cloned());
         notes.extend(timed.notes.iter().cloned());
         let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
@@ -57,7 +59,7 @@ pub fn compile_strokes(
             marking,
             font,
             robot: robot.clone(),
-            tilt: req.tilt,
+            tilt,
             period_s: req.period_s,
             strokes,
             stations: plan.clone(),

@@ -37,7 +37,10 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
             problems.len()
         )));
     }
-    let model = SimModel::from_robot(&job.robot)
+    let Some(robot) = job.robot.basr() else {
+        return verify_servo(job);
+    };
+    let model = SimModel::from_robot(robot)
         .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
     let opts = sim::Options::default();
     let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
@@ -60,6 +63,40 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
             r.max_error_m * 1e3,
             bound * 1e3,
             opts.tolerance_m * 1e3,
+            r.worst.describe()
+        );
+        if !broken.is_empty() {
+            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
+        }
+        w
+    };
+    Ok(Verdict {
+        max_error_m: r.max_error_m,
+        ok,
+        why,
+        worst: (r.worst.station, r.worst.stroke),
+    })
+}
+
+/// An electric kind's job through its servo plant (`sim::servo_job`),
+/// judged as BASR's: within `VERIFY_SHARE` of the default tolerance, no
+/// joint out of its range.
+fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
+    let tolerance = sim::Options::default().tolerance_m;
+    let r = sim::servo_job::simulate_job(job, tolerance)
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let bound = VERIFY_SHARE * tolerance;
+    let broken = r.broken_limits();
+    let ok = r.max_error_m <= bound && broken.is_empty();
+    let why = if ok {
+        String::new()
+    } else {
+        let mut w = format!(
+            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
+             × the {:.2} mm tolerance) at {}",
+            r.max_error_m * 1e3,
+            bound * 1e3,
+            tolerance * 1e3,
             r.worst.describe()
         );
         if !broken.is_empty() {
