@@ -489,18 +489,21 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
                     svg::node::element::ClipPath::new()
                         .set("id", id.clone())
                         .add(
+                            // The road inside the frame only: another
+                            // line's outlines stop at the view's edge.
                             Rectangle::new()
-                                .set("x", plot::num(x0 - 40.0))
-                                .set("y", plot::num(y0 - 4.0))
-                                .set("width", plot::num(frame.width_px() + 44.0))
-                                .set("height", plot::num(frame.height_px() + 40.0)),
+                                .set("x", plot::num(x0))
+                                .set("y", plot::num(y0))
+                                .set("width", plot::num(frame.width_px()))
+                                .set("height", plot::num(frame.height_px())),
                         ),
                 )
                 .add(
                     plot::text(x0, y0 - 8.0, &format!("line {}", k + 1), 13.0, "start")
                         .set("font-weight", "bold"),
                 )
-                .add(draw_panel(p, frame, vmax).set("clip-path", format!("url(#{id})")));
+                .add(road_layers(p, frame, vmax).set("clip-path", format!("url(#{id})")))
+                .add(plot::axes(frame, tick_spacing(frame)));
             bottom = bottom.max(frame.top_px + frame.height_px());
             right = right.max(frame.left_px + frame.width_px() + 60.0);
         }
@@ -642,6 +645,12 @@ fn legend(x: f64, y: f64) -> Group {
 }
 
 fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
+    road_layers(p, frame, vmax).add(plot::axes(frame, tick_spacing(frame)))
+}
+
+/// What [`draw_panel`] draws inside the frame: film, outlines, nozzle path,
+/// stations and labels (everything but the axes).
+fn road_layers(p: &Panel, frame: &Frame, vmax: f64) -> Group {
     let grid = &p.preview.film.grid;
     let target = p.preview.metrics.target_film_m;
     // Only the cells the frame shows (a line's view of a long job).
@@ -743,7 +752,6 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
             ));
     }
     g.add(labels(p, frame))
-        .add(plot::axes(frame, tick_spacing(frame)))
 }
 
 /// `line.place` of every glyph as the text numbers them (1-based), in the
