@@ -310,3 +310,38 @@ fn preview_and_preview_from_sim_draw_every_electric_kinds_job() {
         }
     }
 }
+
+/// `check`'s content checks of an electric kind's job (library call, as
+/// `basr check` makes it): a compiled job has none; a joint that jumps, a
+/// BASR column written in, a renamed column and a wrong encoder count are
+/// each found.
+#[test]
+fn check_finds_what_is_wrong_with_an_electric_kinds_setpoints() {
+    use basr::plan::compile::{compile_job, CompileRequest};
+    let robot = basr::robot::AnyRobot::load(Path::new(ROBOTS[2])).unwrap();
+    let mut req = CompileRequest::message("IT");
+    req.robot_description = Some(robot);
+    let job = compile_job(&req).unwrap();
+    assert_eq!(basr::job::verify::problems(&job, "j"), Vec::<String>::new());
+    let k = job.samples.len() / 2;
+    let damaged = |edit: &dyn Fn(&mut basr::job::Job)| {
+        let mut j = job.clone();
+        edit(&mut j);
+        basr::job::verify::problems(&j, "j").join("\n")
+    };
+    let p = damaged(&|j| j.samples.kind_joints[k][1] += 0.05);
+    assert!(p.contains("shoulder_rad moves at"), "{p}");
+    assert!(
+        p.contains("away from where the joints put the nozzle"),
+        "{p}"
+    );
+    let p = damaged(&|j| j.samples.extension_m[k] = 1.0);
+    assert!(
+        p.contains("extension_m is 1 but it is BASR's column"),
+        "{p}"
+    );
+    let p = damaged(&|j| j.samples.kind_columns[0] = "base_rot_rad".into());
+    assert!(p.contains("samples.kind_columns"), "{p}");
+    let p = damaged(&|j| j.samples.kind_encoders[k][4] += 1);
+    assert!(p.contains(&format!("row {k}: encoder counts")), "{p}");
+}

@@ -36,13 +36,17 @@ impl From<ControllerArg> for ControllerKind {
 /// Plays the job's setpoints through the controller (every 5 ms) into a model
 /// of the pantograph arm, its hydraulic motor and cylinder, servovalves,
 /// end-effector servos and linkage compliance, and measures how far the
-/// nozzle strays from the planned path while painting.
+/// nozzle strays from the planned path while painting. A job for a
+/// telescopic or articulated robot (SPEC §8) runs that kind's servo plant
+/// instead: each joint's inertia under PID + feed-forward with its drive's
+/// torque and speed limits (docs/robot-kinds.md).
 #[derive(clap::Args)]
 #[command(after_help = "Examples:
   basr simulate STOP.job.json
   basr simulate STOP.job.json --controller pid --svg stop-sim.svg --trace stop-sim.csv
   basr simulate STOP.job.json --json | jq .max_error_m
   basr simulate STOP.job.json --plants 40 --spread 0.1 --seed 7   # verdict on p95 of 40 plants
+  basr simulate T.job.json --robot robots/telescopic.toml        # an electric kind's servo plant
   basr simulate STOP.job.json --fault valve-stuck@30   # does the arm stop, where, how much paint off the path
 
 Exit codes: 0 pass, 1 over tolerance or a limit violated, 2 bad input
