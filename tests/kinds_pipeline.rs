@@ -69,9 +69,7 @@ fn passes_check_and_simulate(job: &Path, robot: &Path) -> f64 {
     );
     let rep: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(rep["verdict"], "pass", "{rep}");
-    let v = json(job)["summary"]["verified_max_error_m"]
-        .as_f64()
-        .expect("compile verified the job");
+    let v = verified(job);
     assert!(v <= BOUND_M, "{}: verified {v} m", job.display());
     v
 }
@@ -225,4 +223,57 @@ fn a_job_checked_or_simulated_against_another_kind_is_refused() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("telescopic kind"));
+}
+
+/// The verified error compile recorded for a job (issue 11's guarantee).
+fn verified(job: &Path) -> f64 {
+    json(job)["summary"]["verified_max_error_m"]
+        .as_f64()
+        .expect("compile verified the job")
+}
+
+#[test]
+fn every_library_symbol_and_shipped_marking_compiles_verified_for_every_electric_kind() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = basr().arg("symbols").output().unwrap();
+    let list = String::from_utf8(out.stdout).unwrap() + &String::from_utf8(out.stderr).unwrap();
+    let symbols: Vec<&str> = list
+        .lines()
+        .skip(1)
+        .filter(|l| l.starts_with(|c: char| c.is_ascii_lowercase()))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(symbols.len() >= 15, "{symbols:?}");
+    let markings: Vec<PathBuf> = std::fs::read_dir("markings")
+        .unwrap()
+        .map(|e| std::fs::canonicalize(e.unwrap().path()).unwrap())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    for f in &ROBOTS[1..] {
+        let r = robot(f);
+        for s in &symbols {
+            let job = dir.path().join(format!("{s}.job.json"));
+            basr()
+                .args(["compile", "--symbol", s, "--robot"])
+                .arg(&r)
+                .arg("-o")
+                .arg(&job)
+                .assert()
+                .success();
+            assert!(verified(&job) <= BOUND_M, "{f} {s}");
+        }
+        for m in &markings {
+            let job = dir.path().join("scene.job.json");
+            basr()
+                .args(["compile", "--marking"])
+                .arg(m)
+                .arg("--robot")
+                .arg(&r)
+                .arg("-o")
+                .arg(&job)
+                .assert()
+                .success();
+            assert!(verified(&job) <= BOUND_M, "{f} {}", m.display());
+        }
+    }
 }

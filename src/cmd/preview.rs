@@ -183,6 +183,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     super::outputs::check("-o", &out, &["svg"])?;
     basr::io::check_writable(&out)?;
     let job = super::read_job(&args.job, &args.trust)?;
+    // a correctly sealed job can still hold a tilt of 90° or a row at
+    // t = 1e9 s: `basr check`'s content checks first (exit 2)
+    super::simulate::content_checks(&job, &args.job)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {

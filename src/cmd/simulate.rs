@@ -121,7 +121,7 @@ fn parse_fault(s: &str) -> Result<sim::fault::Fault, String> {
 /// indices, joint limits, forward kinematics of the columns): a correctly
 /// sealed job can still hold a tilt of 90° or a row at t = 1e9 s.
 /// Exit 2 naming every problem found.
-fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
+pub fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
     let problems = basr::job::verify::problems(job, &path.display().to_string());
     if !problems.is_empty() {
         anyhow::bail!(

@@ -8,6 +8,7 @@ use crate::job::Station;
 use crate::plan::knots::Knot;
 use crate::robot::{AnyRobot, NozzlePose, Q};
 
+use super::chain::Side;
 use super::error::CompileError;
 use super::leads::{with_leads, LEAD_M};
 use super::passes::Passes;
@@ -39,12 +40,50 @@ pub struct JointPaths {
 /// A pass's knots with leads and the joint solutions of each fan branch
 /// and yaw turn that follows the whole pass.
 struct Candidates {
+    /// 2 × the pass's place in the tour + reversed: the join costs' key.
+    id: usize,
     stroke: usize,
     knots: Vec<Knot>,
     paint_first: usize,
     paint_last: usize,
     /// (joint travel inside the pass, joints at every knot) per branch.
     branches: Vec<(f64, Vec<Q>)>,
+    arcs: Vec<f64>,
+}
+
+/// Flown join durations between passes' branches, each found once.
+struct JoinCosts {
+    limits: super::timing::JointLimits<5>,
+    /// (from id, its branch, to id, its branch) → s.
+    known: std::cell::RefCell<std::collections::HashMap<(usize, usize, usize, usize), f64>>,
+}
+
+impl JoinCosts {
+    fn new(robot: &AnyRobot) -> Self {
+        JoinCosts {
+            limits: super::trajectory::timing_limits(robot, 1.0),
+            known: Default::default(),
+        }
+    }
+
+    /// The join from pass a (branch ba) into pass b (branch bb): the flown
+    /// join's duration, or the rest-to-rest joint travel between their
+    /// leads where none is found.
+    fn join(&self, robot: &AnyRobot, a: &Candidates, ba: usize, b: &Candidates, bb: usize) -> f64 {
+        let key = (a.id, ba, b.id, bb);
+        if let Some(&t) = self.known.borrow().get(&key) {
+            return t;
+        }
+        let (ja, jb) = (&a.branches[ba].1, &b.branches[bb].1);
+        let t = super::chain::join_time(
+            &self.limits,
+            Side::leaving(&a.knots, ja, &a.arcs, a.paint_last),
+            Side::arriving(&b.knots, jb, &b.arcs, b.paint_first),
+        )
+        .unwrap_or_else(|| travel(robot, &ja[ja.len() - 1], &jb[0]));
+        self.known.borrow_mut().insert(key, t);
+        t
+    }
 }
 
 /// Solve every pass of every station for the joints, both ways round, and
@@ -69,16 +108,20 @@ pub fn joint_paths(
         let mut ways: Vec<[Option<Candidates>; 2]> = Vec::with_capacity(tour.len());
         for v in tour {
             let pass = &passes.passes[v.item];
-            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke);
-            let rev = candidates(robot, station, &pass.knots, true, pass.stroke);
+            let id = 2 * ways.len();
+            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke)
+                .map(|c| Candidates { id, ..c });
+            let rev = candidates(robot, station, &pass.knots, true, pass.stroke)
+                .map(|c| Candidates { id: id + 1, ..c });
             match (fwd, rev) {
                 (Err((k, e)), Err(_)) => {
                     let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
                     return Err(CompileError::Unreachable(format!(
-                        "stroke {} ({}) cannot be painted from station {si} at ({:.3}, {:.3}) \
+                        "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
                          m: {e}; use a smaller --letter-height or check the robot description",
                         pass.stroke,
                         strokes.owner(pass.stroke),
+                        si + 1,
                         tip.x,
                         tip.y
                     )));
@@ -99,12 +142,13 @@ pub fn joint_paths(
                 (k, rev)
             })
             .collect();
-        improve(robot, &stow, &ways, &mut seq);
+        let costs = JoinCosts::new(robot);
+        improve(robot, &stow, &ways, &mut seq, &costs);
         let picked: Vec<&Candidates> = seq
             .iter()
             .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
             .collect();
-        let (_, choice) = best_branches(robot, &stow, &picked);
+        let (_, choice) = best_branches(robot, &stow, &picked, &costs);
         out.stations.push(
             picked
                 .into_iter()
@@ -134,6 +178,7 @@ fn improve(
     stow: &Q,
     ways: &[[Option<Candidates>; 2]],
     seq: &mut Vec<(usize, bool)>,
+    costs: &JoinCosts,
 ) {
     let cost_of = |seq: &[(usize, bool)]| -> f64 {
         let picked: Vec<&Candidates> = seq
@@ -143,7 +188,7 @@ fn improve(
         if picked.len() < seq.len() {
             return f64::INFINITY;
         }
-        best_branches(robot, stow, &picked).0
+        best_branches(robot, stow, &picked, costs).0
     };
     let n = seq.len();
     let mut best = cost_of(seq);
@@ -216,6 +261,8 @@ fn candidates(
         match solve_branches(robot, station, &all) {
             Ok(br) => {
                 return Ok(Candidates {
+                    id: 0,
+                    arcs: super::trajectory::arc_lengths(&all),
                     stroke,
                     knots: all,
                     paint_first: a,
@@ -236,7 +283,12 @@ fn candidates(
 
 /// The branch of every pass on the cheapest path stow → passes → stow
 /// (Viterbi over the passes; ties to the lower branch index), and its cost.
-fn best_branches(robot: &AnyRobot, stow: &Q, cands: &[&Candidates]) -> (f64, Vec<usize>) {
+fn best_branches(
+    robot: &AnyRobot,
+    stow: &Q,
+    cands: &[&Candidates],
+    costs: &JoinCosts,
+) -> (f64, Vec<usize>) {
     let n = cands.len();
     if n == 0 {
         return (0.0, vec![]);
@@ -256,7 +308,7 @@ fn best_branches(robot: &AnyRobot, stow: &Q, cands: &[&Candidates]) -> (f64, Vec
             } else {
                 let p = cands[i - 1];
                 (0..p.branches.len())
-                    .map(|a| (cost[i - 1][a] + travel(robot, &last(p, a), &entry), a))
+                    .map(|a| (cost[i - 1][a] + costs.join(robot, p, a, c, b), a))
                     .fold(
                         (f64::INFINITY, 0),
                         |m, x| if x.0 < m.0 - 1e-12 { x } else { m },

@@ -12,6 +12,9 @@ use super::placed::PlacedStrokes;
 use super::rungs::StrokeRungs;
 use super::warnings::Note;
 
+/// Rounds of turn limiting and re-pacing per pass. assumed: the speeds
+/// settle in two; the third is slack.
+const TURN_TRIES: usize = 3;
 /// Knots keep this far inside the tilt range, so the time law's smooth
 /// joint curves between knots (which may overshoot a knot held at a limit
 /// by a fraction of a milliradian) stay inside it. assumed: forty times the
@@ -71,6 +74,15 @@ pub fn passes(
                 u_tilted[0].min(kp.u_after.0 / 100.0),
                 u_tilted[1].max(kp.u_after.1 / 100.0),
             ];
+            // A turned fan sweeps other road: re-pace, and check the turn
+            // again at the new speeds.
+            let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE;
+            for _ in 0..TURN_TRIES {
+                if !super::turn::limit_turn_rate(&mut kp.knots, max_turn) {
+                    break;
+                }
+                knots::pace(pass, &mut kp.knots, law.k_m2ps);
+            }
             let raised = match robot.basr() {
                 Some(b) => lift_for_tilt(b, &law, &mut kp.knots),
                 None => vec![],

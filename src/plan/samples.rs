@@ -50,8 +50,8 @@ pub fn sample(
         }
         clamp_to_range(robot, &mut rows)?;
         match robot.basr() {
-            Some(b) => check_basr(b, &rows, si, period_s)?,
-            None => check_servo(robot, &rows, si, period_s)?,
+            Some(b) => check_basr(b, &rows, si + 1, period_s)?,
+            None => check_servo(robot, &rows, si + 1, period_s)?,
         }
         append_samples(
             &mut samples,
@@ -67,7 +67,7 @@ pub fn sample(
 }
 
 /// BASR's own check of the sampled joints (speeds, accelerations, ball-nut
-/// speed, ranges).
+/// speed, ranges); `si` is the station's number from 1, as messages count.
 fn check_basr(robot: &Robot, rows: &[Timed], si: usize, period_s: f64) -> Result<(), CompileError> {
     let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
     robot
@@ -86,7 +86,7 @@ fn check_basr(robot: &Robot, rows: &[Timed], si: usize, period_s: f64) -> Result
 
 /// An electric kind's check of the sampled joints: each joint's range, and
 /// its speed and acceleration by finite differences (as `basr check`
-/// measures them), up to a relative 1e-9 (rounding).
+/// measures them), up to a relative 1e-9 (rounding); `si` counts from 1.
 fn check_servo(
     robot: &AnyRobot,
     rows: &[Timed],

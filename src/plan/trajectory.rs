@@ -36,7 +36,7 @@ pub fn time_law(
         period_s,
         gun_lead_s,
         gun_lag_s,
-        pace,
+        ref pace,
     } = *law;
     let stow = stow_joints(robot);
     let mut out = TimedTrajectory::default();
@@ -125,22 +125,26 @@ const JERK_PER_ACC: f64 = 10.0;
 /// by the verification where the arm falls behind: `air` for the moves
 /// from and to the stow pose (the arm arrives at its first stroke ringing
 /// after a long fast move), `path` for the chained path through the strokes.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `joins`: (stroke entered, share) for the flown joins into those
+/// strokes alone (the arm arrived behind at the stroke's first rungs).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Pace {
     pub air: f64,
     pub path: f64,
+    pub joins: Vec<(usize, f64)>,
 }
 
 impl Pace {
     pub const FULL: Pace = Pace {
         air: 1.0,
         path: 1.0,
+        joins: Vec::new(),
     };
 }
 
 /// The time law's settings: the setpoint period, the gun valve's delays
 /// and the pace.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TimeLaw {
     pub period_s: f64,
     pub gun_lead_s: f64,
@@ -150,7 +154,7 @@ pub struct TimeLaw {
 
 /// `pace` (0–1] scales every acceleration and jerk limit, and the speed
 /// limits by its square root.
-fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<5> {
+pub(super) fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
     for (j, l) in robot.limits().iter().enumerate() {
@@ -232,7 +236,7 @@ fn time_station(
     period_s: f64,
     gun_lead_s: f64,
     gun_lag_s: f64,
-    pace: Pace,
+    pace: &Pace,
 ) -> Result<StationTiming, CompileError> {
     let limits = timing_limits(robot, pace.path);
     let air_limits = timing_limits(robot, pace.air);
@@ -258,7 +262,7 @@ fn time_station(
             vec![],
         ));
     }
-    let ch = chain(robot, runs);
+    let ch = chain(robot, runs, &limits, &pace.joins);
     let first = ch.points[0].q;
     let last = ch.points[ch.points.len() - 1].q;
     let pieces = vec![

@@ -23,6 +23,11 @@ pub struct Verdict {
     pub why: String,
     /// Station and stroke of the worst error (stroke −1 in an air move).
     pub worst: (u32, i64),
+    /// Job time of the worst error (s).
+    pub worst_t_s: f64,
+    /// Every stroke whose error is over the bound: (station, stroke, job
+    /// time of its worst error, the error in m).
+    pub failing: Vec<(u32, i64, f64, f64)>,
 }
 
 /// Simulate `job` with the default options and judge it.
@@ -75,6 +80,13 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
         ok,
         why,
         worst: (r.worst.station, r.worst.stroke),
+        worst_t_s: r.worst.t_s,
+        failing: r
+            .strokes
+            .iter()
+            .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
+            .map(|s| (s.worst.station, s.stroke, s.worst.t_s, s.max_error_m))
+            .collect(),
     })
 }
 
@@ -109,5 +121,7 @@ fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
         ok,
         why,
         worst: (r.worst.station, r.worst.stroke),
+        worst_t_s: r.worst.t_s,
+        failing: vec![],
     })
 }

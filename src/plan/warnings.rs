@@ -283,9 +283,11 @@ impl Note {
                     t_s: Some(job::round_ns(*t_s)),
                     factor: None,
                     message: format!(
-                        "station {station}: the arm stops at t = {t_s:.2} s near ({:.3}, {:.3}) m: \
+                        "station {}: the arm stops at t = {t_s:.2} s near ({:.3}, {:.3}) m: \
                          {reason}. {todo}",
-                        at_m[0], at_m[1]
+                        station + 1,
+                        at_m[0],
+                        at_m[1]
                     ),
                 }
             }
