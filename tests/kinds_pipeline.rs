@@ -277,3 +277,36 @@ fn every_library_symbol_and_shipped_marking_compiles_verified_for_every_electric
         }
     }
 }
+
+#[test]
+fn preview_and_preview_from_sim_draw_every_electric_kinds_job() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in &ROBOTS[1..] {
+        let job = compile(dir.path(), "STOP", &robot(f), &[]);
+        for from_sim in [false, true] {
+            let svg = dir.path().join("p.svg");
+            let mut cmd = basr();
+            cmd.arg("preview")
+                .arg(&job)
+                .arg("-o")
+                .arg(&svg)
+                .arg("--json");
+            if from_sim {
+                cmd.arg("--from-sim");
+            }
+            let out = cmd.output().unwrap();
+            // 0 or 1 (the film verdict), never bad input.
+            assert!(
+                matches!(out.status.code(), Some(0 | 1)),
+                "{f}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let p: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            assert_eq!(p["from_sim"], from_sim);
+            // The arm follows its job closely: the simulated film covers the
+            // letters as the planned one does.
+            assert!(p["coverage"].as_f64().unwrap() > 0.97, "{f}: {p}");
+            assert!(std::fs::metadata(&svg).unwrap().len() > 1000);
+        }
+    }
+}

@@ -277,12 +277,24 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for p in args.trace.iter().chain(&args.svg) {
         super::outputs::after_commit(format!("wrote {}", p.display()));
     }
+    say(&args, global, report, &report.human(), report.passed())
+}
+
+/// The report as JSON on stdout (`--json`) or its human lines on stderr;
+/// exit 0 on pass, 1 on fail.
+fn say(
+    args: &Args,
+    global: &Global,
+    report: &impl serde::Serialize,
+    human: &str,
+    passed: bool,
+) -> anyhow::Result<Outcome> {
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
     } else if !global.quiet {
-        crate::note_text(&report.human());
+        crate::note_text(human);
     }
-    Ok(if report.passed() {
+    Ok(if passed {
         Outcome::Success
     } else {
         Outcome::Negative
@@ -308,14 +320,5 @@ fn run_servo(args: &Args, global: &Global, job: &basr::job::Job) -> anyhow::Resu
         }
     }
     let report = sim::servo_job::simulate_job(job, args.tolerance_mm * 1e-3)?;
-    if args.json {
-        basr::io::print_stdout(&(serde_json::to_string_pretty(&report)? + "\n"))?;
-    } else if !global.quiet {
-        crate::note_text(&report.human());
-    }
-    Ok(if report.passed() {
-        Outcome::Success
-    } else {
-        Outcome::Negative
-    })
+    say(args, global, &report, &report.human(), report.passed())
 }

@@ -99,6 +99,8 @@ pub struct Tick {
     pub tip_error_m: f64,
     /// The followed joints.
     pub q: Q,
+    /// The reference they follow (the setpoints, linear between them).
+    pub want: Q,
     /// |effort| / max_effort asked of each joint (over 1: saturated).
     pub effort_fraction: [f64; 5],
 }
@@ -191,6 +193,7 @@ pub fn follow(
             index: ((t / period_s).round() as usize).min(setpoints.len() - 1),
             tip_error_m: err,
             q: got,
+            want,
             effort_fraction: fraction,
         });
         for _ in 0..SUBSTEPS {
