@@ -85,22 +85,11 @@ fn measure(dir: &Path, job: &str) -> Figures {
 }
 
 /// Every bound of issue 13 on `f`.
-fn assert_within_bounds(what: &str, f: &Figures, film: bool) {
-    if film {
-        assert!(f.film_ok(), "{what}: film {f:?}");
-    }
+fn assert_within_bounds(what: &str, f: &Figures) {
+    assert!(f.film_ok(), "{what}: film {f:?}");
     assert!(f.time_ratio <= MAX_TIME_RATIO, "{what}: paint time {f:?}");
     assert!(f.max_error_m <= MAX_ERROR_M, "{what}: painting error {f:?}");
 }
-
-/// Symbols whose film misses the bounds today: compile's closed-loop check
-/// finds 5.4 mm where the arm arrives at one of the sharrow's short bars
-/// (its stroke 9) and re-times the whole path slower, so its wheels are
-/// painted at the yaw servo's limit with up to 1.3× the film (cv 0.108 on
-/// 2026-12-01 19:40; 0.030 without that re-timing). They are compiled,
-/// timed and simulated; the film bound is not asserted, and the test says
-/// when it holds so the exception can go.
-const FILM_LIMITED: [&str; 1] = ["sharrow"];
 
 #[test]
 fn every_symbol_alone_paints_within_the_bounds() {
@@ -126,12 +115,7 @@ fn every_symbol_alone_paints_within_the_bounds() {
             "the job is named after the symbol"
         );
         let f = measure(dir.path(), &job);
-        let limited = FILM_LIMITED.contains(&name);
-        assert_within_bounds(name, &f, !limited);
-        assert!(
-            !(limited && f.film_ok()),
-            "{name} now paints within the film bounds ({f:?}): take it out of FILM_LIMITED"
-        );
+        assert_within_bounds(name, &f);
     }
 }
 
@@ -166,7 +150,7 @@ fn scenes_in_markings_compile_and_paint_evenly() {
             .collect();
         assert!(chars.iter().any(|c| c.contains('-')), "{scene}: {chars:?}");
         let f = measure(dir.path(), &job);
-        assert_within_bounds(scene, &f, true);
+        assert_within_bounds(scene, &f);
     }
     // All four scenes pass basr check (layout, overlap, lane, MUTCD errors).
     let files: Vec<String> = SCENES

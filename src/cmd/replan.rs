@@ -91,10 +91,10 @@ pub fn recover(
     font: Option<String>,
     marking: Option<&Path>,
 ) -> anyhow::Result<Replan> {
-    use basr::robot::Robot;
+    use basr::robot::AnyRobot;
     // The job's description passed its hash check; read it back through the
     // validator so a sealed job with a broken robot is refused, not planned.
-    let robot = Robot::from_toml_str(&job.robot.to_toml_string(), "the job's robot description")
+    let robot = AnyRobot::from_toml_str(&job.robot.to_toml_text(), "the job's robot description")
         .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
     let lane = Overrides {
         lane_width_m: Some(job.layout.lane_width_m),

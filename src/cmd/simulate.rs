@@ -181,7 +181,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::check_writable(p)?;
     }
     let job = super::read_job(&args.job, &args.trust)?;
-    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {
         anyhow::bail!(
@@ -195,7 +195,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         );
     }
     content_checks(&job, &args.job)?;
-    let model = sim::SimModel::from_robot(&job.robot).map_err(|e| {
+    let Some(basr_robot) = job.robot.basr() else {
+        return run_servo(&args, global, &job);
+    };
+    let model = sim::SimModel::from_robot(basr_robot).map_err(|e| {
         anyhow::anyhow!(
             "{}: the robot description cannot be simulated: {e}",
             args.job.display()
@@ -274,14 +277,48 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for p in args.trace.iter().chain(&args.svg) {
         super::outputs::after_commit(format!("wrote {}", p.display()));
     }
+    say(&args, global, report, &report.human(), report.passed())
+}
+
+/// The report as JSON on stdout (`--json`) or its human lines on stderr;
+/// exit 0 on pass, 1 on fail.
+fn say(
+    args: &Args,
+    global: &Global,
+    report: &impl serde::Serialize,
+    human: &str,
+    passed: bool,
+) -> anyhow::Result<Outcome> {
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
     } else if !global.quiet {
-        crate::note_text(&report.human());
+        crate::note_text(human);
     }
-    Ok(if report.passed() {
+    Ok(if passed {
         Outcome::Success
     } else {
         Outcome::Negative
     })
+}
+
+/// An electric kind's job (telescopic, articulated): its servo plant
+/// (`sim::servo_job`); the hydraulic options do not apply and are refused.
+fn run_servo(args: &Args, global: &Global, job: &basr::job::Job) -> anyhow::Result<Outcome> {
+    let kind = job.robot.kind().name();
+    for (given, flag) in [
+        (args.trace.is_some(), "--trace"),
+        (args.svg.is_some(), "--svg"),
+        (args.plants > 1, "--plants"),
+        (args.substeps.is_some(), "--substeps"),
+        (!args.fault.is_empty(), "--fault"),
+    ] {
+        if given {
+            anyhow::bail!(
+                "{flag} is for BASR's hydraulic simulation; the job's robot is of the {kind} kind, \
+                 simulated by its servo plant without it: leave {flag} out (docs/robot-kinds.md)"
+            );
+        }
+    }
+    let report = sim::servo_job::simulate_job(job, args.tolerance_mm * 1e-3)?;
+    say(args, global, &report, &report.human(), report.passed())
 }

@@ -24,5 +24,6 @@ pub mod tilt;
 pub mod timing;
 pub mod tours;
 pub mod trajectory;
+pub mod turn;
 pub mod verify;
 pub mod warnings;

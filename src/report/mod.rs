@@ -41,6 +41,18 @@ impl SimVerdict {
             tolerance_m: r.tolerance_m,
         }
     }
+
+    /// An electric kind's servo simulation (`sim::servo_job`).
+    pub fn from_servo(r: &crate::sim::servo_job::ServoJobReport) -> SimVerdict {
+        SimVerdict {
+            controller: r.controller.clone(),
+            verdict: r.verdict.clone(),
+            reasons: r.reasons.clone(),
+            max_error_m: r.max_error_m,
+            rms_error_m: r.rms_error_m,
+            tolerance_m: r.tolerance_m,
+        }
+    }
 }
 
 /// What goes into a sheet.
@@ -254,8 +266,8 @@ pub fn build(input: &Input) -> Sheet {
     let time_on_site_s = time_on_site_s(job);
     let paint_m3 = job.summary.paint_volume_m3;
     let life = (
-        job.robot.paint.tip_life_min_m3,
-        job.robot.paint.tip_life_max_m3,
+        job.robot.paint().tip_life_min_m3,
+        job.robot.paint().tip_life_max_m3,
     );
     let tip_left_m3 = input
         .tip_used_before_m3
@@ -293,7 +305,7 @@ pub fn build(input: &Input) -> Sheet {
     let facts = vec![
         ("job file".into(), input.job_name.to_string()),
         ("job sha256".into(), job.sha256.chars().take(16).collect()),
-        ("robot".into(), job.robot.name.clone()),
+        ("robot".into(), job.robot.name().to_string()),
         (
             "lane".into(),
             format!(

@@ -159,7 +159,7 @@ impl Bands {
     /// The bands the robot's nozzle paints: narrowest from the lowest tip
     /// height, widest from the highest (`plan::passes::paint_law`).
     pub fn for_robot(robot: &crate::robot::Robot) -> Bands {
-        let law = crate::plan::passes::paint_law(robot);
+        let law = crate::plan::passes::basr_paint_law(robot);
         Bands {
             min_width_m: law.width_at_height(law.min_height_m),
             max_width_m: law.max_width_m(),

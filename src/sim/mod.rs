@@ -15,6 +15,7 @@ mod reference;
 pub mod report;
 pub mod safety;
 pub mod servo;
+pub mod servo_job;
 pub mod svg;
 pub mod synthetic;
 mod tally;
@@ -176,6 +177,13 @@ fn run(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
     validate_job(job)?;
+    // The hydraulic plant is BASR's; the electric kinds have theirs (`servo_job`).
+    let robot = job.robot.basr().ok_or_else(|| {
+        SimError::Job(format!(
+            "its robot is of the {} kind, which the hydraulic plant does not model",
+            job.robot.kind().name()
+        ))
+    })?;
     nominal.validate().map_err(SimError::Model)?;
     model.validate().map_err(SimError::Model)?;
     if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
@@ -248,7 +256,7 @@ fn run(
         }
     };
 
-    let nut_to_tilt = NutTable::new(&job.robot);
+    let nut_to_tilt = NutTable::new(robot);
     let m0 = measure(
         &state,
         0.0,
@@ -329,7 +337,7 @@ fn run(
         // linkage's deflection
         let r_act = model.arm.r_of_x(state[plant::X]);
         let tilt = nut_to_tilt.tilt(nut.pos);
-        let pose = job.robot.fk(&Joints {
+        let pose = robot.fk(&Joints {
             base_rot_rad: state[plant::TH],
             extension_m: r_act,
             vertical_m: vert.pos,

@@ -169,7 +169,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             name: "synthetic".into(),
             sha256: String::new(),
         },
-        robot: Robot::basr(),
+        robot: Robot::basr().into(),
         robot_sha256: String::new(),
         paint: Paint {
             fan_angle_rad: ALPHA,
