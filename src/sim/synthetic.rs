@@ -162,6 +162,65 @@ pub fn job(strokes: &[Stroke], air_speed: f64, period: f64) -> Job {
     sealed(robot, station, &rows, strokes.len(), period)
 }
 
+/// A setpoint row at `t` whose every column follows from the joints by the
+/// robot's kinematics seen from `station`, as compile writes them, so
+/// `basr check` finds nothing to say about it. The gun is on where `width`
+/// is above 0; the speed is left 0 for [`set_speeds`].
+pub fn row_from_joints(
+    robot: &Robot,
+    station: &Station,
+    j: &crate::robot::Joints,
+    t: f64,
+    stroke: i64,
+    width: f64,
+) -> SampleRow {
+    let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
+    let pose = robot.fk(j);
+    let act = robot.actuators(j);
+    let enc = robot.encoders(j);
+    SampleRow {
+        t_s: t,
+        station: 0,
+        stroke,
+        paint: u8::from(width > 0.0),
+        x_m: station.x_m + c * pose.x_m - s * pose.y_m,
+        y_m: station.y_m + s * pose.x_m + c * pose.y_m,
+        z_m: pose.z_m,
+        yaw_rad: crate::robot::kinematics::wrap_pi(
+            pose.yaw_rad + station.heading_rad - std::f64::consts::FRAC_PI_2,
+        ),
+        tilt_rad: j.tilt_rad,
+        speed_mps: 0.0,
+        width_m: width,
+        base_rot_rad: j.base_rot_rad,
+        extension_m: j.extension_m,
+        cylinder_m: act.cylinder_m,
+        vertical_m: j.vertical_m,
+        ee_yaw_rad: j.ee_yaw_rad,
+        tilt_nut_m: act.tilt_nut_m,
+        enc_base: enc.base,
+        enc_extension: enc.extension,
+        enc_yaw: enc.yaw,
+        enc_tilt: enc.tilt,
+        enc_vertical: enc.vertical,
+    }
+}
+
+/// Nozzle speed as compile writes it: central difference of the road
+/// columns, one-sided at the ends.
+pub fn set_speeds(samples: &mut Samples, period: f64) {
+    let n = samples.len();
+    for i in 0..n {
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+        samples.speed_mps[i] = if b > a {
+            (samples.x_m[b] - samples.x_m[a]).hypot(samples.y_m[b] - samples.y_m[a])
+                / ((b - a) as f64 * period)
+        } else {
+            0.0
+        };
+    }
+}
+
 /// A sealed job whose nozzle visits the base-frame points `rows` (point,
 /// gun on, stroke index), one per `period`, from `station`.
 fn sealed(
@@ -174,22 +233,13 @@ fn sealed(
     let a2 = robot.arm.a2_m;
     let n = rows.len();
     let mut samples = Samples::default();
-    let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
-    let mut prev: Option<[f64; 2]> = None;
     let mut paint_time = 0.0;
     for (i, (p, paint, stroke)) in rows.iter().enumerate() {
         let t = i as f64 * period;
-        let p = *p;
-        let (th, r) = ik(p, a2);
-        let v = prev.map_or([0.0, 0.0], |q| {
-            [(p[0] - q[0]) / period, (p[1] - q[1]) / period]
-        });
-        prev = Some(p);
+        let (th, r) = ik(*p, a2);
         if *paint {
             paint_time += period;
         }
-        // every column from the robot's own kinematics, as compile writes
-        // them, so `basr check` finds nothing to say about the job
         let joints = crate::robot::Joints {
             base_rot_rad: th,
             extension_m: r,
@@ -197,47 +247,12 @@ fn sealed(
             ee_yaw_rad: 0.0,
             tilt_rad: 0.0,
         };
-        let pose = robot.fk(&joints);
-        let act = robot.actuators(&joints);
-        let enc = robot.encoders(&joints);
-        samples.push(&SampleRow {
-            t_s: t,
-            station: 0,
-            stroke: *stroke,
-            paint: u8::from(*paint),
-            x_m: station.x_m + c * pose.x_m - s * pose.y_m,
-            y_m: station.y_m + s * pose.x_m + c * pose.y_m,
-            z_m: pose.z_m,
-            yaw_rad: crate::robot::kinematics::wrap_pi(
-                pose.yaw_rad + station.heading_rad - std::f64::consts::FRAC_PI_2,
-            ),
-            tilt_rad: 0.0,
-            speed_mps: v[0].hypot(v[1]),
-            width_m: if *paint { 0.15 } else { 0.0 },
-            base_rot_rad: th,
-            extension_m: r,
-            cylinder_m: act.cylinder_m,
-            vertical_m: joints.vertical_m,
-            ee_yaw_rad: 0.0,
-            tilt_nut_m: act.tilt_nut_m,
-            enc_base: enc.base,
-            enc_extension: enc.extension,
-            enc_yaw: enc.yaw,
-            enc_tilt: enc.tilt,
-            enc_vertical: enc.vertical,
-        });
+        let width = if *paint { 0.15 } else { 0.0 };
+        samples.push(&row_from_joints(
+            &robot, &station, &joints, t, *stroke, width,
+        ));
     }
-    // nozzle speed as compile writes it: central difference of the road
-    // columns, one-sided at the ends
-    for i in 0..n {
-        let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
-        samples.speed_mps[i] = if b > a {
-            (samples.x_m[b] - samples.x_m[a]).hypot(samples.y_m[b] - samples.y_m[a])
-                / ((b - a) as f64 * period)
-        } else {
-            0.0
-        };
-    }
+    set_speeds(&mut samples, period);
     let paint = crate::job::Paint::of(&robot.paint);
     let paint_volume_m3 = robot.paint.flow_m3ps * paint_time;
     let mut job = Job {

@@ -7,11 +7,12 @@
 use std::f64::consts::PI;
 
 use basr::job::{
-    FontRef, Job, Layout, Paint, PlacedGlyph, PlacedStroke, SampleRow, Samples, Station, Summary,
-    FORMAT, VERSION,
+    FontRef, Job, Layout, Paint, PlacedGlyph, PlacedStroke, Samples, Station, Summary, FORMAT,
+    VERSION,
 };
 use basr::paint::planned_tip;
 use basr::robot::Robot;
+use basr::sim::synthetic;
 
 pub const ALPHA: f64 = 63.5 * PI / 180.0; // SPEC §4 fan angle
 pub const FLOW: f64 = 0.4e-3 / 60.0; // SPEC §4 example: 0.4 L/min
@@ -140,43 +141,18 @@ fn rows_to_samples(rows: &[Row]) -> Samples {
         }
         .unwrap_or_else(|e| panic!("row {i} out of reach: {e:?}"));
         prev = Some(j);
-        // the nozzle columns from the joints, as compile writes them
-        let fk = robot.fk(&j);
-        let act = robot.actuators(&j);
-        let enc = robot.encoders(&j);
-        s.push(&SampleRow {
-            t_s: i as f64 * PERIOD,
-            station: 0,
-            stroke: if *on { 0 } else { -1 },
-            paint: *on as u8,
-            x_m: STATION.x_m + c0 * fk.x_m - s0 * fk.y_m,
-            y_m: STATION.y_m + s0 * fk.x_m + c0 * fk.y_m,
-            z_m: fk.z_m,
-            yaw_rad: wrap_pi(fk.yaw_rad + STATION.heading_rad - PI / 2.0),
-            tilt_rad: j.tilt_rad,
-            speed_mps: 0.0,
-            width_m: if *on { *w } else { 0.0 },
-            base_rot_rad: j.base_rot_rad,
-            extension_m: j.extension_m,
-            cylinder_m: act.cylinder_m,
-            vertical_m: j.vertical_m,
-            ee_yaw_rad: j.ee_yaw_rad,
-            tilt_nut_m: act.tilt_nut_m,
-            enc_base: enc.base,
-            enc_extension: enc.extension,
-            enc_yaw: enc.yaw,
-            enc_tilt: enc.tilt,
-            enc_vertical: enc.vertical,
-        });
+        let t = i as f64 * PERIOD;
+        let width = if *on { *w } else { 0.0 };
+        s.push(&synthetic::row_from_joints(
+            &robot,
+            &STATION,
+            &j,
+            t,
+            if *on { 0 } else { -1 },
+            width,
+        ));
     }
-    // nozzle speed as compile writes it: central difference of the road
-    // columns, one-sided at the ends
-    let n = s.len();
-    for i in 0..n {
-        let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
-        s.speed_mps[i] =
-            (s.x_m[b] - s.x_m[a]).hypot(s.y_m[b] - s.y_m[a]) / ((b - a) as f64 * PERIOD);
-    }
+    synthetic::set_speeds(&mut s, PERIOD);
     s
 }
 
