@@ -69,9 +69,7 @@ fn passes_check_and_simulate(job: &Path, robot: &Path) -> f64 {
     );
     let rep: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(rep["verdict"], "pass", "{rep}");
-    let v = json(job)["summary"]["verified_max_error_m"]
-        .as_f64()
-        .expect("compile verified the job");
+    let v = verified(job);
     assert!(v <= BOUND_M, "{}: verified {v} m", job.display());
     v
 }
@@ -225,4 +223,125 @@ fn a_job_checked_or_simulated_against_another_kind_is_refused() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("telescopic kind"));
+}
+
+/// The verified error compile recorded for a job (issue 11's guarantee).
+fn verified(job: &Path) -> f64 {
+    json(job)["summary"]["verified_max_error_m"]
+        .as_f64()
+        .expect("compile verified the job")
+}
+
+#[test]
+fn every_library_symbol_and_shipped_marking_compiles_verified_for_every_electric_kind() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = basr().arg("symbols").output().unwrap();
+    let list = String::from_utf8(out.stdout).unwrap() + &String::from_utf8(out.stderr).unwrap();
+    let symbols: Vec<&str> = list
+        .lines()
+        .skip(1)
+        .filter(|l| l.starts_with(|c: char| c.is_ascii_lowercase()))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(symbols.len() >= 15, "{symbols:?}");
+    let markings: Vec<PathBuf> = std::fs::read_dir("markings")
+        .unwrap()
+        .map(|e| std::fs::canonicalize(e.unwrap().path()).unwrap())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    for f in &ROBOTS[1..] {
+        let r = robot(f);
+        for s in &symbols {
+            let job = dir.path().join(format!("{s}.job.json"));
+            basr()
+                .args(["compile", "--symbol", s, "--robot"])
+                .arg(&r)
+                .arg("-o")
+                .arg(&job)
+                .assert()
+                .success();
+            assert!(verified(&job) <= BOUND_M, "{f} {s}");
+        }
+        for m in &markings {
+            let job = dir.path().join("scene.job.json");
+            basr()
+                .args(["compile", "--marking"])
+                .arg(m)
+                .arg("--robot")
+                .arg(&r)
+                .arg("-o")
+                .arg(&job)
+                .assert()
+                .success();
+            assert!(verified(&job) <= BOUND_M, "{f} {}", m.display());
+        }
+    }
+}
+
+#[test]
+fn preview_and_preview_from_sim_draw_every_electric_kinds_job() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in &ROBOTS[1..] {
+        let job = compile(dir.path(), "STOP", &robot(f), &[]);
+        for from_sim in [false, true] {
+            let svg = dir.path().join("p.svg");
+            let mut cmd = basr();
+            cmd.arg("preview")
+                .arg(&job)
+                .arg("-o")
+                .arg(&svg)
+                .arg("--json");
+            if from_sim {
+                cmd.arg("--from-sim");
+            }
+            let out = cmd.output().unwrap();
+            // 0 or 1 (the film verdict), never bad input.
+            assert!(
+                matches!(out.status.code(), Some(0 | 1)),
+                "{f}: {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let p: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            assert_eq!(p["from_sim"], from_sim);
+            // The arm follows its job closely: the simulated film covers the
+            // letters as the planned one does.
+            assert!(p["coverage"].as_f64().unwrap() > 0.97, "{f}: {p}");
+            assert!(std::fs::metadata(&svg).unwrap().len() > 1000);
+        }
+    }
+}
+
+/// `check`'s content checks of an electric kind's job (library call, as
+/// `basr check` makes it): a compiled job has none; a joint that jumps, a
+/// BASR column written in, a renamed column and a wrong encoder count are
+/// each found.
+#[test]
+fn check_finds_what_is_wrong_with_an_electric_kinds_setpoints() {
+    use basr::plan::compile::{compile_job, CompileRequest};
+    let robot = basr::robot::AnyRobot::load(Path::new(ROBOTS[2])).unwrap();
+    let mut req = CompileRequest::message("IT");
+    req.robot_description = Some(robot);
+    let job = compile_job(&req).unwrap();
+    assert_eq!(basr::job::verify::problems(&job, "j"), Vec::<String>::new());
+    let k = job.samples.len() / 2;
+    let damaged = |edit: &dyn Fn(&mut basr::job::Job)| {
+        let mut j = job.clone();
+        edit(&mut j);
+        basr::job::verify::problems(&j, "j").join("\n")
+    };
+    let p = damaged(&|j| j.samples.kind_joints[k][1] += 0.05);
+    assert!(p.contains("shoulder_rad moves at"), "{p}");
+    assert!(
+        p.contains("away from where the joints put the nozzle"),
+        "{p}"
+    );
+    let p = damaged(&|j| j.samples.extension_m[k] = 1.0);
+    assert!(
+        p.contains("extension_m is 1 but it is BASR's column"),
+        "{p}"
+    );
+    let p = damaged(&|j| j.samples.kind_columns[0] = "base_rot_rad".into());
+    assert!(p.contains("samples.kind_columns"), "{p}");
+    let p = damaged(&|j| j.samples.kind_encoders[k][4] += 1);
+    assert!(p.contains(&format!("row {k}: encoder counts")), "{p}");
 }

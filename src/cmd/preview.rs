@@ -183,6 +183,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     super::outputs::check("-o", &out, &["svg"])?;
     basr::io::check_writable(&out)?;
     let job = super::read_job(&args.job, &args.trust)?;
+    // a correctly sealed job can still hold a tilt of 90° or a row at
+    // t = 1e9 s: `basr check`'s content checks first (exit 2)
+    super::simulate::content_checks(&job, &args.job)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {
@@ -345,6 +348,92 @@ pub fn verdict_line(v: &Verdict) -> String {
     }
 }
 
+/// One tick of the simulated arm: time, gun command, and the actual
+/// nozzle point on the road with the deviations of height, fan direction
+/// and tilt from the planned ([x, y, dz, dψ, dβ]).
+struct SimTick {
+    t_s: f64,
+    paint: u8,
+    actual: [f64; 5],
+}
+
+/// BASR's hydraulic simulation (SJCT), tick by tick.
+fn hydraulic_track(
+    job: &Job,
+    robot: &basr::robot::Robot,
+    progress: basr::paint::raster::Progress,
+) -> anyhow::Result<Vec<SimTick>> {
+    use basr::sim;
+    let model = sim::SimModel::from_robot(robot)
+        .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
+    let sim_opts = sim::Options {
+        controller: sim::ControllerKind::Sjct,
+        tolerance_m: robot.control.accuracy_m,
+        keep_trace: true,
+        substeps: None,
+    };
+    let outcome = sim::simulate(job, &model, &sim_opts, &mut |done, total| {
+        // The simulation is the first half of the bar, the paint the second.
+        progress(done as usize, 2 * total as usize)
+    })?;
+    // What the simulated joints add at a tick: the actual nozzle point, and
+    // the deviations of height, fan direction and tilt from the planned.
+    let tilt_of = |nut: f64| robot.tilt_from_nut(nut).ok();
+    Ok(outcome
+        .trace
+        .iter()
+        .map(|r| {
+            let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
+                (Some(a), Some(b)) => a - b,
+                _ => 0.0,
+            };
+            SimTick {
+                t_s: r.t_s,
+                paint: r.paint,
+                actual: [
+                    r.x_m,
+                    r.y_m,
+                    // Vertical joint is positive down (SPEC §3).
+                    -(r.vertical_m - r.vertical_desired_m),
+                    (r.ee_yaw_rad - r.ee_yaw_desired_rad)
+                        + (r.base_rot_rad - r.base_rot_desired_rad),
+                    tilt_error,
+                ],
+            }
+        })
+        .collect())
+}
+
+/// An electric kind's servo simulation (`sim::servo_job::track`), tick by
+/// tick: the followed joints' nozzle against the reference's.
+fn servo_track(job: &Job) -> anyhow::Result<Vec<SimTick>> {
+    let ticks = basr::sim::servo_job::track(job)?;
+    let s = &job.samples;
+    Ok(ticks
+        .iter()
+        .map(|t| {
+            let st = &job.stations[s.station[t.index] as usize];
+            let (a, w) = (&t.actual, &t.wanted);
+            let road = basr::plan::stations::base_to_road(st, [a.x_m, a.y_m]);
+            // The fan's deviation on its own branch (ψ with β, or ψ + π with −β).
+            let d = basr::robot::kinematics::wrap_pi(a.yaw_rad - w.yaw_rad);
+            let (dyaw, dtilt) = if d.abs() > std::f64::consts::FRAC_PI_2 {
+                (
+                    basr::robot::kinematics::wrap_pi(d + std::f64::consts::PI),
+                    -a.tilt_rad - w.tilt_rad,
+                )
+            } else {
+                (d, a.tilt_rad - w.tilt_rad)
+            };
+            SimTick {
+                t_s: t.t_s,
+                paint: s.paint[t.index],
+                actual: [road[0], road[1], a.z_m - w.z_m, dyaw, dtilt],
+            }
+        })
+        .collect())
+}
+
 /// The film from the simulated arm: each 5 ms trace tick gives the actual
 /// nozzle position on the road; height, fan direction and tilt are the
 /// planned ones (the job's rows, interpolated linearly as the preview of a
@@ -359,24 +448,13 @@ fn preview_simulated(
     progress: basr::paint::raster::Progress,
 ) -> anyhow::Result<Preview> {
     use basr::paint::spray::{equivalent_fan, Pose};
-    use basr::sim;
-    let robot = super::basr_of(job, "preview --simulated")?;
-    let model = sim::SimModel::from_robot(robot)
-        .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
-    let sim_opts = sim::Options {
-        controller: sim::ControllerKind::Sjct,
-        tolerance_m: robot.control.accuracy_m,
-        keep_trace: true,
-        substeps: None,
+    let track = match job.robot.basr() {
+        Some(robot) => hydraulic_track(job, robot, progress)?,
+        None => servo_track(job)?,
     };
-    let outcome = sim::simulate(job, &model, &sim_opts, &mut |done, total| {
-        // The simulation is the first half of the bar, the paint the second.
-        progress(done as usize, 2 * total as usize)
-    })?;
-    let trace = &outcome.trace;
     let s = &job.samples;
     let n = s.len();
-    anyhow::ensure!(n > 0 && !trace.is_empty(), "the job has no setpoints");
+    anyhow::ensure!(n > 0 && !track.is_empty(), "the job has no setpoints");
     let dt = job.control_period_s;
     let lerp = |a: f64, b: f64, f: f64| a + f * (b - a);
     // The planned (z, ψ, β) at time t, linear between rows.
@@ -392,26 +470,8 @@ fn preview_simulated(
             lerp(s.tilt_rad[i], tilt_j, f),
         )
     };
-    // What the simulated joints add at a tick: the actual nozzle point, and
-    // the deviations of height, fan direction and tilt from the planned.
-    let tilt_of = |nut: f64| robot.tilt_from_nut(nut).ok();
-    let actual: Vec<[f64; 5]> = trace
-        .iter()
-        .map(|r| {
-            let tilt_error = match (tilt_of(r.tilt_nut_m), tilt_of(r.tilt_nut_desired_m)) {
-                (Some(a), Some(b)) => a - b,
-                _ => 0.0,
-            };
-            [
-                r.x_m,
-                r.y_m,
-                // Vertical joint is positive down (SPEC §3).
-                -(r.vertical_m - r.vertical_desired_m),
-                (r.ee_yaw_rad - r.ee_yaw_desired_rad) + (r.base_rot_rad - r.base_rot_desired_rad),
-                tilt_error,
-            ]
-        })
-        .collect();
+    let trace = &track;
+    let actual: Vec<[f64; 5]> = track.iter().map(|t| t.actual).collect();
     let pose = |t: f64, a: &[f64; 5], plan: (f64, f64, f64), gun: bool| Pose {
         t_s: t,
         x_m: a[0],

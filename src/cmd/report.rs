@@ -69,7 +69,11 @@ fn read_sim(path: &Path) -> anyhow::Result<SimVerdict> {
 
 fn simulate(job: &basr::job::Job, show: bool) -> anyhow::Result<SimVerdict> {
     use basr::sim;
-    let robot = super::basr_of(job, "report")?;
+    let Some(robot) = job.robot.basr() else {
+        // An electric kind: its servo plant, at its description's accuracy.
+        let r = sim::servo_job::simulate_job(job, job.robot.control().accuracy_m)?;
+        return Ok(SimVerdict::from_servo(&r));
+    };
     let model = sim::SimModel::from_robot(robot)
         .map_err(|e| anyhow::anyhow!("the job's robot cannot be simulated: {e} (use --no-sim)"))?;
     let opts = sim::Options {

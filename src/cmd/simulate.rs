@@ -36,13 +36,17 @@ impl From<ControllerArg> for ControllerKind {
 /// Plays the job's setpoints through the controller (every 5 ms) into a model
 /// of the pantograph arm, its hydraulic motor and cylinder, servovalves,
 /// end-effector servos and linkage compliance, and measures how far the
-/// nozzle strays from the planned path while painting.
+/// nozzle strays from the planned path while painting. A job for a
+/// telescopic or articulated robot (SPEC §8) runs that kind's servo plant
+/// instead: each joint's inertia under PID + feed-forward with its drive's
+/// torque and speed limits (docs/robot-kinds.md).
 #[derive(clap::Args)]
 #[command(after_help = "Examples:
   basr simulate STOP.job.json
   basr simulate STOP.job.json --controller pid --svg stop-sim.svg --trace stop-sim.csv
   basr simulate STOP.job.json --json | jq .max_error_m
   basr simulate STOP.job.json --plants 40 --spread 0.1 --seed 7   # verdict on p95 of 40 plants
+  basr simulate T.job.json --robot robots/telescopic.toml        # an electric kind's servo plant
   basr simulate STOP.job.json --fault valve-stuck@30   # does the arm stop, where, how much paint off the path
 
 Exit codes: 0 pass, 1 over tolerance or a limit violated, 2 bad input
@@ -121,7 +125,7 @@ fn parse_fault(s: &str) -> Result<sim::fault::Fault, String> {
 /// indices, joint limits, forward kinematics of the columns): a correctly
 /// sealed job can still hold a tilt of 90° or a row at t = 1e9 s.
 /// Exit 2 naming every problem found.
-fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
+pub fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
     let problems = basr::job::verify::problems(job, &path.display().to_string());
     if !problems.is_empty() {
         anyhow::bail!(
@@ -277,12 +281,24 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for p in args.trace.iter().chain(&args.svg) {
         super::outputs::after_commit(format!("wrote {}", p.display()));
     }
+    say(&args, global, report, &report.human(), report.passed())
+}
+
+/// The report as JSON on stdout (`--json`) or its human lines on stderr;
+/// exit 0 on pass, 1 on fail.
+fn say(
+    args: &Args,
+    global: &Global,
+    report: &impl serde::Serialize,
+    human: &str,
+    passed: bool,
+) -> anyhow::Result<Outcome> {
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
     } else if !global.quiet {
-        crate::note_text(&report.human());
+        crate::note_text(human);
     }
-    Ok(if report.passed() {
+    Ok(if passed {
         Outcome::Success
     } else {
         Outcome::Negative
@@ -308,14 +324,5 @@ fn run_servo(args: &Args, global: &Global, job: &basr::job::Job) -> anyhow::Resu
         }
     }
     let report = sim::servo_job::simulate_job(job, args.tolerance_mm * 1e-3)?;
-    if args.json {
-        basr::io::print_stdout(&(serde_json::to_string_pretty(&report)? + "\n"))?;
-    } else if !global.quiet {
-        crate::note_text(&report.human());
-    }
-    Ok(if report.passed() {
-        Outcome::Success
-    } else {
-        Outcome::Negative
-    })
+    say(args, global, &report, &report.human(), report.passed())
 }

@@ -309,6 +309,13 @@ const GLYPH_HEADER: [&str; 8] = [
 ];
 const GLYPH_WIDTHS: [f64; 8] = [60.0, 35.0, 60.0, 60.0, 55.0, 65.0, 65.0, 70.0];
 
+/// A panel's per-glyph table: its rows and their column widths.
+fn glyph_table(p: &Panel) -> (Vec<Vec<String>>, Vec<f64>) {
+    let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+    let widths = plot::fit_widths(&GLYPH_WIDTHS, &GLYPH_HEADER, &rows);
+    (rows, widths)
+}
+
 /// Road extent a panel shows: the film raster, the nozzle path and stations.
 fn panel_bounds(p: &Panel) -> Bounds {
     let mut b = p.preview.film.grid.bounds();
@@ -424,9 +431,9 @@ fn page(panels: &[Panel]) -> Page {
     let mut frames = Vec::new();
     if panels.len() > 1 {
         let mut x = margin;
-        for ext in &extents {
+        for (ext, p) in extents.iter().zip(panels) {
             let frame = Frame::new(x, map_top, px_per_m, ext.min, ext.max);
-            x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+            x += frame.width_px().max(glyph_table(p).1.iter().sum()) + 60.0;
             frames.push(frame);
         }
     } else {
@@ -482,32 +489,35 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
                     svg::node::element::ClipPath::new()
                         .set("id", id.clone())
                         .add(
+                            // The road inside the frame only: another
+                            // line's outlines stop at the view's edge.
                             Rectangle::new()
-                                .set("x", plot::num(x0 - 40.0))
-                                .set("y", plot::num(y0 - 4.0))
-                                .set("width", plot::num(frame.width_px() + 44.0))
-                                .set("height", plot::num(frame.height_px() + 40.0)),
+                                .set("x", plot::num(x0))
+                                .set("y", plot::num(y0))
+                                .set("width", plot::num(frame.width_px()))
+                                .set("height", plot::num(frame.height_px())),
                         ),
                 )
                 .add(
                     plot::text(x0, y0 - 8.0, &format!("line {}", k + 1), 13.0, "start")
                         .set("font-weight", "bold"),
                 )
-                .add(draw_panel(p, frame, vmax).set("clip-path", format!("url(#{id})")));
+                .add(road_layers(p, frame, vmax).set("clip-path", format!("url(#{id})")))
+                .add(plot::axes(frame, tick_spacing(frame)));
             bottom = bottom.max(frame.top_px + frame.height_px());
             right = right.max(frame.left_px + frame.width_px() + 60.0);
         }
         let table_top = bottom + 50.0;
-        let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+        let (rows, widths) = glyph_table(p);
         doc_g = doc_g.add(plot::table(
             margin,
             table_top,
-            &GLYPH_WIDTHS,
+            &widths,
             &GLYPH_HEADER,
             &rows,
         ));
         bottom = table_top + plot::table_height(rows.len());
-        right = right.max(margin + GLYPH_WIDTHS.iter().sum::<f64>() + 60.0);
+        right = right.max(margin + widths.iter().sum::<f64>() + 60.0);
     }
     for (p, frame) in panels
         .iter()
@@ -536,16 +546,16 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         }
         doc_g = doc_g.add(draw_panel(p, frame, vmax));
         let table_top = map_top + frame.height_px() + 50.0;
-        let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+        let (rows, widths) = glyph_table(p);
         doc_g = doc_g.add(plot::table(
             frame.left_px,
             table_top,
-            &GLYPH_WIDTHS,
+            &widths,
             &GLYPH_HEADER,
             &rows,
         ));
         bottom = bottom.max(table_top + plot::table_height(rows.len()));
-        right = frame.left_px + frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+        right = frame.left_px + frame.width_px().max(widths.iter().sum()) + 60.0;
     }
     // The shared colour bar.
     let dummy = [0.0];
@@ -635,6 +645,12 @@ fn legend(x: f64, y: f64) -> Group {
 }
 
 fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
+    road_layers(p, frame, vmax).add(plot::axes(frame, tick_spacing(frame)))
+}
+
+/// What [`draw_panel`] draws inside the frame: film, outlines, nozzle path,
+/// stations and labels (everything but the axes).
+fn road_layers(p: &Panel, frame: &Frame, vmax: f64) -> Group {
     let grid = &p.preview.film.grid;
     let target = p.preview.metrics.target_film_m;
     // Only the cells the frame shows (a line's view of a long job).
@@ -736,7 +752,6 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
             ));
     }
     g.add(labels(p, frame))
-        .add(plot::axes(frame, tick_spacing(frame)))
 }
 
 /// `line.place` of every glyph as the text numbers them (1-based), in the

@@ -189,13 +189,7 @@ fn nut_limited_tilt_rate(robot: &crate::robot::Robot) -> f64 {
 }
 
 pub fn joints_of(q: &Q) -> Joints {
-    Joints {
-        base_rot_rad: q[0],
-        extension_m: q[1],
-        vertical_m: q[2],
-        ee_yaw_rad: q[3],
-        tilt_rad: q[4],
-    }
+    Joints::of(q)
 }
 
 /// Nozzle arc length at each knot (road frame, m), strictly increasing:

@@ -51,43 +51,65 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
     let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
         .map_err(|e| CompileError::Verify(e.to_string()))?;
     let r = &outcome.report;
-    let bound = VERIFY_SHARE * opts.tolerance_m;
     let broken: Vec<&str> = r
         .limits
         .iter()
         .filter(|l| l.fails)
         .map(|l| l.message.as_str())
         .collect();
-    let ok = r.max_error_m <= bound && broken.is_empty();
+    let bound = VERIFY_SHARE * opts.tolerance_m;
+    let failing = r
+        .strokes
+        .iter()
+        .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
+        .map(|s| (s.worst.station, s.stroke, s.worst.t_s, s.max_error_m))
+        .collect();
+    Ok(judge(
+        r.max_error_m,
+        &r.worst,
+        &broken,
+        opts.tolerance_m,
+        failing,
+    ))
+}
+
+/// The verdict on a simulated job: its painting error within
+/// `VERIFY_SHARE` of `tolerance_m` and no limit `broken`; `failing` lists
+/// the strokes over that bound (see [`Verdict::failing`]).
+fn judge(
+    max_error_m: f64,
+    worst: &sim::report::Place,
+    broken: &[impl AsRef<str>],
+    tolerance_m: f64,
+    failing: Vec<(u32, i64, f64, f64)>,
+) -> Verdict {
+    let bound = VERIFY_SHARE * tolerance_m;
+    let ok = max_error_m <= bound && broken.is_empty();
     let why = if ok {
         String::new()
     } else {
         let mut w = format!(
             "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
              × the {:.2} mm tolerance) at {}",
-            r.max_error_m * 1e3,
+            max_error_m * 1e3,
             bound * 1e3,
-            opts.tolerance_m * 1e3,
-            r.worst.describe()
+            tolerance_m * 1e3,
+            worst.describe()
         );
         if !broken.is_empty() {
-            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
+            let b: Vec<&str> = broken.iter().map(AsRef::as_ref).collect();
+            w.push_str(&format!("; limits broken: {}", b.join("; ")));
         }
         w
     };
-    Ok(Verdict {
-        max_error_m: r.max_error_m,
+    Verdict {
+        max_error_m,
         ok,
         why,
-        worst: (r.worst.station, r.worst.stroke),
-        worst_t_s: r.worst.t_s,
-        failing: r
-            .strokes
-            .iter()
-            .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
-            .map(|s| (s.worst.station, s.stroke, s.worst.t_s, s.max_error_m))
-            .collect(),
-    })
+        worst: (worst.station, worst.stroke),
+        worst_t_s: worst.t_s,
+        failing,
+    }
 }
 
 /// An electric kind's job through its servo plant (`sim::servo_job`),
@@ -97,31 +119,11 @@ fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
     let tolerance = sim::Options::default().tolerance_m;
     let r = sim::servo_job::simulate_job(job, tolerance)
         .map_err(|e| CompileError::Verify(e.to_string()))?;
-    let bound = VERIFY_SHARE * tolerance;
-    let broken = r.broken_limits();
-    let ok = r.max_error_m <= bound && broken.is_empty();
-    let why = if ok {
-        String::new()
-    } else {
-        let mut w = format!(
-            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
-             × the {:.2} mm tolerance) at {}",
-            r.max_error_m * 1e3,
-            bound * 1e3,
-            tolerance * 1e3,
-            r.worst.describe()
-        );
-        if !broken.is_empty() {
-            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
-        }
-        w
-    };
-    Ok(Verdict {
-        max_error_m: r.max_error_m,
-        ok,
-        why,
-        worst: (r.worst.station, r.worst.stroke),
-        worst_t_s: r.worst.t_s,
-        failing: vec![],
-    })
+    Ok(judge(
+        r.max_error_m,
+        &r.worst,
+        &r.broken_limits(),
+        tolerance,
+        vec![],
+    ))
 }

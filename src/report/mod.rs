@@ -41,6 +41,18 @@ impl SimVerdict {
             tolerance_m: r.tolerance_m,
         }
     }
+
+    /// An electric kind's servo simulation (`sim::servo_job`).
+    pub fn from_servo(r: &crate::sim::servo_job::ServoJobReport) -> SimVerdict {
+        SimVerdict {
+            controller: r.controller.clone(),
+            verdict: r.verdict.clone(),
+            reasons: r.reasons.clone(),
+            max_error_m: r.max_error_m,
+            rms_error_m: r.rms_error_m,
+            tolerance_m: r.tolerance_m,
+        }
+    }
 }
 
 /// What goes into a sheet.

@@ -19,16 +19,6 @@ use super::kind::{AnyRobot, Kind, Q};
 use super::reach::Reach;
 use super::{Control, JointLimit, Joints, NozzlePose, Paint, Robot, Truck, Unreachable};
 
-fn joints_of(q: &Q) -> Joints {
-    Joints {
-        base_rot_rad: q[0],
-        extension_m: q[1],
-        vertical_m: q[2],
-        ee_yaw_rad: q[3],
-        tilt_rad: q[4],
-    }
-}
-
 impl AnyRobot {
     /// BASR's own description, for what only BASR has (actuators, the tilt
     /// four-bar, the hydraulic plant); `None` for the electric kinds.
@@ -101,7 +91,7 @@ impl AnyRobot {
     /// The IK solution with the shortest travel from `prev` (seed 003).
     pub fn ik_nearest(&self, pose: &NozzlePose, prev: &Q) -> Result<Q, Unreachable> {
         match self {
-            AnyRobot::Basr(r) => Ok(r.ik_nearest(pose, &joints_of(prev))?.values()),
+            AnyRobot::Basr(r) => Ok(r.ik_nearest(pose, &Joints::of(prev))?.values()),
             _ => {
                 let all = self.ik(pose)?;
                 // `ik` returns Ok only with at least one solution.

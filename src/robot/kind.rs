@@ -370,13 +370,7 @@ pub(crate) fn check_pose_finite(pose: &NozzlePose) -> Result<(), Unreachable> {
 }
 
 fn joints_of(q: &Q) -> Joints {
-    Joints {
-        base_rot_rad: q[0],
-        extension_m: q[1],
-        vertical_m: q[2],
-        ee_yaw_rad: q[3],
-        tilt_rad: q[4],
-    }
+    Joints::of(q)
 }
 
 impl ArmKind for Robot {

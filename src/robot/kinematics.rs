@@ -59,6 +59,17 @@ pub struct Joints {
 }
 
 impl Joints {
+    /// The joints of a joint set in CSV column order (inverse of [`Joints::values`]).
+    pub fn of(q: &[f64; 5]) -> Joints {
+        Joints {
+            base_rot_rad: q[0],
+            extension_m: q[1],
+            vertical_m: q[2],
+            ee_yaw_rad: q[3],
+            tilt_rad: q[4],
+        }
+    }
+
     /// Values in CSV column order (see `Limits::NAMES`).
     pub fn values(&self) -> [f64; 5] {
         [

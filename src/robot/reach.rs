@@ -185,6 +185,43 @@ fn refine(f: impl Fn(f64) -> bool, mut a: f64, mut b: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::robot::kind::{AnyRobot, ARTICULATED_TOML, TELESCOPIC_TOML};
+    use proptest::prelude::*;
+
+    /// The shipped electric kinds and their sectors, found once.
+    fn shipped() -> &'static [(AnyRobot, Sector); 2] {
+        static ONCE: std::sync::OnceLock<[(AnyRobot, Sector); 2]> = std::sync::OnceLock::new();
+        ONCE.get_or_init(|| {
+            [TELESCOPIC_TOML, ARTICULATED_TOML].map(|text| {
+                let r = AnyRobot::from_toml_str(text, "shipped").unwrap();
+                let Reach::Sector(s) = r.reach() else {
+                    unreachable!("an electric kind's reach is a sector")
+                };
+                (r, s)
+            })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        /// A point the sector keeps 5 cm inside (the station planner's
+        /// default margin) is reached at any painting height, fan direction
+        /// and tilt within the limits, not only at the sampled ones.
+        #[test]
+        fn a_point_inside_is_reached_at_any_height_fan_and_tilt(
+            kind in 0usize..2, u in 0.0f64..1.0, v in 0.0f64..1.0,
+            h in 0.0f64..1.0, yaw in -3.2f64..3.2, b in -1.0f64..1.0,
+        ) {
+            let (r, s) = &shipped()[kind];
+            let az = s.azimuth_rad[0] + u * (s.azimuth_rad[1] - s.azimuth_rad[0]);
+            let rad = s.radius_m[0] + v * (s.radius_m[1] - s.radius_m[0]);
+            let (x, y) = (rad * az.cos(), rad * az.sin());
+            prop_assume!(s.margin(x, y) > 0.05);
+            let [z0, z1] = r.tip_heights_m();
+            let tilt = r.tilt_limit().map_or(0.0, |t| if b > 0.0 { b * t.max } else { -b * t.min });
+            let pose = NozzlePose { x_m: x, y_m: y, z_m: z0 + h * (z1 - z0), yaw_rad: yaw, tilt_rad: tilt };
+            prop_assert!(r.ik(&pose).is_ok(), "{}: {pose:?} in {s:?}", r.name());
+        }
+    }
 
     /// Every point the sector keeps 5 cm inside is reached at every painting
     /// height; the shipped arms' sectors cover a 12 ft lane over more than

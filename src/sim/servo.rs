@@ -70,23 +70,43 @@ struct State {
     integral: f64,
 }
 
-/// Reference at time `t` from setpoints every `period` s: position by
-/// linear interpolation, velocity and acceleration by finite differences
-/// (the feed-forward a controller can compute from the setpoint stream).
+/// Reference at time `t` from setpoints every `period` s: the cubic
+/// Hermite curve through them with central-difference tangents (one-sided
+/// at the ends), its speed and acceleration the curve's own derivatives —
+/// the smooth feed-forward a controller can compute from the setpoint
+/// stream. (Piecewise-constant finite differences step the speed reference
+/// at every setpoint, and the damping term turns each step into a torque
+/// spike: the drives then saturated in air moves whose accelerations were
+/// well within their limits.)
 fn reference(sp: &[Q], period: f64, t: f64, k: usize) -> (f64, f64, f64) {
     let n = sp.len();
+    if n < 2 {
+        return (sp.first().map_or(0.0, |q| q[k]), 0.0, 0.0);
+    }
     let x = (t / period).clamp(0.0, (n - 1) as f64);
-    let i = (x.floor() as usize).min(n.saturating_sub(2));
+    let i = (x.floor() as usize).min(n - 2);
     let f = x - i as f64;
     let at = |m: usize| sp[m.min(n - 1)][k];
-    let q = at(i) + f * (at(i + 1) - at(i));
-    let v = (at(i + 1) - at(i)) / period;
-    let a = if i >= 1 {
-        (at(i + 1) - 2.0 * at(i) + at(i - 1)) / (period * period)
-    } else {
-        0.0
+    // Tangent per setpoint step at setpoint m.
+    let tangent = |m: usize| {
+        let (a, b) = (m.saturating_sub(1), (m + 1).min(n - 1));
+        (at(b) - at(a)) / (b - a) as f64
     };
-    (q, v, a)
+    let (p0, p1, m0, m1) = (at(i), at(i + 1), tangent(i), tangent(i + 1));
+    let (f2, f3) = (f * f, f * f * f);
+    let q = (2.0 * f3 - 3.0 * f2 + 1.0) * p0
+        + (f3 - 2.0 * f2 + f) * m0
+        + (-2.0 * f3 + 3.0 * f2) * p1
+        + (f3 - f2) * m1;
+    let v = (6.0 * f2 - 6.0 * f) * p0
+        + (3.0 * f2 - 4.0 * f + 1.0) * m0
+        + (-6.0 * f2 + 6.0 * f) * p1
+        + (3.0 * f2 - 2.0 * f) * m1;
+    let a = (12.0 * f - 6.0) * p0
+        + (6.0 * f - 4.0) * m0
+        + (-12.0 * f + 6.0) * p1
+        + (6.0 * f - 2.0) * m1;
+    (q, v / period, a / (period * period))
 }
 
 /// One controller sample of a servo simulation.
@@ -99,6 +119,8 @@ pub struct Tick {
     pub tip_error_m: f64,
     /// The followed joints.
     pub q: Q,
+    /// The reference they follow (the setpoints, linear between them).
+    pub want: Q,
     /// |effort| / max_effort asked of each joint (over 1: saturated).
     pub effort_fraction: [f64; 5],
 }
@@ -191,6 +213,7 @@ pub fn follow(
             index: ((t / period_s).round() as usize).min(setpoints.len() - 1),
             tip_error_m: err,
             q: got,
+            want,
             effort_fraction: fraction,
         });
         for _ in 0..SUBSTEPS {

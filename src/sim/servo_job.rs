@@ -117,8 +117,10 @@ pub fn servo_joints(robot: &AnyRobot) -> Option<[ServoJoint; 5]> {
     }
 }
 
-/// Simulate an electric kind's job and judge it against `tolerance_m`.
-pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimError> {
+/// An electric kind's servo joints and controller sample, once the job's
+/// samples hold its joints (one row each, at least two) and its periods
+/// are positive.
+fn setup(job: &Job) -> Result<([ServoJoint; 5], f64), SimError> {
     let robot = &job.robot;
     let Some(joints) = servo_joints(robot) else {
         return Err(SimError::Job(
@@ -135,11 +137,6 @@ pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimEr
             robot.kind().name()
         )));
     }
-    if !(tolerance_m.is_finite() && tolerance_m > 0.0) {
-        return Err(SimError::Option(format!(
-            "tolerance {tolerance_m} m must be positive"
-        )));
-    }
     let period = job.control_period_s;
     let sample = robot.control().controller_sample_s;
     if !(period.is_finite() && period > 0.0 && sample.is_finite() && sample > 0.0) {
@@ -147,6 +144,21 @@ pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimEr
             "control_period_s {period} and the controller sample {sample} s must be positive"
         )));
     }
+    Ok((joints, sample))
+}
+
+/// Simulate an electric kind's job and judge it against `tolerance_m`.
+pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimError> {
+    let robot = &job.robot;
+    let (joints, sample) = setup(job)?;
+    let s = &job.samples;
+    let n = s.len();
+    if !(tolerance_m.is_finite() && tolerance_m > 0.0) {
+        return Err(SimError::Option(format!(
+            "tolerance {tolerance_m} m must be positive"
+        )));
+    }
+    let period = job.control_period_s;
     let setpoints: &[Q] = &s.kind_joints;
     let limits = robot.limits();
     let mut paint = Stats::default();
@@ -225,6 +237,42 @@ pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimEr
     }
     .into();
     Ok(report)
+}
+
+/// One controller tick of the servo simulation of a job: where the
+/// followed joints and the reference put the nozzle (base frame of the
+/// tick's station), for the film of the simulated arm (`preview --from-sim`).
+#[derive(Clone, Copy, Debug)]
+pub struct TrackTick {
+    pub t_s: f64,
+    /// The setpoint nearest in time.
+    pub index: usize,
+    pub actual: crate::robot::NozzlePose,
+    pub wanted: crate::robot::NozzlePose,
+}
+
+/// The servo simulation of an electric kind's job, tick by tick.
+pub fn track(job: &Job) -> Result<Vec<TrackTick>, SimError> {
+    let robot = &job.robot;
+    let (joints, sample) = setup(job)?;
+    let s = &job.samples;
+    let mut out = Vec::new();
+    servo::follow(
+        robot.arm(),
+        &joints,
+        &s.kind_joints,
+        job.control_period_s,
+        sample,
+        &mut |t: &Tick| {
+            out.push(TrackTick {
+                t_s: t.t_s,
+                index: t.index,
+                actual: robot.fk(&t.q),
+                wanted: robot.fk(&t.want),
+            })
+        },
+    );
+    Ok(out)
 }
 
 #[derive(Default)]
