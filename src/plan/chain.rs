@@ -254,30 +254,18 @@ pub struct Side<'a> {
 }
 
 impl<'a> Side<'a> {
-    pub fn leaving(
-        knots: &'a [super::knots::Knot],
-        joints: &'a [Q],
-        arcs: &'a [f64],
+    /// Rung `at` of a run, the join `leaving` it (else arriving at it).
+    pub fn new(
+        (knots, joints, arcs): (&'a [super::knots::Knot], &'a [Q], &'a [f64]),
         at: usize,
+        leaving: bool,
     ) -> Self {
         Side {
             knots,
             joints,
             arcs,
             at,
-            leaving: true,
-        }
-    }
-
-    pub fn arriving(
-        knots: &'a [super::knots::Knot],
-        joints: &'a [Q],
-        arcs: &'a [f64],
-        at: usize,
-    ) -> Self {
-        Side {
-            leaving: false,
-            ..Side::leaving(knots, joints, arcs, at)
+            leaving,
         }
     }
 
@@ -338,8 +326,8 @@ fn flown(
 ) -> Option<Blend> {
     let (ends, va, vb) = seam_ends(
         limits,
-        Side::leaving(&a.knots, &a.joints, arcs_a, a.paint_last),
-        Side::arriving(&b.knots, &b.joints, arcs_b, b.paint_first),
+        Side::new((&a.knots, &a.joints, arcs_a), a.paint_last, true),
+        Side::new((&b.knots, &b.joints, arcs_b), b.paint_first, false),
     )?;
     let (ra, rb): (Q, Q) = (
         std::array::from_fn(|j| ends.v0[j] / va),

@@ -77,8 +77,8 @@ impl JoinCosts {
         let (ja, jb) = (&a.branches[ba].1, &b.branches[bb].1);
         let t = super::chain::join_time(
             &self.limits,
-            Side::leaving(&a.knots, ja, &a.arcs, a.paint_last),
-            Side::arriving(&b.knots, jb, &b.arcs, b.paint_first),
+            Side::new((&a.knots, ja, &a.arcs), a.paint_last, true),
+            Side::new((&b.knots, jb, &b.arcs), b.paint_first, false),
         )
         .unwrap_or_else(|| travel(robot, &ja[ja.len() - 1], &jb[0]));
         self.known.borrow_mut().insert(key, t);
