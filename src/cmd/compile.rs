@@ -312,7 +312,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 .file_stem()
                 .map(|s| s.to_string_lossy().to_string())
                 .unwrap_or_else(|| "shape".into());
-            basr::shape::compile_shape(&req, imported, bands, &label)
+            basr::plan::shapes::compile_shape(&req, imported, bands, &label)
         }
         _ => compile_job(&req),
     };

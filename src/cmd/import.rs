@@ -70,7 +70,7 @@ pub struct Args {
 /// The bands of the robot given (or the embedded one).
 pub fn bands_of(robot: Option<&std::path::Path>) -> anyhow::Result<Bands> {
     let robot = basr::robot::Robot::load_or_default(robot)?;
-    Ok(Bands::for_robot(&robot))
+    Ok(basr::plan::shapes::bands(&robot))
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {

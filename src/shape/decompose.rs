@@ -12,11 +12,10 @@
 
 use kurbo::Point;
 
-use super::region::Region;
+use super::region::{signed_area, Region};
 use super::{convex, ring, sweep, ShapeError};
 use crate::font::Stroke;
 use crate::geom::{Edge, Segment, JOIN_TOLERANCE};
-use crate::plan::knots::swept_area;
 
 /// Ends of a band narrower than this fraction of the narrowest fan band are
 /// left unpainted; between it and the narrowest band the fan paints its
@@ -75,9 +74,10 @@ impl Band {
     fn width(&self, i: usize) -> f64 {
         (self.rungs[i].1 - self.rungs[i].0).hypot()
     }
+    /// Area between rungs i and i+1 (rungs of a band never cross).
     fn tile(&self, i: usize) -> f64 {
         let ((a, b), (c, d)) = (self.rungs[i], self.rungs[i + 1]);
-        swept_area(a, b, c, d)
+        signed_area(&[a, b, d, c]).abs()
     }
 }
 
@@ -633,11 +633,12 @@ fn stroke(s: &Band, origin: &str) -> Result<Stroke, ShapeError> {
 mod tests {
     use super::*;
     use crate::font::{overlap_area, DEFAULT_LIMITS};
-    use crate::shape::region::signed_area;
     use proptest::prelude::*;
 
     fn bands() -> Bands {
-        Bands::for_robot(&crate::robot::Robot::load_or_default(None).expect("embedded robot"))
+        crate::plan::shapes::bands(
+            &crate::robot::Robot::load_or_default(None).expect("embedded robot"),
+        )
     }
 
     /// Strokes tile the region: their areas plus what the tips leave bare

@@ -8,11 +8,14 @@
 //! i_overlay) → [`decompose`] (regions → strokes in metres plus a report of
 //! narrow places and of the method chosen per region) → [`font_toml`] (the
 //! strokes as a one-glyph font file, editable, that `--font` reads back).
+//!
+//! The robot enters only as the fan's [`Bands`] (`plan::shapes::bands`);
+//! compiling a shape, alone or as a scene's item, is `plan::shapes`.
 
-mod compile;
 mod convex;
 mod decompose;
 mod dxf;
+mod hatch;
 mod region;
 mod ring;
 mod svg;
@@ -23,7 +26,6 @@ use std::path::Path;
 
 use kurbo::BezPath;
 
-pub use compile::compile_shape;
 pub use decompose::{decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport};
 pub use region::{regions, Region};
 pub use write::{font_toml, GLYPH};
@@ -153,20 +155,6 @@ pub fn bounds(outline: &Outline) -> kurbo::Rect {
         .map(|e| e.path.bounding_box())
         .reduce(|a, b| a.union(b))
         .unwrap_or(kurbo::Rect::ZERO)
-}
-
-impl Bands {
-    /// The bands the robot's nozzle paints: narrowest from the lowest tip
-    /// height, widest from the highest (`plan::passes::paint_law`).
-    pub fn for_robot(robot: &crate::robot::Robot) -> Bands {
-        let law = crate::plan::passes::paint_law(robot);
-        Bands {
-            min_width_m: law.width_at_height(law.min_height_m),
-            max_width_m: law.max_width_m(),
-            k_m2ps: law.k_m2ps,
-            yaw_rate_rad_s: robot.limits.ee_yaw_rad.max_vel,
-        }
-    }
 }
 
 /// A shape file read, sized, resolved and decomposed.
