@@ -12,12 +12,25 @@ use std::path::{Path, PathBuf};
 
 use crate::job::{Job, Warning};
 use crate::layout::{ShapeSize, ShapeStrokes};
-use crate::plan::compile::{compile_strokes, CompileError, CompileRequest};
+use crate::paint::preview::{preview_job, Options};
+use crate::plan::compile::{compile_strokes, CompileError, CompileRequest, Source};
 use crate::plan::placed::lay_out;
 use crate::plan::warnings::Owner;
 use crate::plan::{inputs, request};
 use crate::robot::Robot;
-use crate::shape::{self, report_lines, Bands, Imported, Size};
+use crate::shape::{self, report_lines, Bands, Imported, ShapeError, Size};
+
+/// Film targets a candidate decomposition must meet to be kept on its cv
+/// alone: issue 14's acceptance (coverage ≥ 0.97, overspray ≤ 0.04).
+const MIN_COVERAGE: f64 = 0.97;
+/// See [`MIN_COVERAGE`].
+const MAX_OVERSPRAY: f64 = 0.04;
+/// Candidates whose cv differ by less than this are equally even; the
+/// shorter paint time decides. assumed: half a percent of cv.
+const CV_TIE: f64 = 0.005;
+/// Largest raster the candidates' film is measured on (cells). assumed:
+/// 2 M cells is a 5 mm raster over 7 × 7 m and takes a fraction of a second.
+const MEASURE_CELLS: usize = 2_000_000;
 
 /// The bands the robot's nozzle paints: narrowest from the lowest tip
 /// height, widest from the highest (`passes::paint_law`).
@@ -66,7 +79,8 @@ pub fn compile_shape(
     let mut job = compile_strokes(&req, &marking, &font, inputs.robot, &strokes)?;
     // The job says how the shape was decomposed: per region the method kept
     // and the ones it beat, and the places narrower than the fan paints.
-    for l in report_lines(&imported.decomposition, bands) {
+    let lines = report_lines(&imported.decomposition, bands);
+    for l in lines.iter().chain(&imported.notes) {
         job.summary.warnings.push(Warning {
             kind: "shape".into(),
             severity: "info".into(),
@@ -78,6 +92,95 @@ pub fn compile_shape(
     }
     job.seal();
     Ok(job)
+}
+
+/// A candidate's film, compiled with compile's defaults and previewed.
+#[derive(Clone, Copy, Debug)]
+struct Measured {
+    cv: f64,
+    coverage: f64,
+    overspray: f64,
+    paint_s: f64,
+}
+
+fn measure(imported: &Imported, robot: &Robot, b: &Bands, label: &str) -> Option<Measured> {
+    let mut req = CompileRequest::message(shape::GLYPH.encode_utf8(&mut [0; 4]));
+    req.source = Source::Message(shape::GLYPH.to_string());
+    req.robot_description = Some(robot.clone());
+    let job = compile_shape(&req, imported, b, label).ok()?;
+    let opts = Options {
+        fit_cells: Some(MEASURE_CELLS),
+        ..Options::default()
+    };
+    let m = preview_job(&job, &opts).ok()?.metrics;
+    Some(Measured {
+        cv: m.cv?,
+        coverage: m.coverage?,
+        overspray: m.overspray?,
+        paint_s: job.summary.paint_time_s,
+    })
+}
+
+/// The shape's name in jobs: its file's stem.
+pub fn label_of(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(|| "shape".into(), |s| s.to_string_lossy().to_string())
+}
+
+/// Read, size and decompose a shape file for `robot`, keeping the
+/// candidate decomposition ([`shape::candidates`]) whose film is the most
+/// even when it is compiled (with compile's defaults) and previewed: the
+/// film model itself is the prediction. The decomposition's notes list
+/// every candidate's measured film.
+pub fn import_measured(path: &Path, size: Size, robot: &Robot) -> Result<Imported, ShapeError> {
+    let b = bands(robot);
+    let mut all = shape::import_candidates(path, size, &b)?;
+    let label = label_of(path);
+    let measured: Vec<Option<Measured>> =
+        all.iter().map(|c| measure(c, robot, &b, &label)).collect();
+    let key = |m: &Measured| {
+        let ok = m.coverage >= MIN_COVERAGE && m.overspray <= MAX_OVERSPRAY;
+        (!ok, (m.cv / CV_TIE).floor() as i64, m.paint_s)
+    };
+    let pick = measured
+        .iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.map(|m| (i, key(&m))))
+        .min_by(|a, b| {
+            (a.1 .0, a.1 .1)
+                .cmp(&(b.1 .0, b.1 .1))
+                .then(a.1 .2.total_cmp(&b.1 .2))
+        })
+        .map_or(0, |(i, _)| i);
+    let name = |c: &Imported| {
+        c.decomposition
+            .regions
+            .iter()
+            .map(|r| r.chosen.method.to_string())
+            .collect::<Vec<_>>()
+            .join(" + ")
+    };
+    let mut notes = vec![format!(
+        "film of each candidate decomposition, compiled with compile's defaults and previewed \
+         (kept: the most even film with coverage ≥ {MIN_COVERAGE} and overspray ≤ {MAX_OVERSPRAY}, \
+         then the shorter paint time):"
+    )];
+    for (i, (c, m)) in all.iter().zip(&measured).enumerate() {
+        let kept = if i == pick { "kept" } else { "not kept" };
+        notes.push(match m {
+            Some(m) => format!(
+                "  {kept}: {}: cv {:.3}, coverage {:.3}, overspray {:.3}, paint {:.0} s",
+                name(c),
+                m.cv,
+                m.coverage,
+                m.overspray,
+                m.paint_s
+            ),
+            None => format!("  {kept}: {}: does not compile for this robot", name(c)),
+        });
+    }
+    let chosen = all.swap_remove(pick);
+    Ok(chosen.with_notes(notes))
 }
 
 /// The robot a request paints with (as `inputs::read` finds it).
@@ -113,7 +216,7 @@ pub fn import_item(
         ShapeSize::HeightM(h) => Size::HeightM(h),
         ShapeSize::WidthM(w) => Size::WidthM(w),
     };
-    let imported = shape::import(&file, size, &bands(robot)).map_err(|e| e.to_string())?;
+    let imported = import_measured(&file, size, robot).map_err(|e| e.to_string())?;
     Ok(ShapeStrokes {
         strokes: imported.decomposition.strokes,
         width_m: imported.width_m,
