@@ -257,6 +257,10 @@ pub fn import_outline(
         .collect())
 }
 
+/// Methods a region's report line names besides the one kept (the font
+/// file's header lists them all). assumed: three fit a terminal line or two.
+const REPORT_OTHERS: usize = 3;
+
 /// Lines for a person: the method per region and the narrow places.
 pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
     let mut out = vec![];
@@ -271,6 +275,7 @@ pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
             100.0 * r.chosen.film_error,
             r.others
                 .iter()
+                .take(REPORT_OTHERS)
                 .map(|o| format!(
                     "; not {} ({} strokes, {:.0} s, {:.1} %)",
                     o.method,
@@ -278,6 +283,10 @@ pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
                     o.time_s,
                     100.0 * o.film_error
                 ))
+                .chain((r.others.len() > REPORT_OTHERS).then(|| format!(
+                    "; {} more in the font file's header",
+                    r.others.len() - REPORT_OTHERS
+                )))
                 .collect::<String>()
         ));
     }
