@@ -2,6 +2,8 @@
 //! stations → order → IK → time law → sealed job) for 4, 26 and 100
 //! letters; the throughput is in letters, so "elem/s" reads as letters per
 //! second and the per-letter times can be compared (benches/README.md).
+//! Each compile includes the closed-loop verification and its re-timing
+//! (`CompileRequest::message` leaves `verify` on), as `basr compile` does.
 
 use std::time::Duration;
 
@@ -31,6 +33,10 @@ fn bench(c: &mut Criterion) {
         ("corridor", CORRIDOR, 30),
     ] {
         let req = CompileRequest::message(msg);
+        assert!(
+            req.verify,
+            "the figure is for compile with its verification"
+        );
         // Ten samples of the 100-letter job take ~20 s on a loaded 2-core
         // machine; a longer window only repeats them.
         g.measurement_time(Duration::from_secs(secs));

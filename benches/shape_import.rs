@@ -42,7 +42,7 @@ fn import(c: &mut Criterion) {
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("blob.svg");
     std::fs::write(&path, svg()).expect("write the SVG");
-    let robot = basr::robot::Robot::load_or_default(None).expect("embedded robot");
+    let robot = basr::robot::AnyRobot::load_or_default(None).expect("embedded robot");
     let bands = basr::plan::shapes::bands(&robot);
     let mut g = c.benchmark_group("shape");
     g.sample_size(10);

@@ -14,7 +14,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 fn bench(c: &mut Criterion) {
     let job = compile_job(&CompileRequest::message("STOP"))
         .unwrap_or_else(|e| panic!("compile STOP failed, nothing to simulate: {e}"));
-    let model = SimModel::from_robot(&job.robot)
+    let model = SimModel::from_robot(job.robot.basr().expect("a BASR job"))
         .unwrap_or_else(|e| panic!("STOP's robot cannot be simulated: {e}"));
     let duration_s = job.samples.len().saturating_sub(1) as f64 * job.control_period_s;
     let mut g = c.benchmark_group(format!("simulate STOP ({duration_s:.1} s)"));

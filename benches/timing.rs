@@ -26,6 +26,8 @@ fn path(n: usize) -> Vec<PathPoint<5>> {
             PathPoint {
                 s_m: s,
                 q,
+                cap_only: false,
+                dq_ds: None,
                 max_speed_mps: speed,
             }
         })

@@ -506,7 +506,7 @@ fn unknown_job_version_is_refused() {
 fn job_for_another_robot_is_refused_by_simulate() {
     let mut s = Scratch::new();
     write_job(&mut s, "other.job.json", |j| {
-        j.robot.name = "BASR-2".into();
+        j.robot.basr_mut().unwrap().name = "BASR-2".into();
         j.seal();
     });
     s.refuses(&["simulate", "other.job.json"], &["robot"]);
@@ -516,7 +516,7 @@ fn job_for_another_robot_is_refused_by_simulate() {
 fn job_for_another_robot_says_which_description_to_use() {
     let mut s = Scratch::new();
     write_job(&mut s, "other.job.json", |j| {
-        j.robot.name = "BASR-2".into();
+        j.robot.basr_mut().unwrap().name = "BASR-2".into();
         j.seal();
     });
     let stderr = s.refuses(&["simulate", "other.job.json"], &["robot", "--robot"]);
@@ -529,7 +529,7 @@ fn job_with_a_stale_robot_hash_is_refused_everywhere() {
     write_job(&mut s, "stale.job.json", |j| {
         // The robot changes after sealing; the document hash is made to
         // match again, so only robot_sha256 tells.
-        j.robot.name = "BASR-edited".into();
+        j.robot.basr_mut().unwrap().name = "BASR-edited".into();
         j.sha256 = basr::job::document_sha256(serde_json::to_value(&*j).unwrap());
     });
     let needles = ["stale.job.json", "robot_sha256", "compile the job again"];

@@ -102,7 +102,7 @@ fn stop_writes_job_and_csv_with_spec_columns() {
     assert!(s.paint_time_s > 0.0 && s.air_time_s > 0.0);
     assert!((s.paint_time_s + s.air_time_s - s.duration_s).abs() < 1e-9);
     let k = job.paint.k_m2ps;
-    assert!((s.paint_volume_m3 - job.robot.paint.flow_m3ps * s.paint_time_s).abs() < 1e-15);
+    assert!((s.paint_volume_m3 - job.robot.paint().flow_m3ps * s.paint_time_s).abs() < 1e-15);
     assert!(k > 0.0);
 }
 
@@ -140,7 +140,7 @@ fn no_sample_breaks_a_joint_limit() {
         ("tilt_rad", &s.tilt_rad),
     ];
     for (name, col) in cols {
-        let l = job.robot.limits.get(name).unwrap();
+        let l = job.robot.basr().unwrap().limits.get(name).unwrap();
         for (i, &v) in col.iter().enumerate() {
             assert!(
                 v >= l.min - 1e-9 && v <= l.max + 1e-9,
@@ -178,8 +178,8 @@ fn no_sample_breaks_a_joint_limit() {
 fn independent_fk_reproduces_the_nozzle_columns() {
     let dir = compile_in(&["STOP", "--tilt", "none", "--csv", "s.csv"]);
     let job = read_job(&dir.path().join("STOP.job.json"));
-    let a2 = job.robot.arm.a2_m;
-    let top = job.robot.end_effector.tip_height_top_m;
+    let a2 = job.robot.basr().unwrap().arm.a2_m;
+    let top = job.robot.basr().unwrap().end_effector.tip_height_top_m;
     let mut rdr = csv::Reader::from_path(dir.path().join("s.csv")).unwrap();
     let mut n = 0;
     for r in rdr.records() {
@@ -352,7 +352,7 @@ fn check_reports_derived_columns_and_totals_that_disagree() {
         job.summary.paint_time_s = 1.0;
         job.summary.strokes = 999;
         job.paint.k_m2ps = 123.0;
-        job.robot.end_effector.mass_kg = -35.0;
+        job.robot.basr_mut().unwrap().end_effector.mass_kg = -35.0;
     })
     .code(1)
     .stderr(predicate::str::contains("encoder counts"))

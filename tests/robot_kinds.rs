@@ -190,19 +190,3 @@ fn design_refuses_unreachable_sets_and_writes_nothing() {
         .code(2)
         .stderr(predicate::str::contains("telescopic kind only"));
 }
-
-#[test]
-fn compile_refuses_another_kind_naming_it_and_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    for f in KINDS {
-        let robot = std::fs::canonicalize(f).unwrap();
-        basr()
-            .current_dir(dir.path())
-            .args(["compile", "STOP", "--robot"])
-            .arg(&robot)
-            .assert()
-            .code(2)
-            .stderr(predicate::str::contains("take BASR only so far"));
-        assert!(!dir.path().join("STOP.job.json").exists());
-    }
-}

@@ -101,7 +101,7 @@ fn setpoints_at_a_limit_are_not_failed_by_the_interpolation_between_them() {
     // setpoint limit is judged on the rows themselves.
     let dir = tempfile::tempdir().unwrap();
     let job = synthetic::retracted_then_extending_job();
-    let r_min = job.robot.limits.extension_m.min;
+    let r_min = job.robot.basr().unwrap().limits.extension_m.min;
     assert!(job.samples.extension_m.iter().all(|&r| r >= r_min - 1e-12));
     let p = write_job(&dir, "retracted.job.json", &job);
     let csv = dir.path().join("tr.csv");

@@ -121,19 +121,16 @@ fn sealed_jobs_that_check_refuses_are_refused_before_simulation() {
         job.write(&p).unwrap();
         let c = basr(dir.path(), &["check", "bad.job.json"]);
         assert_eq!(c.status.code(), Some(1), "check {column}: {}", stderr(&c));
-        // (preview does not yet: its own test jobs, tests/preview_common,
-        // are nozzle-only and would fail the joint checks)
-        let c = basr(dir.path(), &["simulate", "bad.job.json"]);
-        assert_eq!(
-            c.status.code(),
-            Some(2),
-            "simulate {column}: {}",
-            stderr(&c)
-        );
-        assert!(
-            stderr(&c).contains(column),
-            "names {column}: {}",
-            stderr(&c)
-        );
+        for cmd in ["simulate", "preview"] {
+            let c = basr(dir.path(), &[cmd, "bad.job.json", "-q"]);
+            assert_eq!(c.status.code(), Some(2), "{cmd} {column}: {}", stderr(&c));
+            assert!(
+                stderr(&c).contains(column),
+                "{cmd} names {column}: {}",
+                stderr(&c)
+            );
+        }
+        // before any work: preview wrote no film picture
+        assert!(!dir.path().join("bad.svg").exists(), "{column}");
     }
 }

@@ -132,7 +132,7 @@ fn job_for<'a>(
 /// Problems of a marking file; a scene's shape items are imported for the
 /// embedded robot (the one `compile` paints with unless `--robot` says).
 fn marking_problems(text: &str, origin: &str) -> Vec<String> {
-    let robot = match basr::robot::Robot::load_or_default(None) {
+    let robot = match basr::robot::AnyRobot::load_or_default(None) {
         Ok(r) => r,
         Err(e) => return vec![e.to_string()],
     };

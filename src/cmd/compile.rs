@@ -236,7 +236,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         _ if args.symbol.is_some() => Source::Symbol(args.symbol.clone().unwrap_or_default()),
         (None, None) if args.shape.is_some() => {
             let path = args.shape.as_deref().unwrap_or(Path::new(""));
-            let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+            let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
             let bands = basr::plan::shapes::bands(&robot);
             let imported =
                 basr::plan::shapes::import_measured(path, args.shape_size.size(), &robot)?;

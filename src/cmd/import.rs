@@ -72,7 +72,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         &[("the font file (-o)", &args.output)],
         &[("the shape file", &args.file)],
     )?;
-    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     let bands = basr::plan::shapes::bands(&robot);
     let imported = basr::plan::shapes::import_measured(&args.file, args.size.size(), &robot)?;
     // The file must load back as it will be used.

@@ -10,6 +10,7 @@ pub mod keygen;
 pub mod outputs;
 pub mod pose;
 pub mod preview;
+pub mod replan;
 pub mod report;
 pub mod robot;
 pub mod simulate;
@@ -74,6 +75,19 @@ pub fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {
 /// another of basr's outputs rather than a job; under `--trust` (the
 /// command's flattened [`basr::job::trust::TrustOptions`]) only a job the
 /// trusted key signed.
+/// The BASR description of a job, for what only BASR's hydraulic plant
+/// does (`what` names it); a job of another kind is refused with exit 2.
+pub fn basr_of<'a>(job: &'a basr::job::Job, what: &str) -> anyhow::Result<&'a basr::robot::Robot> {
+    job.robot.basr().ok_or_else(|| {
+        anyhow::anyhow!(
+            "{what} simulates BASR's hydraulic arm, but the job is for a robot of the {} kind \
+             ({}); use `basr simulate` for it (docs/robot-kinds.md)",
+            job.robot.kind().name(),
+            job.robot.name()
+        )
+    })
+}
+
 pub fn read_job(
     path: &Path,
     trust: &basr::job::trust::TrustOptions,

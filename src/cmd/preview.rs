@@ -8,8 +8,9 @@ use basr::job::Job;
 use basr::paint::preview::{self, JsonReport, Options, Panel, Preview};
 use basr::paint::verdict::{self, Thresholds, Verdict};
 use basr::paint::{Depth, Profile};
-use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
+use basr::plan::compile::Tilt;
 
+use super::replan::{self, NOT_RECORDED, REPLANNED_FROM};
 use super::{Global, Outcome};
 
 /// Simulate the paint film of a job and draw it.
@@ -27,6 +28,9 @@ Examples:
   basr preview STOP.job.json -o stop.svg --json
   basr preview STOP.job.json --resolution-mm 2 --profile beta:2,2
   basr preview STOP.job.json --compare none,trapezoid,quadrilateral
+  basr preview rxr.job.json --compare none,quadrilateral       # a symbol alone
+  basr preview stop_line.job.json --compare none,quadrilateral \
+      --marking markings/stop_line.toml                        # a scene: its file
 
 Metrics: coverage = share of letter area with >= 50 % of target film;
 cv = std/mean of the film inside the letters (one cell in from the edge);
@@ -84,13 +88,18 @@ pub struct Args {
     #[arg(long, value_name = "KIND:MM", default_value = "gauss:6")]
     pub fan_depth: String,
 
-    /// Re-plan the job's message under each listed tilt method
-    /// (none, trapezoid, quadrilateral) and draw them side by side. The
-    /// re-planned jobs use the job's robot description, font, letter
-    /// height, lane width and period; options the job does not record
-    /// (rung spacing, line gap, gun lead/lag) take compile's defaults.
+    /// Re-plan the job under each listed tilt method (none, trapezoid,
+    /// quadrilateral) and draw them side by side. The re-planned jobs use
+    /// the job's message or symbol (a scene: --marking), robot description,
+    /// font, letter height, lane width and period; options the job does not
+    /// record (rung spacing, gun lead/lag) take compile's defaults.
     #[arg(long, value_name = "METHODS", value_delimiter = ',')]
     pub compare: Vec<String>,
+
+    /// With --compare: the marking file (a scene of items, or `lines`) the
+    /// job was compiled from; it must lay out exactly as the job's items.
+    #[arg(long, value_name = "FILE", requires = "compare")]
+    pub marking: Option<PathBuf>,
 
     /// With --compare: the font file the job was compiled with, when it is
     /// not the embedded font (its sha256 must match the job's).
@@ -118,78 +127,6 @@ const MAX_RESOLUTION_MM: f64 = 20.0;
 /// `STOP.job.json` → `STOP.svg` in the current folder.
 fn default_output(job: &Path) -> PathBuf {
     super::named_after_job(job, "svg")
-}
-
-fn parse_tilt(s: &str) -> anyhow::Result<Tilt> {
-    match s.trim() {
-        "none" => Ok(Tilt::None),
-        "trapezoid" => Ok(Tilt::Trapezoid),
-        "quadrilateral" => Ok(Tilt::Quadrilateral),
-        other => anyhow::bail!(
-            "--compare: unknown tilt method {other:?}; use none, trapezoid or quadrilateral"
-        ),
-    }
-}
-
-/// What `--compare` carries from the job into the re-planned ones, and
-/// what it cannot: the job does not record these compile options, so the
-/// re-planned jobs use compile's defaults for them.
-const REPLANNED_FROM: &str = "the job's message, robot description, font, letter height, \
-     lane width and setpoint period";
-const NOT_RECORDED: &str = "rung spacing, line gap, gun lead/lag, reach margin and a marking \
-     file's anchor (the job does not record them): compile's defaults";
-
-/// The font to re-plan `job` with: the embedded one if the job was compiled
-/// with it, else `--font`, which must be the job's font.
-fn replan_font(job: &Job, origin: &str, font: Option<&str>) -> anyhow::Result<Option<String>> {
-    use basr::font::Font;
-    let want = &job.font;
-    match font {
-        None if want.sha256 == Font::embedded().sha256 => Ok(None),
-        None => anyhow::bail!(
-            "{origin}: --compare re-plans the job, which was compiled with the font {:?} \
-             (sha256 {}), not the embedded font; pass that font file with --font FILE",
-            want.name,
-            want.sha256
-        ),
-        Some(f) => {
-            let given = Font::from_name_or_path(f).map_err(|e| anyhow::anyhow!("--font: {e}"))?;
-            anyhow::ensure!(
-                given.sha256 == want.sha256,
-                "{origin}: --font {f} (sha256 {}) is not the font the job was compiled with \
-                 ({:?}, sha256 {}); pass that font file, or leave --font out for the embedded font",
-                given.sha256,
-                want.name,
-                want.sha256
-            );
-            Ok(Some(f.to_string()))
-        }
-    }
-}
-
-/// The job re-planned with another tilt method, with its own robot
-/// description, font, message, letter height, lane width and period.
-fn replan(job: &Job, tilt: Tilt, font: Option<String>) -> anyhow::Result<Job> {
-    use basr::robot::Robot;
-    // The job's description passed its hash check; read it back through the
-    // validator so a sealed job with a broken robot is refused, not planned.
-    let robot = Robot::from_toml_str(&job.robot.to_toml_string(), "the job's robot description")
-        .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
-    let mut req = CompileRequest::message(&job.message.replace('\n', " "));
-    req.source = Source::Message(job.message.replace('\n', " "));
-    req.overrides.letter_height_m = Some(job.layout.letter_height_m);
-    req.overrides.lane_width_m = Some(job.layout.lane_width_m);
-    req.robot_description = Some(robot);
-    req.font = font;
-    req.period_s = job.control_period_s;
-    req.tilt = tilt;
-    compile_job(&req).with_context(|| {
-        format!(
-            "--compare: re-planning {:?} with tilt {}",
-            job.message,
-            tilt.name()
-        )
-    })
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
@@ -239,10 +176,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(f) = &args.font {
         inputs.push(("the font file (--font)", std::path::Path::new(f)));
     }
+    if let Some(m) = &args.marking {
+        inputs.push(("the marking file (--marking)", m));
+    }
     super::refuse_clashes(&[("the SVG (-o)", &out)], &inputs)?;
     super::outputs::check("-o", &out, &["svg"])?;
     basr::io::check_writable(&out)?;
     let job = super::read_job(&args.job, &args.trust)?;
+    // a correctly sealed job can still hold a tilt of 90° or a row at
+    // t = 1e9 s: `basr check`'s content checks first (exit 2)
+    super::simulate::content_checks(&job, &args.job)?;
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {
@@ -251,19 +194,26 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         let tilts: Vec<Tilt> = args
             .compare
             .iter()
-            .map(|m| parse_tilt(m))
+            .map(|m| replan::parse_tilt(m))
             .collect::<anyhow::Result<_>>()?;
-        let font = if tilts.iter().any(|t| t.name() != job.layout.tilt_method) {
-            replan_font(&job, &origin, args.font.as_deref())?
+        let plan = if tilts.iter().any(|t| t.name() != job.layout.tilt_method) {
+            let font = replan::replan_font(&job, &origin, args.font.as_deref())?;
+            Some(replan::recover(
+                &job,
+                &origin,
+                font,
+                args.marking.as_deref(),
+            )?)
         } else {
             None
         };
         let mut v = Vec::new();
         for tilt in tilts {
-            if job.layout.tilt_method == tilt.name() {
-                v.push((job.clone(), false));
-            } else {
-                v.push((replan(&job, tilt, font.clone())?, true));
+            match &plan {
+                Some(p) if job.layout.tilt_method != tilt.name() => {
+                    v.push((replan::replan(&job, tilt, p)?, true))
+                }
+                _ => v.push((job.clone(), false)),
             }
         }
         v
@@ -413,11 +363,12 @@ fn preview_simulated(
 ) -> anyhow::Result<Preview> {
     use basr::paint::spray::{equivalent_fan, Pose};
     use basr::sim;
-    let model = sim::SimModel::from_robot(&job.robot)
+    let robot = super::basr_of(job, "preview --simulated")?;
+    let model = sim::SimModel::from_robot(robot)
         .map_err(|e| anyhow::anyhow!("the job's robot has no usable dynamics: {e}"))?;
     let sim_opts = sim::Options {
         controller: sim::ControllerKind::Sjct,
-        tolerance_m: job.robot.control.accuracy_m,
+        tolerance_m: robot.control.accuracy_m,
         keep_trace: true,
         substeps: None,
     };
@@ -446,7 +397,7 @@ fn preview_simulated(
     };
     // What the simulated joints add at a tick: the actual nozzle point, and
     // the deviations of height, fan direction and tilt from the planned.
-    let tilt_of = |nut: f64| job.robot.tilt_from_nut(nut).ok();
+    let tilt_of = |nut: f64| robot.tilt_from_nut(nut).ok();
     let actual: Vec<[f64; 5]> = trace
         .iter()
         .map(|r| {

@@ -69,11 +69,12 @@ fn read_sim(path: &Path) -> anyhow::Result<SimVerdict> {
 
 fn simulate(job: &basr::job::Job, show: bool) -> anyhow::Result<SimVerdict> {
     use basr::sim;
-    let model = sim::SimModel::from_robot(&job.robot)
+    let robot = super::basr_of(job, "report")?;
+    let model = sim::SimModel::from_robot(robot)
         .map_err(|e| anyhow::anyhow!("the job's robot cannot be simulated: {e} (use --no-sim)"))?;
     let opts = sim::Options {
         controller: sim::ControllerKind::Sjct,
-        tolerance_m: job.robot.control.accuracy_m,
+        tolerance_m: robot.control.accuracy_m,
         keep_trace: false,
         substeps: None,
     };

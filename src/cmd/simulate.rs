@@ -43,6 +43,7 @@ impl From<ControllerArg> for ControllerKind {
   basr simulate STOP.job.json --controller pid --svg stop-sim.svg --trace stop-sim.csv
   basr simulate STOP.job.json --json | jq .max_error_m
   basr simulate STOP.job.json --plants 40 --spread 0.1 --seed 7   # verdict on p95 of 40 plants
+  basr simulate STOP.job.json --fault valve-stuck@30   # does the arm stop, where, how much paint off the path
 
 Exit codes: 0 pass, 1 over tolerance or a limit violated, 2 bad input
 (unreadable or edited job, job for another robot description).")]
@@ -98,17 +99,29 @@ pub struct Args {
     #[arg(long, default_value_t = 1, value_name = "S")]
     pub seed: u64,
 
+    /// Inject a hardware fault at a time of the job: supply-drop@T (the
+    /// supply vents to tank), encoder-glitch@T (the base encoder jumps by
+    /// 1000 counts), valve-stuck@T (the base motor's spool jams). May be
+    /// given up to 8 times. The report says when the safety monitor stopped
+    /// the arm, where it came to rest and how much paint went off the path.
+    #[arg(long, value_name = "KIND@T", value_parser = parse_fault)]
+    pub fault: Vec<sim::fault::Fault>,
+
     /// RK4 sub-steps per 5 ms control period (default: the model's, 1 ms steps), 1–100.
     #[arg(allow_hyphen_values = true, long, hide = true,
           value_parser = clap::value_parser!(u32).range(1..=100))]
     pub substeps: Option<u32>,
 }
 
+fn parse_fault(s: &str) -> Result<sim::fault::Fault, String> {
+    s.parse()
+}
+
 /// Before any work, the same content checks as `basr check` (time base,
 /// indices, joint limits, forward kinematics of the columns): a correctly
 /// sealed job can still hold a tilt of 90° or a row at t = 1e9 s.
 /// Exit 2 naming every problem found.
-fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
+pub fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::Result<()> {
     let problems = basr::job::verify::problems(job, &path.display().to_string());
     if !problems.is_empty() {
         anyhow::bail!(
@@ -130,6 +143,20 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         anyhow::bail!(
             "--tolerance-mm {} must be a positive number of millimetres",
             args.tolerance_mm
+        );
+    }
+    if !args.fault.is_empty() && args.plants > 1 {
+        anyhow::bail!(
+            "--fault and --plants {} together: a fault is simulated on the description's plant \
+             alone; leave one of them out",
+            args.plants
+        );
+    }
+    if args.fault.len() > sim::fault::MAX_FAULTS {
+        anyhow::bail!(
+            "{} --fault flags: give at most {}",
+            args.fault.len(),
+            sim::fault::MAX_FAULTS
         );
     }
     let mut outputs: Vec<(&str, &std::path::Path)> = vec![];
@@ -154,7 +181,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::check_writable(p)?;
     }
     let job = super::read_job(&args.job, &args.trust)?;
-    let robot = basr::robot::Robot::load_or_default(args.robot.as_deref())?;
+    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     let want = robot.sha256();
     if job.robot_sha256 != want {
         anyhow::bail!(
@@ -168,7 +195,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         );
     }
     content_checks(&job, &args.job)?;
-    let model = sim::SimModel::from_robot(&job.robot).map_err(|e| {
+    let Some(basr_robot) = job.robot.basr() else {
+        return run_servo(&args, global, &job);
+    };
+    let model = sim::SimModel::from_robot(basr_robot).map_err(|e| {
         anyhow::anyhow!(
             "{}: the robot description cannot be simulated: {e}",
             args.job.display()
@@ -193,7 +223,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     } else {
         indicatif::ProgressBar::hidden()
     };
-    let outcome = sim::simulate(&job, &model, &opts, &mut |done, total| {
+    let outcome = sim::simulate_faulted(&job, &model, &opts, &args.fault, &mut |done, total| {
         bar.set_length(total);
         bar.set_position(done);
     })?;
@@ -249,6 +279,37 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     if args.json {
         basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
+    } else if !global.quiet {
+        crate::note_text(&report.human());
+    }
+    Ok(if report.passed() {
+        Outcome::Success
+    } else {
+        Outcome::Negative
+    })
+}
+
+/// An electric kind's job (telescopic, articulated): its servo plant
+/// (`sim::servo_job`); the hydraulic options do not apply and are refused.
+fn run_servo(args: &Args, global: &Global, job: &basr::job::Job) -> anyhow::Result<Outcome> {
+    let kind = job.robot.kind().name();
+    for (given, flag) in [
+        (args.trace.is_some(), "--trace"),
+        (args.svg.is_some(), "--svg"),
+        (args.plants > 1, "--plants"),
+        (args.substeps.is_some(), "--substeps"),
+        (!args.fault.is_empty(), "--fault"),
+    ] {
+        if given {
+            anyhow::bail!(
+                "{flag} is for BASR's hydraulic simulation; the job's robot is of the {kind} kind, \
+                 simulated by its servo plant without it: leave {flag} out (docs/robot-kinds.md)"
+            );
+        }
+    }
+    let report = sim::servo_job::simulate_job(job, args.tolerance_mm * 1e-3)?;
+    if args.json {
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&report)? + "\n"))?;
     } else if !global.quiet {
         crate::note_text(&report.human());
     }

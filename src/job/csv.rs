@@ -9,7 +9,8 @@ use super::{Samples, COLUMNS};
 pub fn write(samples: &Samples, path: &Path) -> anyhow::Result<String> {
     Ok(crate::io::write_output(path, None, |w| {
         let mut out = ::csv::Writer::from_writer(w);
-        out.write_record(COLUMNS).map_err(std::io::Error::other)?;
+        out.write_record(samples.header())
+            .map_err(std::io::Error::other)?;
         for i in 0..samples.len() {
             out.write_record(samples.csv_fields(i))
                 .map_err(std::io::Error::other)?;
@@ -91,7 +92,8 @@ pub fn check_source(text: &str, origin: &str) -> Vec<String> {
             continue;
         }
         for (name, f) in names.iter().zip(&fields) {
-            let ok = if INTEGER_COLUMNS.contains(name) {
+            // The electric kinds' encoder columns are `enc_…` too.
+            let ok = if INTEGER_COLUMNS.contains(name) || name.starts_with("enc_") {
                 f.parse::<i64>().is_ok()
             } else {
                 f.parse::<f64>().is_ok_and(f64::is_finite)
@@ -177,7 +179,8 @@ fn first_difference(
 ) -> Option<String> {
     let s = &job.samples;
     let mut lines = text.split('\n');
-    let header = COLUMNS.join(",");
+    let columns = s.header();
+    let header = columns.join(",");
     if lines.next() != Some(header.as_str()) {
         return Some(format!("{origin}:1: the header is not the job's columns"));
     }
@@ -191,7 +194,7 @@ fn first_difference(
             ));
         };
         let got: Vec<&str> = got.split(',').collect();
-        for (c, name) in COLUMNS.iter().enumerate() {
+        for (c, name) in columns.iter().enumerate() {
             let g = got.get(c).copied().unwrap_or("(nothing)");
             if g != want[c] {
                 return Some(format!(
@@ -200,11 +203,11 @@ fn first_difference(
                 ));
             }
         }
-        if got.len() != COLUMNS.len() {
+        if got.len() != columns.len() {
             return Some(format!(
                 "{origin}:{line}: row {i} has {} fields, the job's rows {}",
                 got.len(),
-                COLUMNS.len()
+                columns.len()
             ));
         }
     }

@@ -22,7 +22,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 /// `format` value of every job document.
 pub const FORMAT: &str = "basr-job";
@@ -256,6 +256,17 @@ macro_rules! samples_struct {
         #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
         pub struct Samples {
             $(pub $name: Vec<$ty>,)*
+            /// The electric kinds' own columns (docs/robot-kinds.md): the
+            /// kind's five joint names, then their five encoder names;
+            /// empty for BASR, whose joints are SPEC §3's columns.
+            #[serde(default, skip_serializing_if = "Vec::is_empty")]
+            pub kind_columns: Vec<String>,
+            /// Per row, the kind's joints in `kind_columns` order (empty for BASR).
+            #[serde(default, skip_serializing_if = "Vec::is_empty")]
+            pub kind_joints: Vec<[f64; 5]>,
+            /// Per row, the kind's encoder counts (empty for BASR).
+            #[serde(default, skip_serializing_if = "Vec::is_empty")]
+            pub kind_encoders: Vec<[i64; 5]>,
         }
 
         /// CSV column names, in SPEC order.
@@ -267,7 +278,7 @@ macro_rules! samples_struct {
                 $(self.$name.push(r.$name);)*
             }
 
-            /// Row `i`, or `None` past the end.
+            /// Row `i` (SPEC §3's columns), or `None` past the end.
             pub fn row(&self, i: usize) -> Option<SampleRow> {
                 if i >= self.len() {
                     return None;
@@ -284,12 +295,18 @@ macro_rules! samples_struct {
                         stringify!($name), self.$name.len(), n
                     ));
                 })*
+                self.check_kind_lengths(n)?;
                 Ok(n)
             }
 
-            /// Row `i` as CSV fields, in `COLUMNS` order.
+            /// Row `i` as CSV fields, in [`Samples::header`] order.
             pub fn csv_fields(&self, i: usize) -> Vec<String> {
-                vec![$(self.$name[i].to_string()),*]
+                let mut out = vec![$(self.$name[i].to_string()),*];
+                if let (Some(q), Some(e)) = (self.kind_joints.get(i), self.kind_encoders.get(i)) {
+                    out.extend(q.iter().map(f64::to_string));
+                    out.extend(e.iter().map(i64::to_string));
+                }
+                out
             }
         }
     };
@@ -321,6 +338,38 @@ samples_struct! {
 }
 
 impl Samples {
+    /// CSV column names: SPEC §3's, then the kind's own (none for BASR).
+    pub fn header(&self) -> Vec<&str> {
+        let mut h: Vec<&str> = COLUMNS.to_vec();
+        h.extend(self.kind_columns.iter().map(String::as_str));
+        h
+    }
+
+    /// Append the kind's joints and encoder counts of the last row pushed.
+    pub fn push_kind(&mut self, q: [f64; 5], enc: [i64; 5]) {
+        self.kind_joints.push(q);
+        self.kind_encoders.push(enc);
+    }
+
+    /// The kind's columns are all there or all absent, one value per row.
+    fn check_kind_lengths(&self, n: usize) -> Result<(), String> {
+        let (c, q, e) = (
+            self.kind_columns.len(),
+            self.kind_joints.len(),
+            self.kind_encoders.len(),
+        );
+        if c == 0 && q == 0 && e == 0 {
+            return Ok(());
+        }
+        if c != 10 || q != n || e != n {
+            return Err(format!(
+                "samples kind_columns has {c} names (10 expected), kind_joints {q} rows and \
+                 kind_encoders {e} rows, but t_s has {n}"
+            ));
+        }
+        Ok(())
+    }
+
     /// Number of rows (length of `t_s`).
     pub fn len(&self) -> usize {
         self.t_s.len()
@@ -361,7 +410,8 @@ pub struct Job {
     pub version: u32,
     pub message: String,
     pub font: FontRef,
-    pub robot: Robot,
+    /// The description planned for, of any kind (SPEC §8).
+    pub robot: AnyRobot,
     pub robot_sha256: String,
     pub paint: Paint,
     pub control_period_s: f64,
@@ -487,7 +537,7 @@ mod tests {
                 name: "test".into(),
                 sha256: String::new(),
             },
-            robot: Robot::basr(),
+            robot: crate::robot::Robot::basr().into(),
             robot_sha256: String::new(),
             paint: Paint {
                 fan_angle_rad: 1.108,

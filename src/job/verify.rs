@@ -3,7 +3,7 @@
 //! agreement of the nozzle columns with the joints. Reports every problem.
 
 use super::Job;
-use crate::robot::Joints;
+use crate::robot::{Joints, Q};
 
 /// Relative slack on velocity and acceleration limits: finite differences of
 /// a trajectory that keeps a limit stay within it; this only absorbs the
@@ -59,6 +59,83 @@ fn joints_at(job: &Job, i: usize) -> Joints {
         vertical_m: s.vertical_m[i],
         ee_yaw_rad: s.ee_yaw_rad[i],
         tilt_rad: s.tilt_rad[i],
+    }
+}
+
+/// The joints of row `i` in the robot kind's order: BASR's SPEC §3
+/// columns, or an electric kind's own (`kind_joints`; zeros when missing,
+/// reported by `kind_columns`).
+fn q_at(job: &Job, i: usize) -> Q {
+    match job.robot.basr() {
+        Some(_) => joints_at(job, i).values(),
+        None => job.samples.kind_joints.get(i).copied().unwrap_or([0.0; 5]),
+    }
+}
+
+/// An electric kind's job names its own columns and leaves BASR's joint,
+/// actuator and encoder columns at 0 (docs/robot-kinds.md); a BASR job has
+/// no kind columns.
+fn kind_columns(job: &Job, origin: &str, c: &mut Collector) {
+    let s = &job.samples;
+    let r = &job.robot;
+    if r.basr().is_some() {
+        if !s.kind_columns.is_empty() || !s.kind_joints.is_empty() {
+            c.add(
+                "columns",
+                format!("{origin}: a BASR job holds another kind's joint columns"),
+            );
+        }
+        return;
+    }
+    let mut want: Vec<String> = r.joint_names().iter().map(|n| n.to_string()).collect();
+    want.extend(r.encoder_names());
+    if s.kind_columns != want || s.kind_joints.len() != s.len() {
+        c.add(
+            "columns",
+            format!(
+                "{origin}: samples.kind_columns are {:?} with {} rows, but the {} kind's are {want:?} \
+                 with one per setpoint",
+                s.kind_columns,
+                s.kind_joints.len(),
+                r.kind().name()
+            ),
+        );
+    }
+    let basr_only = [
+        ("base_rot_rad", &s.base_rot_rad),
+        ("extension_m", &s.extension_m),
+        ("cylinder_m", &s.cylinder_m),
+        ("vertical_m", &s.vertical_m),
+        ("ee_yaw_rad", &s.ee_yaw_rad),
+        ("tilt_nut_m", &s.tilt_nut_m),
+    ];
+    for (name, col) in basr_only {
+        if let Some(i) = col.iter().position(|&v| v != 0.0) {
+            c.add(
+                "columns",
+                format!(
+                    "{origin}: row {i}: {name} is {} but it is BASR's column, 0 in a {} job",
+                    col[i],
+                    r.kind().name()
+                ),
+            );
+        }
+    }
+    let encs = [
+        &s.enc_base,
+        &s.enc_extension,
+        &s.enc_yaw,
+        &s.enc_tilt,
+        &s.enc_vertical,
+    ];
+    if let Some(i) = (0..s.len()).find(|&i| encs.iter().any(|e| e[i] != 0)) {
+        c.add(
+            "columns",
+            format!(
+                "{origin}: row {i}: BASR's encoder columns are not 0 in a {} job",
+                r.kind().name()
+            ),
+        );
     }
 }
 
@@ -133,21 +210,17 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
             );
         }
     }
+    kind_columns(job, origin, &mut c);
     // Joint limits, with velocity and acceleration by finite differences.
     let robot = &job.robot;
-    for (name, lim) in robot.limits.iter() {
-        let col: Vec<f64> = (0..n)
-            .map(|i| {
-                let j = joints_at(job, i);
-                match name {
-                    "base_rot_rad" => j.base_rot_rad,
-                    "extension_m" => j.extension_m,
-                    "vertical_m" => j.vertical_m,
-                    "ee_yaw_rad" => j.ee_yaw_rad,
-                    _ => j.tilt_rad,
-                }
-            })
-            .collect();
+    let qs: Vec<Q> = (0..n).map(|i| q_at(job, i)).collect();
+    for (j, (name, lim)) in robot
+        .joint_names()
+        .into_iter()
+        .zip(robot.limits())
+        .enumerate()
+    {
+        let col: Vec<f64> = qs.iter().map(|q| q[j]).collect();
         for (i, &v) in col.iter().enumerate() {
             if v < lim.min - POS_TOL || v > lim.max + POS_TOL {
                 c.add(
@@ -190,8 +263,10 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
             }
         }
     }
-    // Ball-nut speed of the tilt drive (its own limit, SPEC §4).
-    let nut_lim = robot.end_effector.tilt_nut_max_speed_mps;
+    // Ball-nut speed of BASR's tilt drive (its own limit, SPEC §4).
+    let nut_lim = robot
+        .basr()
+        .map_or(f64::INFINITY, |b| b.end_effector.tilt_nut_max_speed_mps);
     for i in 1..n {
         let v = (s.tilt_nut_m[i] - s.tilt_nut_m[i - 1]) / p;
         if v.abs() > nut_lim * (1.0 + REL_TOL) + 1e-12 {
@@ -207,11 +282,11 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
         }
     }
     // Nozzle columns against the joints.
-    for i in 0..n {
+    for (i, q) in qs.iter().enumerate() {
         let Some(st) = job.stations.get(s.station[i] as usize) else {
             continue;
         };
-        let pose = robot.fk(&joints_at(job, i));
+        let pose = robot.fk(q);
         let r = crate::plan::stations::base_to_road(st, [pose.x_m, pose.y_m]);
         let yaw = crate::robot::kinematics::wrap_pi(
             pose.yaw_rad + st.heading_rad - std::f64::consts::FRAC_PI_2,
@@ -248,7 +323,7 @@ fn settings(job: &Job, origin: &str, c: &mut Collector) {
             format!("{origin}: the job's robot description: field `robot.{field}`: {what}"),
         );
     }
-    let want = super::Paint::of(&job.robot.paint);
+    let want = super::Paint::of(job.robot.paint());
     let stated = &job.paint;
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1e-12);
     for (name, a, b) in [
@@ -296,36 +371,22 @@ fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
     let p = job.control_period_s;
     let robot = &job.robot;
     for i in 0..n {
-        let j = joints_at(job, i);
-        let act = robot.actuators(&j);
-        let enc = robot.encoders(&j);
-        let off = (act.cylinder_m - s.cylinder_m[i])
-            .abs()
-            .max((act.tilt_nut_m - s.tilt_nut_m[i]).abs());
-        if off.is_nan() || off > FK_TOL {
-            c.add(
-                "actuator",
-                format!(
-                    "{origin}: row {i}: cylinder_m {} / tilt_nut_m {} are not what the robot                      model gives for the joints ({} / {})",
-                    s.cylinder_m[i], s.tilt_nut_m[i], act.cylinder_m, act.tilt_nut_m
-                ),
-            );
-        }
-        let stated = [
-            s.enc_base[i],
-            s.enc_extension[i],
-            s.enc_yaw[i],
-            s.enc_tilt[i],
-            s.enc_vertical[i],
-        ];
-        let want = [enc.base, enc.extension, enc.yaw, enc.tilt, enc.vertical];
-        if stated != want {
-            c.add(
-                "encoder",
-                format!(
-                    "{origin}: row {i}: encoder counts {stated:?} (base, extension, yaw, tilt,                      vertical) are not the robot model's {want:?} for the joints"
-                ),
-            );
+        match robot.basr() {
+            Some(b) => basr_derived(job, b, i, origin, c),
+            None => {
+                let want = robot.encoders(&q_at(job, i));
+                let stated = s.kind_encoders.get(i).copied();
+                if stated != Some(want) {
+                    c.add(
+                        "encoder",
+                        format!(
+                            "{origin}: row {i}: encoder counts {stated:?} ({}) are not the robot \
+                             model's {want:?} for the joints",
+                            robot.encoder_names().join(", ")
+                        ),
+                    );
+                }
+            }
         }
         if (s.paint[i] == 0) != (s.width_m[i] == 0.0) {
             c.add(
@@ -355,6 +416,44 @@ fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
                 ),
             );
         }
+    }
+}
+
+/// BASR's actuator and encoder columns of row `i` against its model.
+fn basr_derived(job: &Job, robot: &crate::robot::Robot, i: usize, origin: &str, c: &mut Collector) {
+    let s = &job.samples;
+    let j = joints_at(job, i);
+    let act = robot.actuators(&j);
+    let enc = robot.encoders(&j);
+    let off = (act.cylinder_m - s.cylinder_m[i])
+        .abs()
+        .max((act.tilt_nut_m - s.tilt_nut_m[i]).abs());
+    if off.is_nan() || off > FK_TOL {
+        c.add(
+            "actuator",
+            format!(
+                "{origin}: row {i}: cylinder_m {} / tilt_nut_m {} are not what the robot \
+                 model gives for the joints ({} / {})",
+                s.cylinder_m[i], s.tilt_nut_m[i], act.cylinder_m, act.tilt_nut_m
+            ),
+        );
+    }
+    let stated = [
+        s.enc_base[i],
+        s.enc_extension[i],
+        s.enc_yaw[i],
+        s.enc_tilt[i],
+        s.enc_vertical[i],
+    ];
+    let want = [enc.base, enc.extension, enc.yaw, enc.tilt, enc.vertical];
+    if stated != want {
+        c.add(
+            "encoder",
+            format!(
+                "{origin}: row {i}: encoder counts {stated:?} (base, extension, yaw, tilt, \
+                 vertical) are not the robot model's {want:?} for the joints"
+            ),
+        );
     }
 }
 
@@ -389,7 +488,7 @@ fn summary_totals(job: &Job, origin: &str, c: &mut Collector) {
         (
             "paint_volume_m3",
             sum.paint_volume_m3,
-            job.robot.paint.flow_m3ps * paint_time,
+            job.robot.paint().flow_m3ps * paint_time,
             "the nozzle flow × the paint time",
         ),
     ];

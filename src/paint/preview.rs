@@ -309,6 +309,13 @@ const GLYPH_HEADER: [&str; 8] = [
 ];
 const GLYPH_WIDTHS: [f64; 8] = [60.0, 35.0, 60.0, 60.0, 55.0, 65.0, 65.0, 70.0];
 
+/// A panel's per-glyph table: its rows and their column widths.
+fn glyph_table(p: &Panel) -> (Vec<Vec<String>>, Vec<f64>) {
+    let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+    let widths = plot::fit_widths(&GLYPH_WIDTHS, &GLYPH_HEADER, &rows);
+    (rows, widths)
+}
+
 /// Road extent a panel shows: the film raster, the nozzle path and stations.
 fn panel_bounds(p: &Panel) -> Bounds {
     let mut b = p.preview.film.grid.bounds();
@@ -392,7 +399,7 @@ fn page(panels: &[Panel]) -> Page {
         header.push(("message".into(), p.job.message.replace('\n', " / ")));
         header.push((
             "robot".into(),
-            format!("{} ({} stations)", p.job.robot.name, p.job.stations.len()),
+            format!("{} ({} stations)", p.job.robot.name(), p.job.stations.len()),
         ));
         if panels.len() == 1 {
             header.push(("tilt method".into(), p.job.layout.tilt_method.clone()));
@@ -424,9 +431,9 @@ fn page(panels: &[Panel]) -> Page {
     let mut frames = Vec::new();
     if panels.len() > 1 {
         let mut x = margin;
-        for ext in &extents {
+        for (ext, p) in extents.iter().zip(panels) {
             let frame = Frame::new(x, map_top, px_per_m, ext.min, ext.max);
-            x += frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+            x += frame.width_px().max(glyph_table(p).1.iter().sum()) + 60.0;
             frames.push(frame);
         }
     } else {
@@ -498,16 +505,16 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
             right = right.max(frame.left_px + frame.width_px() + 60.0);
         }
         let table_top = bottom + 50.0;
-        let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+        let (rows, widths) = glyph_table(p);
         doc_g = doc_g.add(plot::table(
             margin,
             table_top,
-            &GLYPH_WIDTHS,
+            &widths,
             &GLYPH_HEADER,
             &rows,
         ));
         bottom = table_top + plot::table_height(rows.len());
-        right = right.max(margin + GLYPH_WIDTHS.iter().sum::<f64>() + 60.0);
+        right = right.max(margin + widths.iter().sum::<f64>() + 60.0);
     }
     for (p, frame) in panels
         .iter()
@@ -536,16 +543,16 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
         }
         doc_g = doc_g.add(draw_panel(p, frame, vmax));
         let table_top = map_top + frame.height_px() + 50.0;
-        let rows = glyph_rows(&p.preview.metrics, &p.preview.outlines);
+        let (rows, widths) = glyph_table(p);
         doc_g = doc_g.add(plot::table(
             frame.left_px,
             table_top,
-            &GLYPH_WIDTHS,
+            &widths,
             &GLYPH_HEADER,
             &rows,
         ));
         bottom = bottom.max(table_top + plot::table_height(rows.len()));
-        right = frame.left_px + frame.width_px().max(GLYPH_WIDTHS.iter().sum()) + 60.0;
+        right = frame.left_px + frame.width_px().max(widths.iter().sum()) + 60.0;
     }
     // The shared colour bar.
     let dummy = [0.0];

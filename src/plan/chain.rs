@@ -12,11 +12,12 @@
 //! joint's range is flattened (tangents scaled down, at worst to zero: the
 //! arm then stops at the seam, and the stop is reported with its reason).
 
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 use super::joints::Run;
-use super::timing::PathPoint;
-use super::trajectory::{arc_lengths, joints_of, Q};
+use super::timing::sync::{min_time, synced, Ends};
+use super::timing::{JointLimits, PathPoint};
+use super::trajectory::{arc_lengths, Q};
 
 /// Path-parameter rate standing in for the joints' own motion in a blend
 /// (m of s per s of the slowest joint at its speed limit). assumed: about
@@ -99,26 +100,68 @@ impl Chain {
     }
 }
 
-/// Chain `runs` (at least one) into one path.
-pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
+/// Chain `runs` (at least one) into one path: flown joins (`flown`)
+/// from each stroke's last rung straight into the next one's first where
+/// they stay in the joints' ranges, else the leads and a blend.
+///
+/// `slow_joins` (stroke entered, share): the joins into those strokes are
+/// designed to that share of the accelerations (and its square root of the
+/// speeds) and flown no faster, where the verification found the arm
+/// arriving behind.
+pub fn chain(
+    robot: &AnyRobot,
+    runs: &[Run],
+    limits: &JointLimits<5>,
+    slow_joins: &[(usize, f64)],
+) -> Chain {
     let mut out = Chain {
         points: vec![],
         spans: vec![],
         arcs: vec![],
         stops: vec![],
     };
+    let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
+    // flown[i]: the join from run i's last rung into run i + 1's first.
+    let mut flown: Vec<Option<Blend>> = (1..runs.len())
+        .map(|ri| {
+            let share = slow_joins
+                .iter()
+                .find(|(st, _)| *st == runs[ri].stroke)
+                .map_or(1.0, |&(_, f)| f);
+            let design = JointLimits {
+                vel: limits.vel.map(|v| v * share.sqrt()),
+                acc: limits.acc.map(|v| v * share),
+                jerk: limits.jerk,
+            };
+            let joined = (&runs[ri - 1], &arcs[ri - 1][..], &runs[ri], &arcs[ri][..]);
+            flown(robot, &design, joined, share < 1.0)
+        })
+        .collect();
+    // Leads where the stroke needs a run-up; none where the join flies in
+    // at speed or the stroke carries on from the last one (same place, same
+    // heading: the nozzle flies straight on from paint into paint).
+    let direct: Vec<bool> = (1..runs.len())
+        .map(|ri| flown[ri - 1].is_some() || continues(&runs[ri - 1], &runs[ri]))
+        .collect();
+    // dq/ds at the rungs a flown join leaves from and arrives at, so the
+    // time law's spline meets the join with the join's own tangents.
+    let mut rate_out: Vec<Option<Q>> = vec![None; runs.len()];
+    let mut rate_in: Vec<Option<Q>> = vec![None; runs.len()];
+    for (i, b) in flown.iter().enumerate() {
+        if let Some((ra, rb)) = b.as_ref().and_then(|b| b.seam_rates) {
+            rate_out[i] = Some(ra);
+            rate_in[i + 1] = Some(rb);
+        }
+    }
     let mut s = 0.0;
     for (ri, run) in runs.iter().enumerate() {
-        let arcs = arc_lengths(&run.knots);
-        // Leads where the stroke needs a run-up; none where it carries on
-        // from the last one (same place, same heading: the nozzle flies
-        // straight on from paint into paint).
-        let lo = if ri > 0 && continues(&runs[ri - 1], run) {
+        let arcs = arcs[ri].clone();
+        let lo = if ri > 0 && direct[ri - 1] {
             run.paint_first
         } else {
             0
         };
-        let hi = if runs.get(ri + 1).is_some_and(|next| continues(run, next)) {
+        let hi = if ri + 1 < runs.len() && direct[ri] {
             run.paint_last
         } else {
             run.knots.len() - 1
@@ -126,15 +169,23 @@ pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
         if ri > 0 {
             let prev = &runs[ri - 1];
             let from = out.spans[ri - 1].hi;
-            let (blend, stop) = blend(robot, prev, &out.arcs[ri - 1], from, run, &arcs, lo);
-            if let Some(why) = stop {
-                out.stops.push((ri, why));
-            }
-            for (ds, q) in blend.inner {
+            let blend = match flown[ri - 1].take() {
+                Some(b) => b,
+                None => {
+                    let (blend, stop) = blend(robot, prev, &out.arcs[ri - 1], from, run, &arcs, lo);
+                    if let Some(why) = stop {
+                        out.stops.push((ri, why));
+                    }
+                    blend
+                }
+            };
+            for (ds, q, cap, dq_ds) in blend.inner {
                 out.points.push(PathPoint {
                     s_m: s + ds,
                     q,
-                    max_speed_mps: None,
+                    max_speed_mps: cap,
+                    cap_only: true,
+                    dq_ds,
                 });
             }
             s += blend.length;
@@ -156,17 +207,177 @@ pub fn chain(robot: &Robot, runs: &[Run]) -> Chain {
         {
             out.points.push(PathPoint {
                 s_m: offset + arcs[i],
-                q: j.values(),
+                q: *j,
                 // Leads are gun-off run-ups: as fast as the joints allow.
                 max_speed_mps: (run.paint_first..=run.paint_last)
                     .contains(&i)
                     .then_some(k.speed_mps),
+                cap_only: false,
+                dq_ds: match i {
+                    _ if i == lo => rate_in[ri],
+                    _ if i == hi => rate_out[ri],
+                    _ => None,
+                },
             });
         }
         s = offset + arcs[hi];
         out.arcs.push(arcs);
     }
     out
+}
+
+/// Share of the time law's limits a flown join is designed to, so the
+/// time law (its own 3 % margin and the spline through the join's
+/// waypoints) can follow it at the design speed. assumed: 10 %.
+const DESIGN_SHARE: f64 = 0.9;
+/// Share of that a flown join's last phase (arriving at the next stroke)
+/// accelerates at: the hydraulic arm lags a hard stop-and-go into the first
+/// rungs (the verified errors sat at the strokes' first rungs). assumed:
+/// half, chosen on STOP's and SCHOOL's verified errors.
+const ARRIVAL_SHARE: f64 = 0.5;
+/// Time between a flown join's waypoints (s). assumed: a quarter of the
+/// yaw servo's 0.1 s to full speed (000 app. C §3.2.1), so the spline
+/// through them keeps the ramps.
+const FLOWN_STEP_S: f64 = 0.025;
+/// Shortest flown join (m of s); below it the runs meet as they are.
+const FLOWN_MIN_M: f64 = 1e-3;
+
+/// One end of a join: a run's knots, joints and arc lengths, and the rung
+/// the join leaves from or arrives at.
+#[derive(Clone, Copy)]
+pub struct Side<'a> {
+    knots: &'a [super::knots::Knot],
+    joints: &'a [Q],
+    arcs: &'a [f64],
+    at: usize,
+    leaving: bool,
+}
+
+impl<'a> Side<'a> {
+    pub fn leaving(
+        knots: &'a [super::knots::Knot],
+        joints: &'a [Q],
+        arcs: &'a [f64],
+        at: usize,
+    ) -> Self {
+        Side {
+            knots,
+            joints,
+            arcs,
+            at,
+            leaving: true,
+        }
+    }
+
+    pub fn arriving(
+        knots: &'a [super::knots::Knot],
+        joints: &'a [Q],
+        arcs: &'a [f64],
+        at: usize,
+    ) -> Self {
+        Side {
+            leaving: false,
+            ..Side::leaving(knots, joints, arcs, at)
+        }
+    }
+
+    /// Painting speed and joints' rates (per s) at the rung.
+    fn state(&self) -> Option<(f64, Q, Q)> {
+        let v = self.knots.get(self.at)?.speed_mps;
+        let rate = end_rate(self.joints, self.arcs, self.at, self.leaving);
+        (v > 0.0).then(|| (v, self.joints[self.at], rate.map(|r| r * v)))
+    }
+}
+
+/// The end states of the join from `a` to `b` and its design limits, with
+/// the painting speeds at both rungs.
+fn seam_ends(limits: &JointLimits<5>, a: Side, b: Side) -> Option<(Ends<5>, f64, f64)> {
+    let ((va, p0, v0), (vb, p1, v1)) = (a.state()?, b.state()?);
+    let ends = Ends {
+        p0,
+        v0,
+        p1,
+        v1,
+        vel: limits.vel.map(|v| v * DESIGN_SHARE),
+        acc: limits.acc.map(|v| v * DESIGN_SHARE),
+        acc_end: limits.acc.map(|v| v * DESIGN_SHARE * ARRIVAL_SHARE),
+    };
+    Some((ends, va, vb))
+}
+
+/// Duration (s) of the join flown from `a` into `b` as `chain` designs it
+/// at full pace, estimated for ordering strokes; None where none is found.
+pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side) -> Option<f64> {
+    let (e, _, _) = seam_ends(limits, a, b)?;
+    // The slowest joint alone (the synchronised move can take a little
+    // longer where another joint cannot stretch to it).
+    Some(
+        (0..5)
+            .map(|j| {
+                let acc = [e.acc[j], e.acc_end[j]];
+                min_time((e.p0[j], e.v0[j]), (e.p1[j], e.v1[j]), e.vel[j], acc)
+            })
+            .fold(0.0, f64::max),
+    )
+    .filter(|t| t.is_finite())
+}
+
+/// The join flown from run a's last rung at its painting speed into run
+/// b's first at its own: every joint from its rate there to its rate at
+/// the other end in the same time, the shortest the slowest joint allows
+/// (`timing::sync`). Its path parameter runs at the nozzle's speed at both
+/// ends and changes at a constant rate between, so the path is C¹ at the
+/// rungs and the time law can fly it at that speed or faster. None where it
+/// would leave a joint's range.
+/// With `capped`, no waypoint of it may be flown faster than designed.
+fn flown(
+    robot: &AnyRobot,
+    limits: &JointLimits<5>,
+    (a, arcs_a, b, arcs_b): (&Run, &[f64], &Run, &[f64]),
+    capped: bool,
+) -> Option<Blend> {
+    let (ends, va, vb) = seam_ends(
+        limits,
+        Side::leaving(&a.knots, &a.joints, arcs_a, a.paint_last),
+        Side::arriving(&b.knots, &b.joints, arcs_b, b.paint_first),
+    )?;
+    let (ra, rb): (Q, Q) = (
+        std::array::from_fn(|j| ends.v0[j] / va),
+        std::array::from_fn(|j| ends.v1[j] / vb),
+    );
+    let m = synced(&ends)?;
+    let t_end = m.duration_s;
+    let length = 0.5 * (va + vb) * t_end;
+    if length < FLOWN_MIN_M {
+        return None;
+    }
+    let times = m.sample_times(FLOWN_STEP_S, BLEND_MAX_POINTS);
+    let mut inner = Vec::with_capacity(times.len());
+    for &t in &times[1..times.len().saturating_sub(1)] {
+        let (q, qd) = m.at(t);
+        let inside = robot
+            .limits()
+            .iter()
+            .zip(q)
+            .all(|(l, v)| v >= l.min && v <= l.max);
+        if !inside {
+            return None;
+        }
+        let rate = va + (vb - va) * t / t_end;
+        let cap = capped.then_some(rate);
+        let dq_ds = qd.map(|v| v / rate);
+        inner.push((
+            va * t + (vb - va) * t * t / (2.0 * t_end),
+            q,
+            cap,
+            Some(dq_ds),
+        ));
+    }
+    Some(Blend {
+        inner,
+        length,
+        seam_rates: Some((ra, rb)),
+    })
 }
 
 /// Largest gap (m) and turn of the travel direction (rad) between one
@@ -190,16 +401,19 @@ fn continues(a: &Run, b: &Run) -> bool {
 }
 
 struct Blend {
-    /// Waypoints strictly between the two runs: (s from the seam's start, q).
-    inner: Vec<(f64, Q)>,
+    /// Waypoints strictly between the two runs: (s from the seam's start,
+    /// q, the fastest ds/dt allowed there if any, and dq/ds there if known).
+    inner: Vec<(f64, Q, Option<f64>, Option<Q>)>,
+    /// A flown join's dq/ds at the rung it leaves and the one it reaches.
+    seam_rates: Option<(Q, Q)>,
     /// s from run a's last knot to run b's first.
     length: f64,
 }
 
 /// Joint rate per metre of s at knot `at` of a run, leaving it (`out`) or
 /// arriving (one-sided difference).
-fn end_rate(run: &Run, arcs: &[f64], at: usize, out: bool) -> Q {
-    let n = run.joints.len();
+fn end_rate(joints: &[Q], arcs: &[f64], at: usize, out: bool) -> Q {
+    let n = joints.len();
     if n < 2 {
         return [0.0; 5];
     }
@@ -208,14 +422,14 @@ fn end_rate(run: &Run, arcs: &[f64], at: usize, out: bool) -> Q {
     } else {
         (at.min(n - 2), at.min(n - 2) + 1)
     };
-    let (a, b) = (run.joints[i].values(), run.joints[k].values());
+    let (a, b) = (joints[i], joints[k]);
     let ds = arcs[k] - arcs[i];
     std::array::from_fn(|j| (b[j] - a[j]) / ds)
 }
 
 /// The blend from knot `from` of run a to knot `to` of run b.
 fn blend(
-    robot: &Robot,
+    robot: &AnyRobot,
     a: &Run,
     arcs_a: &[f64],
     from: usize,
@@ -223,18 +437,18 @@ fn blend(
     arcs_b: &[f64],
     to: usize,
 ) -> (Blend, Option<StopReason>) {
-    let qa = a.joints[from].values();
-    let qb = b.joints[to].values();
-    let ta = end_rate(a, arcs_a, from, true);
-    let tb = end_rate(b, arcs_b, to, false);
-    let pa = robot.fk(&joints_of(&qa));
-    let pb = robot.fk(&joints_of(&qb));
+    let qa = a.joints[from];
+    let qb = b.joints[to];
+    let ta = end_rate(&a.joints, arcs_a, from, true);
+    let tb = end_rate(&b.joints, arcs_b, to, false);
+    let pa = robot.fk(&qa);
+    let pb = robot.fk(&qb);
     let road = (pb.x_m - pa.x_m).hypot(pb.y_m - pa.y_m);
     let slowest = robot
-        .limits
+        .limits()
         .iter()
         .enumerate()
-        .map(|(j, (_, l))| (qb[j] - qa[j]).abs() / l.max_vel)
+        .map(|(j, l)| (qb[j] - qa[j]).abs() / l.max_vel)
         .fold(0.0, f64::max);
     let length = road.max(slowest * BLEND_SPEED_MPS).max(BLEND_MIN_M);
     let m = ((length / BLEND_STEP_M).ceil() as usize).clamp(2, BLEND_MAX_POINTS);
@@ -265,7 +479,12 @@ fn blend(
     };
     let mut scales = [1.0; 5];
     let mut resting = vec![];
-    for (j, (name, l)) in robot.limits.iter().enumerate() {
+    for (j, (name, l)) in robot
+        .joint_names()
+        .into_iter()
+        .zip(robot.limits())
+        .enumerate()
+    {
         let fits = |scale: f64| {
             (1..m).all(|k| {
                 let q = hermite(j, k as f64 / m as f64, scale);
@@ -286,6 +505,8 @@ fn blend(
             (
                 u * length,
                 std::array::from_fn(|j| hermite(j, u, scales[j])),
+                None,
+                None,
             )
         })
         .collect();
@@ -293,5 +514,12 @@ fn blend(
     let moving = (0..5).filter(|&j| ta[j] != 0.0 || tb[j] != 0.0).count();
     let stop = (moving > 0 && resting.len() == moving)
         .then(|| StopReason::JointRange { joint: resting[0] });
-    (Blend { inner, length }, stop)
+    (
+        Blend {
+            inner,
+            length,
+            seam_rates: None,
+        },
+        stop,
+    )
 }

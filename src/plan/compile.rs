@@ -27,11 +27,12 @@ pub fn compile_strokes(
     req: &CompileRequest,
     marking: &layout::Marking,
     font: &crate::font::Font,
-    robot: crate::robot::Robot,
+    robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
     let rungs = rungs::rungs(strokes, req.rung_spacing_m);
-    let passes = passes::passes(strokes, &rungs, &robot, req.tilt.method())?;
+    let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
+    let passes = passes::passes(strokes, &rungs, &robot, tilt.method())?;
     let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)?;
     let tours = tours::tours(&passes, &plan, &robot);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
@@ -46,10 +47,11 @@ pub fn compile_strokes(
                 period_s: req.period_s,
                 gun_lead_s: req.gun_lead_s,
                 gun_lag_s: req.gun_lag_s,
-                pace,
+                pace: pace.clone(),
             },
         )?;
         let mut notes = strokes.notes.clone();
+        notes.extend(tilt_note.iter().cloned());
         notes.extend(passes.notes.iter().cloned());
         notes.extend(timed.notes.iter().cloned());
         let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
@@ -57,7 +59,7 @@ pub fn compile_strokes(
             marking,
             font,
             robot: robot.clone(),
-            tilt: req.tilt,
+            tilt,
             period_s: req.period_s,
             strokes,
             stations: plan.clone(),
@@ -75,12 +77,50 @@ pub fn compile_strokes(
             return Ok(job);
         }
         // Slow where the arm fell behind: the move out of stow when the
-        // worst error is on a station's first stroke, else the strokes' path.
+        // worst error is on a station's first stroke; else the joins into
+        // the strokes alone where the arm arrives behind at their first
+        // rungs (every such stroke at once); else the strokes' path.
         let (si, stroke) = verdict.worst;
-        let first = paths.stations.get(si as usize).and_then(|r| r.first());
-        let after_stow = first.is_some_and(|r| r.stroke as i64 == stroke) && pace.air > MIN_PACE;
+        let first_of = |si: u32, stroke: i64| {
+            paths
+                .stations
+                .get(si as usize)
+                .and_then(|r| r.first())
+                .is_some_and(|r| r.stroke as i64 == stroke)
+        };
+        let after_stow = first_of(si, stroke) && pace.air > MIN_PACE;
+        let mut joins_slowed = false;
+        if !after_stow {
+            // The worst stroke first; others over the bound only if far
+            // over it (the hydraulic supply couples them: slowing one often
+            // brings the others in).
+            let far = FAR_OVER * verify::VERIFY_SHARE * crate::sim::Options::default().tolerance_m;
+            let worst = (si, stroke, verdict.worst_t_s);
+            let others = verdict.failing.iter().filter(|f| f.1 != stroke);
+            let others = others.filter(|f| f.3 > far);
+            for (fs, fstroke, ft) in std::iter::once(worst).chain(others.map(|f| (f.0, f.1, f.2))) {
+                let arrival = !first_of(fs, fstroke)
+                    && paint_start(&job, fstroke).is_some_and(|t0| ft - t0 < ARRIVAL_S);
+                if !arrival {
+                    continue;
+                }
+                match pace.joins.iter().position(|(s, _)| *s as i64 == fstroke) {
+                    Some(k) if pace.joins[k].1 > MIN_PACE => {
+                        pace.joins[k].1 *= PACE_STEP;
+                        joins_slowed = true;
+                    }
+                    Some(_) => {}
+                    None => {
+                        pace.joins.push((fstroke as usize, PACE_STEP));
+                        joins_slowed = true;
+                    }
+                }
+            }
+        }
         if after_stow {
             pace.air *= PACE_STEP;
+        } else if joins_slowed {
+            continue;
         } else if pace.path > MIN_PACE {
             pace.path *= PACE_STEP;
         } else {
@@ -91,6 +131,24 @@ pub fn compile_strokes(
         }
     }
 }
+
+/// Job time at which stroke `stroke` starts painting.
+fn paint_start(job: &Job, stroke: i64) -> Option<f64> {
+    let s = &job.samples;
+    (0..s.stroke.len())
+        .find(|&i| s.stroke[i] == stroke && s.paint[i] == 1)
+        .map(|i| s.t_s[i])
+}
+
+/// An error this soon after a stroke starts painting is the join's into
+/// it (s). assumed: about the hydraulic arm's settling after a fast join
+/// (the verified errors sit within 0.1 s of the first rung).
+const ARRIVAL_S: f64 = 1.0;
+
+/// A stroke's error this many times the verified bound has its join slowed
+/// in the same round as the worst. assumed: 1.3, where one round of the
+/// worst's alone has not brought STOP's or SCHOOL's others in.
+const FAR_OVER: f64 = 1.3;
 
 /// Each re-timing uses this share of the last one's accelerations.
 /// assumed: a few steps reach `MIN_PACE` while each still gains.

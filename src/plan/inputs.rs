@@ -5,14 +5,14 @@
 use std::borrow::Cow;
 
 use crate::font::Font;
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 use super::error::CompileError;
 use super::request::CompileRequest;
 
 /// What a compile paints with, and with which font.
 pub struct Inputs {
-    pub robot: Robot,
+    pub robot: AnyRobot,
     pub font: Cow<'static, Font>,
 }
 
@@ -20,7 +20,7 @@ pub struct Inputs {
 pub fn read(req: &CompileRequest) -> Result<Inputs, CompileError> {
     let robot = match &req.robot_description {
         Some(r) => r.clone(),
-        None => Robot::load_or_default(req.robot.as_deref())
+        None => AnyRobot::load_or_default(req.robot.as_deref())
             .map_err(|e| CompileError::Robot(e.to_string()))?,
     };
     let font = match &req.font {

@@ -6,8 +6,9 @@ use std::f64::consts::FRAC_PI_2;
 
 use crate::job::Station;
 use crate::plan::knots::Knot;
-use crate::robot::{Joints, NozzlePose, Robot};
+use crate::robot::{AnyRobot, NozzlePose, Q};
 
+use super::chain::Side;
 use super::error::CompileError;
 use super::leads::{with_leads, LEAD_M};
 use super::passes::Passes;
@@ -23,7 +24,8 @@ pub struct Run {
     pub stroke: usize,
     /// Knots including the lead-in and lead-out.
     pub knots: Vec<Knot>,
-    pub joints: Vec<Joints>,
+    /// The robot kind's joints (`AnyRobot::joint_names` order) at each knot.
+    pub joints: Vec<Q>,
     /// Indices of the first and last painting knot in `knots`.
     pub paint_first: usize,
     pub paint_last: usize,
@@ -38,12 +40,50 @@ pub struct JointPaths {
 /// A pass's knots with leads and the joint solutions of each fan branch
 /// and yaw turn that follows the whole pass.
 struct Candidates {
+    /// 2 × the pass's place in the tour + reversed: the join costs' key.
+    id: usize,
     stroke: usize,
     knots: Vec<Knot>,
     paint_first: usize,
     paint_last: usize,
     /// (joint travel inside the pass, joints at every knot) per branch.
-    branches: Vec<(f64, Vec<Joints>)>,
+    branches: Vec<(f64, Vec<Q>)>,
+    arcs: Vec<f64>,
+}
+
+/// Flown join durations between passes' branches, each found once.
+struct JoinCosts {
+    limits: super::timing::JointLimits<5>,
+    /// (from id, its branch, to id, its branch) → s.
+    known: std::cell::RefCell<std::collections::HashMap<(usize, usize, usize, usize), f64>>,
+}
+
+impl JoinCosts {
+    fn new(robot: &AnyRobot) -> Self {
+        JoinCosts {
+            limits: super::trajectory::timing_limits(robot, 1.0),
+            known: Default::default(),
+        }
+    }
+
+    /// The join from pass a (branch ba) into pass b (branch bb): the flown
+    /// join's duration, or the rest-to-rest joint travel between their
+    /// leads where none is found.
+    fn join(&self, robot: &AnyRobot, a: &Candidates, ba: usize, b: &Candidates, bb: usize) -> f64 {
+        let key = (a.id, ba, b.id, bb);
+        if let Some(&t) = self.known.borrow().get(&key) {
+            return t;
+        }
+        let (ja, jb) = (&a.branches[ba].1, &b.branches[bb].1);
+        let t = super::chain::join_time(
+            &self.limits,
+            Side::leaving(&a.knots, ja, &a.arcs, a.paint_last),
+            Side::arriving(&b.knots, jb, &b.arcs, b.paint_first),
+        )
+        .unwrap_or_else(|| travel(robot, &ja[ja.len() - 1], &jb[0]));
+        self.known.borrow_mut().insert(key, t);
+        t
+    }
 }
 
 /// Solve every pass of every station for the joints, both ways round, and
@@ -59,7 +99,7 @@ pub fn joint_paths(
     passes: &Passes,
     plan: &StationPlan,
     tours: &Tours,
-    robot: &Robot,
+    robot: &AnyRobot,
 ) -> Result<JointPaths, CompileError> {
     let stow = stow_joints(robot);
     let mut out = JointPaths::default();
@@ -68,16 +108,20 @@ pub fn joint_paths(
         let mut ways: Vec<[Option<Candidates>; 2]> = Vec::with_capacity(tour.len());
         for v in tour {
             let pass = &passes.passes[v.item];
-            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke);
-            let rev = candidates(robot, station, &pass.knots, true, pass.stroke);
+            let id = 2 * ways.len();
+            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke)
+                .map(|c| Candidates { id, ..c });
+            let rev = candidates(robot, station, &pass.knots, true, pass.stroke)
+                .map(|c| Candidates { id: id + 1, ..c });
             match (fwd, rev) {
                 (Err((k, e)), Err(_)) => {
                     let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
                     return Err(CompileError::Unreachable(format!(
-                        "stroke {} ({}) cannot be painted from station {si} at ({:.3}, {:.3}) \
+                        "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
                          m: {e}; use a smaller --letter-height or check the robot description",
                         pass.stroke,
                         strokes.owner(pass.stroke),
+                        si + 1,
                         tip.x,
                         tip.y
                     )));
@@ -98,12 +142,13 @@ pub fn joint_paths(
                 (k, rev)
             })
             .collect();
-        improve(robot, &stow, &ways, &mut seq);
+        let costs = JoinCosts::new(robot);
+        improve(robot, &stow, &ways, &mut seq, &costs);
         let picked: Vec<&Candidates> = seq
             .iter()
             .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
             .collect();
-        let (_, choice) = best_branches(robot, &stow, &picked);
+        let (_, choice) = best_branches(robot, &stow, &picked, &costs);
         out.stations.push(
             picked
                 .into_iter()
@@ -129,10 +174,11 @@ const MIN_GAIN_S: f64 = 1e-6;
 
 /// Local search over the order and directions (see `joint_paths`).
 fn improve(
-    robot: &Robot,
-    stow: &Joints,
+    robot: &AnyRobot,
+    stow: &Q,
     ways: &[[Option<Candidates>; 2]],
     seq: &mut Vec<(usize, bool)>,
+    costs: &JoinCosts,
 ) {
     let cost_of = |seq: &[(usize, bool)]| -> f64 {
         let picked: Vec<&Candidates> = seq
@@ -142,7 +188,7 @@ fn improve(
         if picked.len() < seq.len() {
             return f64::INFINITY;
         }
-        best_branches(robot, stow, &picked).0
+        best_branches(robot, stow, &picked, costs).0
     };
     let n = seq.len();
     let mut best = cost_of(seq);
@@ -199,7 +245,7 @@ fn improve(
 /// reaches, and every branch that follows it. Err: the painting knot (in
 /// the pass's own order) where the last lead length tried fails, and why.
 fn candidates(
-    robot: &Robot,
+    robot: &AnyRobot,
     station: &Station,
     knots: &[Knot],
     reversed: bool,
@@ -215,6 +261,8 @@ fn candidates(
         match solve_branches(robot, station, &all) {
             Ok(br) => {
                 return Ok(Candidates {
+                    id: 0,
+                    arcs: super::trajectory::arc_lengths(&all),
                     stroke,
                     knots: all,
                     paint_first: a,
@@ -235,7 +283,12 @@ fn candidates(
 
 /// The branch of every pass on the cheapest path stow → passes → stow
 /// (Viterbi over the passes; ties to the lower branch index), and its cost.
-fn best_branches(robot: &Robot, stow: &Joints, cands: &[&Candidates]) -> (f64, Vec<usize>) {
+fn best_branches(
+    robot: &AnyRobot,
+    stow: &Q,
+    cands: &[&Candidates],
+    costs: &JoinCosts,
+) -> (f64, Vec<usize>) {
     let n = cands.len();
     if n == 0 {
         return (0.0, vec![]);
@@ -255,7 +308,7 @@ fn best_branches(robot: &Robot, stow: &Joints, cands: &[&Candidates]) -> (f64, V
             } else {
                 let p = cands[i - 1];
                 (0..p.branches.len())
-                    .map(|a| (cost[i - 1][a] + travel(robot, &last(p, a), &entry), a))
+                    .map(|a| (cost[i - 1][a] + costs.join(robot, p, a, c, b), a))
                     .fold(
                         (f64::INFINITY, 0),
                         |m, x| if x.0 < m.0 - 1e-12 { x } else { m },
@@ -288,12 +341,12 @@ fn best_branches(robot: &Robot, stow: &Joints, cands: &[&Candidates]) -> (f64, V
 
 /// Joint travel time between two joint sets: the slowest joint, each
 /// accelerating and braking at its limit up to its speed limit.
-fn travel(robot: &Robot, a: &Joints, b: &Joints) -> f64 {
+fn travel(robot: &AnyRobot, a: &Q, b: &Q) -> f64 {
     robot
-        .limits
+        .limits()
         .iter()
-        .zip(a.values().into_iter().zip(b.values()))
-        .map(|((_, l), (x, y))| {
+        .zip(a.iter().zip(b))
+        .map(|(l, (x, y))| {
             let d = (x - y).abs();
             if d * l.max_acc <= l.max_vel * l.max_vel {
                 2.0 * (d / l.max_acc).sqrt()
@@ -319,8 +372,23 @@ fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
 /// Largest yaw-joint change between two knots of a run (rad). Knots are a
 /// rung spacing apart (20 mm); the tightest turn in the font, a bowl's rung
 /// pivoting about its inner end, turns the fan by well under this. A larger
-/// step is a jump to the other fan branch (π) or yaw turn (2π).
+/// step is a jump to the other fan branch (π) or yaw turn (2π). The
+/// electric kinds' other joints are held to it too (rad or m): a larger
+/// step between knots 20 mm apart is a jump to another IK solution (the
+/// articulated arm's elbow flipping, say).
 const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
+
+/// The joint whose step between knots `p` → `j` is a jump (see
+/// `MAX_KNOT_YAW_STEP_RAD`): only BASR's yaw joint for BASR (its other
+/// joints have one solution), any joint for the electric kinds.
+fn jump(robot: &AnyRobot, p: &Q, j: &Q) -> Option<usize> {
+    let fan = robot.fan_joint();
+    let step = |k: usize| (j[k] - p[k]).abs() > MAX_KNOT_YAW_STEP_RAD;
+    if robot.basr().is_some() {
+        return step(fan).then_some(fan);
+    }
+    std::iter::once(fan).chain(0..5).find(|&k| step(k))
+}
 
 /// Joints for every knot of a run, per branch: the fan's two branches (ψ
 /// with β, ψ+π with −β) and every yaw turn are tried at the first knot, and
@@ -329,10 +397,10 @@ const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
 /// knot index and why).
 #[allow(clippy::type_complexity)]
 fn solve_branches(
-    robot: &Robot,
+    robot: &AnyRobot,
     station: &Station,
     ks: &[Knot],
-) -> Result<Vec<(f64, Vec<Joints>)>, (usize, crate::robot::Unreachable)> {
+) -> Result<Vec<(f64, Vec<Q>)>, (usize, crate::robot::Unreachable)> {
     let first = knot_pose(station, &ks[0]);
     let starts = robot.ik(&first).map_err(|e| (0, e))?;
     let mut found = vec![];
@@ -348,17 +416,18 @@ fn solve_branches(
                 // one this branch follows has left the yaw joint's range.
                 // Turning the fan half or whole way round between two knots
                 // would spray a disc with the gun on, so the branch fails.
-                Ok(j) if (j.ee_yaw_rad - p.ee_yaw_rad).abs() > MAX_KNOT_YAW_STEP_RAD => {
-                    let lim = &robot.limits.ee_yaw_rad;
-                    let step = j.ee_yaw_rad - p.ee_yaw_rad;
+                Ok(j) if jump(robot, &p, &j).is_some() => {
+                    let jj = jump(robot, &p, &j).unwrap_or(robot.fan_joint());
+                    let lim = robot.limits()[jj];
+                    let step = j[jj] - p[jj];
                     // What the branch would have needed: the step less the
                     // half turns the jump added.
                     let own = step - std::f64::consts::PI * (step / std::f64::consts::PI).round();
-                    let value = p.ee_yaw_rad + own;
+                    let value = p[jj] + own;
                     last_err = Some((
                         i,
                         crate::robot::Unreachable {
-                            joint: "ee_yaw_rad".into(),
+                            joint: robot.joint_names()[jj].into(),
                             value,
                             min: lim.min,
                             max: lim.max,

@@ -25,5 +25,6 @@ pub mod tilt;
 pub mod timing;
 pub mod tours;
 pub mod trajectory;
+pub mod turn;
 pub mod verify;
 pub mod warnings;

@@ -5,13 +5,16 @@
 use crate::job::StrokeBalance;
 use crate::plan::knots::{self, HeightLaw, Knot, PaintLaw, PlanError, TiltMethod};
 use crate::plan::rungs::Rung;
-use crate::robot::Robot;
+use crate::robot::{AnyRobot, Robot};
 
 use super::error::CompileError;
 use super::placed::PlacedStrokes;
 use super::rungs::StrokeRungs;
 use super::warnings::Note;
 
+/// Rounds of turn limiting and re-pacing per pass. assumed: the speeds
+/// settle in two; the third is slack.
+const TURN_TRIES: usize = 3;
 /// Knots keep this far inside the tilt range, so the time law's smooth
 /// joint curves between knots (which may overshoot a knot held at a limit
 /// by a fraction of a milliradian) stay inside it. assumed: forty times the
@@ -41,12 +44,14 @@ pub struct Passes {
 pub fn passes(
     strokes: &PlacedStrokes,
     rungs: &StrokeRungs,
-    robot: &Robot,
+    robot: &AnyRobot,
     method: TiltMethod,
 ) -> Result<Passes, CompileError> {
     let law = paint_law(robot);
-    let tl = &robot.limits.tilt_rad;
-    let max_tilt = (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0);
+    // A kind that cannot lean the fan (the articulated arm) paints untilted.
+    let max_tilt = robot
+        .tilt_limit()
+        .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0));
     let mut out = Passes::default();
     for (sid, stroke_rungs) in rungs.rungs.iter().enumerate() {
         let owner = strokes.owner(sid);
@@ -69,7 +74,19 @@ pub fn passes(
                 u_tilted[0].min(kp.u_after.0 / 100.0),
                 u_tilted[1].max(kp.u_after.1 / 100.0),
             ];
-            let raised = lift_for_tilt(robot, &law, &mut kp.knots);
+            // A turned fan sweeps other road: re-pace, and check the turn
+            // again at the new speeds.
+            let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE;
+            for _ in 0..TURN_TRIES {
+                if !super::turn::limit_turn_rate(&mut kp.knots, max_turn) {
+                    break;
+                }
+                knots::pace(pass, &mut kp.knots, law.k_m2ps);
+            }
+            let raised = match robot.basr() {
+                Some(b) => lift_for_tilt(b, &law, &mut kp.knots),
+                None => vec![],
+            };
             if !raised.is_empty() {
                 // Wider footprints sweep more road: re-pace the pass.
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
@@ -122,9 +139,34 @@ pub fn passes(
     Ok(out)
 }
 
-/// The paint law of the robot's nozzle and vertical joint. The reachable tip
+/// The paint law of the robot's nozzle and its painting heights: BASR's
+/// from its vertical joint (`basr_paint_law`), an electric kind's the tip
+/// heights of its description (its IK places the tip itself, tilted or not).
+pub fn paint_law(robot: &AnyRobot) -> PaintLaw {
+    if let Some(b) = robot.basr() {
+        return basr_paint_law(b);
+    }
+    let p = robot.paint();
+    let [lo, hi] = robot.tip_heights_m();
+    PaintLaw {
+        fan_angle_rad: p.fan_angle_rad,
+        k_m2ps: p.k_m2ps(),
+        height: height_law(p),
+        min_height_m: lo,
+        max_height_m: hi,
+    }
+}
+
+fn height_law(p: &crate::robot::Paint) -> HeightLaw {
+    match (p.height_law_c0_m, p.height_law_c1) {
+        (Some(c0), Some(c1)) => HeightLaw::Linear { c0, c1 },
+        _ => HeightLaw::Geometric,
+    }
+}
+
+/// BASR's paint law from its nozzle and vertical joint. The reachable tip
 /// heights leave room for the tilt's vertical tip offset at any tilt.
-pub fn paint_law(robot: &Robot) -> PaintLaw {
+pub fn basr_paint_law(robot: &Robot) -> PaintLaw {
     let p = &robot.paint;
     let top = robot.end_effector.tip_height_top_m;
     let v = &robot.limits.vertical_m;
@@ -143,10 +185,7 @@ pub fn paint_law(robot: &Robot) -> PaintLaw {
     PaintLaw {
         fan_angle_rad: p.fan_angle_rad,
         k_m2ps: p.k_m2ps(),
-        height: match (p.height_law_c0_m, p.height_law_c1) {
-            (Some(c0), Some(c1)) => HeightLaw::Linear { c0, c1 },
-            _ => HeightLaw::Geometric,
-        },
+        height: height_law(p),
         min_height_m: top - v.max,
         max_height_m: top - v.min - sink,
     }

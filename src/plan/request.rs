@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use crate::layout::Overrides;
 use crate::plan::knots::TiltMethod;
 use crate::plan::stations;
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 use super::error::CompileError;
 
@@ -56,6 +56,26 @@ impl Tilt {
     }
 }
 
+/// The tilt method a robot paints `asked` with, and the note when it
+/// differs: the articulated arm leans its gun only in the arm's plane
+/// (seed 003's pitch), so a fan painting across a stroke, which is across
+/// the arm in all but a few rungs, cannot lean along itself; rather than
+/// tilt a few rungs and not their neighbours, it paints every rung
+/// untilted (`none`, the closest reachable tilt for a fan across the arm)
+/// and says so. docs/robot-kinds.md.
+pub fn tilt_for(asked: Tilt, robot: &AnyRobot) -> (Tilt, Option<super::warnings::Note>) {
+    if robot.tilt_limit().is_some() || asked == Tilt::None {
+        return (asked, None);
+    }
+    let text = format!(
+        "the {} arm leans its gun only along the arm (seed 003's pitch), not along the fan: \
+         --tilt {} is painted as --tilt none",
+        robot.kind().name(),
+        asked.name()
+    );
+    (Tilt::None, Some(super::warnings::Note::Layout { text }))
+}
+
 /// Everything `compile_job` needs. `CompileRequest::message("STOP")` gives
 /// the defaults of `basr compile STOP`.
 #[derive(Clone, Debug, PartialEq)]
@@ -69,7 +89,7 @@ pub struct CompileRequest {
     pub robot: Option<PathBuf>,
     /// A robot description already in hand (a job's own, when preview
     /// re-plans it); used instead of `robot` when set.
-    pub robot_description: Option<Robot>,
+    pub robot_description: Option<AnyRobot>,
     pub tilt: Tilt,
     /// Largest distance between consecutive rungs (m).
     pub rung_spacing_m: f64,

@@ -8,7 +8,7 @@ use std::f64::consts::FRAC_PI_2;
 use crate::job::{self, SampleRow, Samples, Station};
 use crate::plan::knots::Knot;
 use crate::robot::kinematics::wrap_pi;
-use crate::robot::{Joints, NozzlePose, Robot};
+use crate::robot::{AnyRobot, Joints, NozzlePose, Robot, Q};
 
 use super::error::CompileError;
 use super::joints::{JointPaths, Run};
@@ -25,10 +25,14 @@ pub fn sample(
     plan: &StationPlan,
     paths: &JointPaths,
     timed: TimedTrajectory,
-    robot: &Robot,
+    robot: &AnyRobot,
     period_s: f64,
 ) -> Result<Samples, CompileError> {
     let mut samples = Samples::default();
+    if robot.basr().is_none() {
+        samples.kind_columns = robot.joint_names().map(String::from).to_vec();
+        samples.kind_columns.extend(robot.encoder_names());
+    }
     for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
         if si > 0 {
             // The truck drives to this station with the arm stowed: rows of
@@ -36,7 +40,7 @@ pub fn sample(
             // rows change station), one piece with the station's own rows so
             // the speed column's differences run across the seam.
             let hold = Timed {
-                q: stow_joints(robot).values(),
+                q: stow_joints(robot),
                 run: None,
                 s: 0.0,
                 gun: None,
@@ -45,19 +49,9 @@ pub fn sample(
             rows.splice(0..0, std::iter::repeat_n(hold, n));
         }
         clamp_to_range(robot, &mut rows)?;
-        // The robot's own check of the sampled joints (speeds, accelerations,
-        // ball-nut speed).
-        let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
-        robot
-            .check_rates(&js, period_s)
-            .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
-        for (k, j) in js.iter().enumerate() {
-            robot.check_joints(j).map_err(|e| {
-                CompileError::Timing(format!(
-                    "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
-                     range ({e})"
-                ))
-            })?;
+        match robot.basr() {
+            Some(b) => check_basr(b, &rows, si + 1, period_s)?,
+            None => check_servo(robot, &rows, si + 1, period_s)?,
         }
         append_samples(
             &mut samples,
@@ -72,12 +66,79 @@ pub fn sample(
     Ok(samples)
 }
 
+/// BASR's own check of the sampled joints (speeds, accelerations, ball-nut
+/// speed, ranges); `si` is the station's number from 1, as messages count.
+fn check_basr(robot: &Robot, rows: &[Timed], si: usize, period_s: f64) -> Result<(), CompileError> {
+    let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
+    robot
+        .check_rates(&js, period_s)
+        .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
+    for (k, j) in js.iter().enumerate() {
+        robot.check_joints(j).map_err(|e| {
+            CompileError::Timing(format!(
+                "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
+                 range ({e})"
+            ))
+        })?;
+    }
+    Ok(())
+}
+
+/// An electric kind's check of the sampled joints: each joint's range, and
+/// its speed and acceleration by finite differences (as `basr check`
+/// measures them), up to a relative 1e-9 (rounding); `si` counts from 1.
+fn check_servo(
+    robot: &AnyRobot,
+    rows: &[Timed],
+    si: usize,
+    period_s: f64,
+) -> Result<(), CompileError> {
+    let over = |v: f64, lim: f64| v.abs() > lim * (1.0 + 1e-9);
+    let names = robot.joint_names();
+    let fail = |k: usize, what: String| {
+        Err(CompileError::Timing(format!(
+            "station {si}, setpoint {k}: {what}"
+        )))
+    };
+    for (j, l) in robot.limits().iter().enumerate() {
+        let name = names[j];
+        let q: Vec<f64> = rows.iter().map(|p| p.q[j]).collect();
+        for (k, &v) in q.iter().enumerate() {
+            if !(v.is_finite() && l.contains(v)) {
+                return fail(
+                    k,
+                    format!("{name} = {v} leaves its range [{}, {}]", l.min, l.max),
+                );
+            }
+        }
+        for k in 1..q.len() {
+            let v = (q[k] - q[k - 1]) / period_s;
+            if over(v, l.max_vel) {
+                return fail(k, format!("{name} moves at {v}/s, over its {}", l.max_vel));
+            }
+            if k + 1 < q.len() {
+                let a = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (period_s * period_s);
+                if over(a, l.max_acc) {
+                    return fail(
+                        k,
+                        format!("{name} accelerates at {a}/s², over its {}", l.max_acc),
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Clamp setpoints that the smooth joint curves carry a hair past a joint's
 /// range (a knot held at the bottom of the vertical stroke); the rate
 /// checks that follow still see every clamped sample.
-fn clamp_to_range(robot: &Robot, timed: &mut [Timed]) -> Result<(), CompileError> {
+fn clamp_to_range(robot: &AnyRobot, timed: &mut [Timed]) -> Result<(), CompileError> {
+    let names = robot.joint_names();
+    let limits = robot.limits();
     for (k, p) in timed.iter_mut().enumerate() {
-        for (j, (name, l)) in robot.limits.iter().enumerate() {
+        for (j, l) in limits.iter().enumerate() {
+            let name = names[j];
             let v = p.q[j];
             let c = v.clamp(l.min, l.max);
             if (c - v).abs() > CLAMP_MAX {
@@ -95,7 +156,7 @@ fn clamp_to_range(robot: &Robot, timed: &mut [Timed]) -> Result<(), CompileError
 /// Append a station's samples to the job's columns.
 fn append_samples(
     samples: &mut Samples,
-    robot: &Robot,
+    robot: &AnyRobot,
     station: &Station,
     station_index: u32,
     runs: &[Run],
@@ -108,7 +169,7 @@ fn append_samples(
     let poses: Vec<(NozzlePose, [f64; 2], f64)> = timed
         .iter()
         .map(|p| {
-            let pose = robot.fk(&joints_of(&p.q));
+            let pose = robot.fk(&p.q);
             let r = stations::base_to_road(station, [pose.x_m, pose.y_m]);
             let yaw = wrap_pi(pose.yaw_rad + station.heading_rad - FRAC_PI_2);
             (pose, r, yaw)
@@ -116,7 +177,6 @@ fn append_samples(
         .collect();
     for (i, p) in timed.iter().enumerate() {
         let (pose, r, yaw) = &poses[i];
-        let j = joints_of(&p.q);
         // Central difference of the nozzle position (one-sided at the ends).
         let (a, b) = (i.saturating_sub(1), (i + 1).min(timed.len() - 1));
         let speed = if b > a {
@@ -125,8 +185,6 @@ fn append_samples(
         } else {
             0.0
         };
-        let act = robot.actuators(&j);
-        let enc = robot.encoders(&j);
         let (stroke, paint, width) = match p.gun {
             Some(ri) => {
                 let run = &runs[ri];
@@ -141,7 +199,7 @@ fn append_samples(
             }
             None => (-1, 0u8, 0.0),
         };
-        samples.push(&SampleRow {
+        let nozzle = SampleRow {
             t_s: job::tick_time(t0 + i, period),
             station: station_index,
             stroke,
@@ -150,21 +208,42 @@ fn append_samples(
             y_m: r[1],
             z_m: pose.z_m,
             yaw_rad: *yaw,
-            tilt_rad: j.tilt_rad,
+            tilt_rad: pose.tilt_rad,
             speed_mps: speed,
             width_m: width,
-            base_rot_rad: j.base_rot_rad,
-            extension_m: j.extension_m,
-            cylinder_m: act.cylinder_m,
-            vertical_m: j.vertical_m,
-            ee_yaw_rad: j.ee_yaw_rad,
-            tilt_nut_m: act.tilt_nut_m,
-            enc_base: enc.base,
-            enc_extension: enc.extension,
-            enc_yaw: enc.yaw,
-            enc_tilt: enc.tilt,
-            enc_vertical: enc.vertical,
-        });
+            ..SampleRow::default()
+        };
+        match robot.basr() {
+            Some(b) => samples.push(&basr_row(b, nozzle, &p.q)),
+            None => {
+                // BASR's joint, actuator and encoder columns stay 0 (not
+                // applicable); the kind's own follow (docs/robot-kinds.md).
+                samples.push(&nozzle);
+                samples.push_kind(p.q, robot.encoders(&p.q));
+            }
+        }
+    }
+}
+
+/// A BASR row: the nozzle columns with BASR's joints, actuators and encoders.
+fn basr_row(robot: &Robot, nozzle: SampleRow, q: &Q) -> SampleRow {
+    let j = joints_of(q);
+    let act = robot.actuators(&j);
+    let enc = robot.encoders(&j);
+    SampleRow {
+        tilt_rad: j.tilt_rad,
+        base_rot_rad: j.base_rot_rad,
+        extension_m: j.extension_m,
+        cylinder_m: act.cylinder_m,
+        vertical_m: j.vertical_m,
+        ee_yaw_rad: j.ee_yaw_rad,
+        tilt_nut_m: act.tilt_nut_m,
+        enc_base: enc.base,
+        enc_extension: enc.extension,
+        enc_yaw: enc.yaw,
+        enc_tilt: enc.tilt,
+        enc_vertical: enc.vertical,
+        ..nozzle
     }
 }
 

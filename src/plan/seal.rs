@@ -4,7 +4,7 @@
 use crate::font::Font;
 use crate::job::{self, FontRef, Job, Layout, Samples, StrokeBalance, Summary};
 use crate::layout::Marking;
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 use super::placed::PlacedStrokes;
 use super::request::Tilt;
@@ -15,7 +15,7 @@ use super::warnings::{self, Note};
 pub struct Planned<'a> {
     pub marking: &'a Marking,
     pub font: &'a Font,
-    pub robot: Robot,
+    pub robot: AnyRobot,
     pub tilt: Tilt,
     pub period_s: f64,
     pub strokes: &'a PlacedStrokes,
@@ -32,7 +32,7 @@ pub fn seal(p: Planned<'_>) -> Job {
     let duration_s = job::tick_time(n.saturating_sub(1), p.period_s);
     let paint_time_s = job::tick_time(paint_samples, p.period_s);
     // Every stroke painted at speed × width = k takes its area / k.
-    let lower_bound_s = p.strokes.painted_area_m2() / p.robot.paint.k_m2ps();
+    let lower_bound_s = p.strokes.painted_area_m2() / p.robot.paint().k_m2ps();
     let summary = Summary {
         duration_s,
         paint_time_s,
@@ -40,7 +40,7 @@ pub fn seal(p: Planned<'_>) -> Job {
         strokes: p.strokes.strokes.len(),
         // Paint sprayed = flow × gun-on time (what leaves the tip; the film
         // gets the transfer-efficiency share of it).
-        paint_volume_m3: p.robot.paint.flow_m3ps * paint_time_s,
+        paint_volume_m3: p.robot.paint().flow_m3ps * paint_time_s,
         warnings: warnings::render_all(&p.notes),
         balance: p.balance,
         lower_bound_s,
@@ -69,7 +69,7 @@ pub fn seal(p: Planned<'_>) -> Job {
             name: p.font.name.clone(),
             sha256: p.font.sha256.clone(),
         },
-        paint: job::Paint::of(&p.robot.paint),
+        paint: job::Paint::of(p.robot.paint()),
         robot: p.robot,
         robot_sha256: String::new(),
         control_period_s: p.period_s,

@@ -17,7 +17,7 @@ use crate::plan::compile::{compile_strokes, CompileError, CompileRequest, Source
 use crate::plan::placed::lay_out;
 use crate::plan::warnings::Owner;
 use crate::plan::{inputs, request};
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 use crate::shape::{self, report_lines, Bands, Imported, ShapeError, Size};
 
 /// Film targets a candidate decomposition must meet to be kept on its cv
@@ -34,13 +34,13 @@ const MEASURE_CELLS: usize = 2_000_000;
 
 /// The bands the robot's nozzle paints: narrowest from the lowest tip
 /// height, widest from the highest (`passes::paint_law`).
-pub fn bands(robot: &Robot) -> Bands {
+pub fn bands(robot: &AnyRobot) -> Bands {
     let law = super::passes::paint_law(robot);
     Bands {
         min_width_m: law.width_at_height(law.min_height_m),
         max_width_m: law.max_width_m(),
         k_m2ps: law.k_m2ps,
-        yaw_rate_rad_s: robot.limits.ee_yaw_rad.max_vel,
+        yaw_rate_rad_s: robot.limits()[robot.fan_joint()].max_vel,
     }
 }
 
@@ -103,7 +103,7 @@ struct Measured {
     paint_s: f64,
 }
 
-fn measure(imported: &Imported, robot: &Robot, b: &Bands, label: &str) -> Option<Measured> {
+fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Option<Measured> {
     let mut req = CompileRequest::message(shape::GLYPH.encode_utf8(&mut [0; 4]));
     req.source = Source::Message(shape::GLYPH.to_string());
     req.robot_description = Some(robot.clone());
@@ -132,7 +132,7 @@ pub fn label_of(path: &Path) -> String {
 /// even when it is compiled (with compile's defaults) and previewed: the
 /// film model itself is the prediction. The decomposition's notes list
 /// every candidate's measured film.
-pub fn import_measured(path: &Path, size: Size, robot: &Robot) -> Result<Imported, ShapeError> {
+pub fn import_measured(path: &Path, size: Size, robot: &AnyRobot) -> Result<Imported, ShapeError> {
     let b = bands(robot);
     let mut all = shape::import_candidates(path, size, &b)?;
     let label = label_of(path);
@@ -184,10 +184,10 @@ pub fn import_measured(path: &Path, size: Size, robot: &Robot) -> Result<Importe
 }
 
 /// The robot a request paints with (as `inputs::read` finds it).
-fn robot_of(req: &CompileRequest) -> Result<Robot, String> {
+fn robot_of(req: &CompileRequest) -> Result<AnyRobot, String> {
     match &req.robot_description {
         Some(r) => Ok(r.clone()),
-        None => Robot::load_or_default(req.robot.as_deref()).map_err(|e| e.to_string()),
+        None => AnyRobot::load_or_default(req.robot.as_deref()).map_err(|e| e.to_string()),
     }
 }
 
@@ -206,7 +206,7 @@ pub fn resolve(path: &Path, marking_file: &str) -> PathBuf {
 /// Import one scene shape for the robot: its strokes in the shape's frame
 /// (lower-left corner at the origin, metres) and its size.
 pub fn import_item(
-    robot: &Robot,
+    robot: &AnyRobot,
     marking_file: &str,
     path: &Path,
     size: ShapeSize,

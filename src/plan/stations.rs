@@ -16,7 +16,7 @@ pub use super::error::StationError;
 use crate::job::Station;
 use crate::plan::knots::Knot;
 use crate::plan::passes::Passes;
-use crate::robot::Robot;
+use crate::robot::AnyRobot;
 
 /// Heading of every station: truck with the traffic, arm behind (SPEC §2).
 pub const HEADING_RAD: f64 = -FRAC_PI_2;
@@ -385,9 +385,9 @@ pub fn for_passes(
     passes: &Passes,
     lane_width_m: f64,
     margin_m: f64,
-    robot: &Robot,
+    robot: &AnyRobot,
 ) -> Result<StationPlan, StationError> {
-    let region = robot.region();
+    let region = robot.reach();
     let reach_pts: Vec<Vec<[f64; 2]>> = passes.passes.iter().map(|p| thin_tips(&p.knots)).collect();
     plan(&reach_pts, lane_width_m / 2.0, margin_m, |x, y| {
         region.margin(x, y)

@@ -2,27 +2,19 @@
 //! every station's motion starts and ends.
 
 use crate::job::Station;
-use crate::robot::{Joints, Robot};
+use crate::robot::{AnyRobot, Q};
 
-/// Straight back, retracted, nozzle at the top of its stroke, yaw and tilt
-/// centred (within limits).
-pub fn stow_joints(robot: &Robot) -> Joints {
-    let l = &robot.limits;
-    let mid = |a: f64, b: f64| 0.5 * (a + b);
-    Joints {
-        base_rot_rad: mid(l.base_rot_rad.min, l.base_rot_rad.max),
-        extension_m: l.extension_m.min,
-        vertical_m: l.vertical_m.min,
-        ee_yaw_rad: 0.0_f64.clamp(l.ee_yaw_rad.min, l.ee_yaw_rad.max),
-        tilt_rad: 0.0_f64.clamp(l.tilt_rad.min, l.tilt_rad.max),
-    }
+/// The kind's stow pose (`AnyRobot::stow`): for BASR straight back,
+/// retracted, nozzle at the top of its stroke, yaw and tilt centred.
+pub fn stow_joints(robot: &AnyRobot) -> Q {
+    robot.stow()
 }
 
 /// Setpoint rows the arm holds the stow pose while the truck drives from
 /// station `from` to `to` and settles (the robot's `truck` speed and settle
 /// time), at least one.
-pub fn truck_rows(robot: &Robot, from: &Station, to: &Station, period_s: f64) -> usize {
-    let t = &robot.truck;
+pub fn truck_rows(robot: &AnyRobot, from: &Station, to: &Station, period_s: f64) -> usize {
+    let t = robot.truck();
     let d = (to.x_m - from.x_m).hypot(to.y_m - from.y_m);
     let secs = d / t.speed_mps + t.settle_s;
     if secs.is_finite() && secs > 0.0 {

@@ -6,7 +6,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use crate::job::Station;
 use crate::plan::knots::Knot;
 use crate::robot::kinematics::wrap_pi;
-use crate::robot::Robot;
+use crate::robot::{AnyRobot, JointLimit, Robot};
 
 use super::order::{self, Ends, Visit};
 use super::passes::Passes;
@@ -22,7 +22,7 @@ pub struct Tours {
 }
 
 /// Order each station's passes to minimise the estimated air time.
-pub fn tours(passes: &Passes, plan: &StationPlan, robot: &Robot) -> Tours {
+pub fn tours(passes: &Passes, plan: &StationPlan, robot: &AnyRobot) -> Tours {
     let stow_pose = robot.fk(&stow_joints(robot));
     let stations = plan
         .stations
@@ -83,22 +83,64 @@ pub struct EndPose {
     pub tilt: f64,
 }
 
-/// Estimated time of an air move of the arm between two pass ends: the
-/// slowest of base rotation, extension, and the fan's yaw and tilt joints
-/// (on whichever fan branch, (ψ, β) or (ψ+π, −β), turns them least), each
-/// accelerating and braking at its limit (symmetric, as the ordering needs).
-fn air_time_estimate(robot: &Robot, station: &Station, a: EndPose, b: EndPose) -> f64 {
+/// Time to move `d` from rest to rest at speed limit `v` and acceleration `acc`.
+fn rest_to_rest(d: f64, v: f64, acc: f64) -> f64 {
+    let d = d.abs();
+    if d * acc <= v * v {
+        2.0 * (d / acc).sqrt()
+    } else {
+        d / v + v / acc
+    }
+}
+
+/// Estimated time of an air move of the arm between two pass ends (BASR's
+/// joints, or an electric kind's: `servo_air_time`).
+fn air_time_estimate(robot: &AnyRobot, station: &Station, a: EndPose, b: EndPose) -> f64 {
+    match robot.basr() {
+        Some(r) => basr_air_time(r, station, a, b),
+        None => servo_air_time(robot, station, a, b),
+    }
+}
+
+/// Tip speed and acceleration of an electric arm's air moves along its
+/// reach, for ordering only. assumed: 0.5 m/s and 0.5 m/s², the shipped
+/// arms' boom and stroke limits (robots/telescopic.toml).
+const SERVO_TIP_SPEED_MPS: f64 = 0.5;
+const SERVO_TIP_ACC_MPS2: f64 = 0.5;
+
+/// An electric kind's estimate: the slowest of its base joint (the tip's
+/// azimuth), the tip's move towards or away from the base axis, the fan's
+/// turn (on whichever fan branch turns it least) and the tilt, each from
+/// rest to rest (joint-path optimisation prices the true joints later).
+fn servo_air_time(robot: &AnyRobot, station: &Station, a: EndPose, b: EndPose) -> f64 {
+    let (ta, ra) = polar(station, a.xy);
+    let (tb, rb) = polar(station, b.xy);
+    let l = robot.limits();
+    let t = |d: f64, l: &JointLimit| rest_to_rest(d, l.max_vel, l.max_acc);
+    let fan = &l[robot.fan_joint()];
+    // Both kinds turn the fan by the base rotation plus (or less) the fan joint.
+    let turn = wrap_pi((b.yaw - a.yaw) - (tb - ta));
+    let tilt = |d: f64| robot.tilt_limit().map_or(0.0, |tl| t(d, &tl));
+    let same = t(turn, fan).max(tilt(b.tilt - a.tilt));
+    let flipped = t(wrap_pi(turn + PI), fan).max(tilt(b.tilt + a.tilt));
+    t(tb - ta, &l[0])
+        .max(rest_to_rest(
+            rb - ra,
+            SERVO_TIP_SPEED_MPS,
+            SERVO_TIP_ACC_MPS2,
+        ))
+        .max(same.min(flipped))
+}
+
+/// BASR's estimate: the slowest of base rotation, extension, and the fan's
+/// yaw and tilt joints (on whichever fan branch, (ψ, β) or (ψ+π, −β),
+/// turns them least), each accelerating and braking at its limit
+/// (symmetric, as the ordering needs).
+fn basr_air_time(robot: &Robot, station: &Station, a: EndPose, b: EndPose) -> f64 {
     let (ta, ra) = polar(station, a.xy);
     let (tb, rb) = polar(station, b.xy);
     let l = &robot.limits;
-    let t = |d: f64, v: f64, acc: f64| {
-        let d = d.abs();
-        if d * acc <= v * v {
-            2.0 * (d / acc).sqrt()
-        } else {
-            d / v + v / acc
-        }
-    };
+    let t = rest_to_rest;
     // The yaw joint turns ψ less the base rotation (ψ = θ1 + yaw joint).
     let turn = wrap_pi((b.yaw - a.yaw) - (tb - ta));
     let fan = |dyaw: f64, dtilt: f64| {

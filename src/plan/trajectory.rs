@@ -3,7 +3,7 @@
 //! the control period, with the gun's command windows and the places where
 //! a limit holds the nozzle below the painting speed.
 
-use crate::robot::{Joints, Robot};
+use crate::robot::{AnyRobot, Joints};
 
 use super::chain::{chain, StopReason};
 use super::error::CompileError;
@@ -29,14 +29,14 @@ pub fn time_law(
     strokes: &PlacedStrokes,
     plan: &StationPlan,
     paths: &JointPaths,
-    robot: &Robot,
+    robot: &AnyRobot,
     law: &TimeLaw,
 ) -> Result<TimedTrajectory, CompileError> {
     let TimeLaw {
         period_s,
         gun_lead_s,
         gun_lag_s,
-        pace,
+        ref pace,
     } = *law;
     let stow = stow_joints(robot);
     let mut out = TimedTrajectory::default();
@@ -49,15 +49,15 @@ pub fn time_law(
         let (timed, slows, stops) =
             time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, pace)?;
         let at = |q: &Q| {
-            let p = robot.fk(&joints_of(q));
+            let p = robot.fk(q);
             let st = &plan.stations[si];
             stations::base_to_road(st, [p.x_m, p.y_m])
         };
-        let last = timed.last().map(|t| t.q).unwrap_or_else(|| q_of(&stow));
+        let last = timed.last().map(|t| t.q).unwrap_or(stow);
         out.notes.push(Note::Stop {
             station: si,
             t_s: t0,
-            at_m: at(&q_of(&stow)),
+            at_m: at(&stow),
             why: StopWhy::LeaveStow,
         });
         for (t_s, q, ri, why) in stops {
@@ -109,8 +109,8 @@ pub struct Timed {
     pub gun: Option<usize>,
 }
 
-/// Joint vector in `Limits::NAMES` order.
-pub type Q = [f64; 5];
+/// Joint vector in the robot kind's order (`AnyRobot::joint_names`).
+pub use crate::robot::Q;
 
 /// Jerk limit of every joint, as a multiple of its acceleration limit.
 /// assumed: no source gives jerk limits; each joint reaches its
@@ -125,22 +125,26 @@ const JERK_PER_ACC: f64 = 10.0;
 /// by the verification where the arm falls behind: `air` for the moves
 /// from and to the stow pose (the arm arrives at its first stroke ringing
 /// after a long fast move), `path` for the chained path through the strokes.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// `joins`: (stroke entered, share) for the flown joins into those
+/// strokes alone (the arm arrived behind at the stroke's first rungs).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Pace {
     pub air: f64,
     pub path: f64,
+    pub joins: Vec<(usize, f64)>,
 }
 
 impl Pace {
     pub const FULL: Pace = Pace {
         air: 1.0,
         path: 1.0,
+        joins: Vec::new(),
     };
 }
 
 /// The time law's settings: the setpoint period, the gun valve's delays
 /// and the pace.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TimeLaw {
     pub period_s: f64,
     pub gun_lead_s: f64,
@@ -150,22 +154,15 @@ pub struct TimeLaw {
 
 /// `pace` (0–1] scales every acceleration and jerk limit, and the speed
 /// limits by its square root.
-fn timing_limits(robot: &Robot, pace: f64) -> timing::JointLimits<5> {
+pub(super) fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
-    for (j, (_, l)) in robot.limits.iter().enumerate() {
+    for (j, l) in robot.limits().iter().enumerate() {
         vel[j] = l.max_vel * pace.sqrt();
         acc[j] = l.max_acc * pace;
     }
-    let t = &robot.limits.tilt_rad;
-    let fb = &robot.end_effector.fourbar;
-    let steepest = (0..=60)
-        .filter_map(|k| fb.nut_rate_m_per_rad(t.min + (t.max - t.min) * k as f64 / 60.0))
-        .map(f64::abs)
-        .fold(0.0, f64::max);
-    if steepest > 0.0 {
-        // 1 % below, for the nut rate between the sampled tilts.
-        vel[4] = vel[4].min(robot.end_effector.tilt_nut_max_speed_mps / (steepest * 1.01));
+    if let Some(b) = robot.basr() {
+        vel[4] = vel[4].min(nut_limited_tilt_rate(b));
     }
     timing::JointLimits {
         vel,
@@ -174,8 +171,21 @@ fn timing_limits(robot: &Robot, pace: f64) -> timing::JointLimits<5> {
     }
 }
 
-fn q_of(j: &Joints) -> Q {
-    j.values()
+/// BASR's tilt-rate limit from its ball nut's (infinite when the four-bar
+/// gives no nut rate).
+fn nut_limited_tilt_rate(robot: &crate::robot::Robot) -> f64 {
+    let t = &robot.limits.tilt_rad;
+    let fb = &robot.end_effector.fourbar;
+    let steepest = (0..=60)
+        .filter_map(|k| fb.nut_rate_m_per_rad(t.min + (t.max - t.min) * k as f64 / 60.0))
+        .map(f64::abs)
+        .fold(0.0, f64::max);
+    if steepest > 0.0 {
+        // 1 % below, for the nut rate between the sampled tilts.
+        robot.end_effector.tilt_nut_max_speed_mps / (steepest * 1.01)
+    } else {
+        f64::INFINITY
+    }
 }
 
 pub fn joints_of(q: &Q) -> Joints {
@@ -220,19 +230,19 @@ struct Slow {
 /// Gun windows from the runs' first and last painting knots, shifted by the
 /// lead and lag.
 fn time_station(
-    robot: &Robot,
-    stow: &Joints,
+    robot: &AnyRobot,
+    stow: &Q,
     runs: &[Run],
     period_s: f64,
     gun_lead_s: f64,
     gun_lag_s: f64,
-    pace: Pace,
+    pace: &Pace,
 ) -> Result<StationTiming, CompileError> {
     let limits = timing_limits(robot, pace.path);
     let air_limits = timing_limits(robot, pace.air);
     let options = timing::PathOptions::default();
     let err = |what: String| CompileError::Timing(what);
-    let home = q_of(stow);
+    let home = *stow;
     if runs.is_empty() {
         let still = timing::air_move(home, home, &limits, options.margin)
             .map_err(|e| err(e.to_string()))?;
@@ -252,7 +262,7 @@ fn time_station(
             vec![],
         ));
     }
-    let ch = chain(robot, runs);
+    let ch = chain(robot, runs, &limits, &pace.joins);
     let first = ch.points[0].q;
     let last = ch.points[ch.points.len() - 1].q;
     let pieces = vec![
@@ -308,8 +318,12 @@ fn time_station(
     for sd in &path.slowdowns {
         let (ri, knot) = ch.knot_of(sd.worst_waypoint);
         let limit = match sd.binding {
-            timing::Binding::Velocity { joint } => Limit::Speed { joint },
-            timing::Binding::Acceleration { joint } => Limit::Acceleration { joint },
+            timing::Binding::Velocity { joint } => Limit::Speed {
+                joint: robot.joint_names()[joint],
+            },
+            timing::Binding::Acceleration { joint } => Limit::Acceleration {
+                joint: robot.joint_names()[joint],
+            },
             timing::Binding::Rest => Limit::RunUp,
         };
         slows.push(Slow {
@@ -326,7 +340,7 @@ fn time_station(
         .map(|(ri, why)| {
             let sp = ch.spans[ri];
             let t = t_path + path.time_at(sp.offset + ch.arcs[ri][sp.lo]);
-            (t, runs[ri].joints[sp.lo].values(), ri, why)
+            (t, runs[ri].joints[sp.lo], ri, why)
         })
         .collect();
     Ok((out, slows, stops))

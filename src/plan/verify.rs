@@ -23,6 +23,11 @@ pub struct Verdict {
     pub why: String,
     /// Station and stroke of the worst error (stroke −1 in an air move).
     pub worst: (u32, i64),
+    /// Job time of the worst error (s).
+    pub worst_t_s: f64,
+    /// Every stroke whose error is over the bound: (station, stroke, job
+    /// time of its worst error, the error in m).
+    pub failing: Vec<(u32, i64, f64, f64)>,
 }
 
 /// Simulate `job` with the default options and judge it.
@@ -37,7 +42,10 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
             problems.len()
         )));
     }
-    let model = SimModel::from_robot(&job.robot)
+    let Some(robot) = job.robot.basr() else {
+        return verify_servo(job);
+    };
+    let model = SimModel::from_robot(robot)
         .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
     let opts = sim::Options::default();
     let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
@@ -72,5 +80,48 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
         ok,
         why,
         worst: (r.worst.station, r.worst.stroke),
+        worst_t_s: r.worst.t_s,
+        failing: r
+            .strokes
+            .iter()
+            .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
+            .map(|s| (s.worst.station, s.stroke, s.worst.t_s, s.max_error_m))
+            .collect(),
+    })
+}
+
+/// An electric kind's job through its servo plant (`sim::servo_job`),
+/// judged as BASR's: within `VERIFY_SHARE` of the default tolerance, no
+/// joint out of its range.
+fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
+    let tolerance = sim::Options::default().tolerance_m;
+    let r = sim::servo_job::simulate_job(job, tolerance)
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let bound = VERIFY_SHARE * tolerance;
+    let broken = r.broken_limits();
+    let ok = r.max_error_m <= bound && broken.is_empty();
+    let why = if ok {
+        String::new()
+    } else {
+        let mut w = format!(
+            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
+             × the {:.2} mm tolerance) at {}",
+            r.max_error_m * 1e3,
+            bound * 1e3,
+            tolerance * 1e3,
+            r.worst.describe()
+        );
+        if !broken.is_empty() {
+            w.push_str(&format!("; limits broken: {}", broken.join("; ")));
+        }
+        w
+    };
+    Ok(Verdict {
+        max_error_m: r.max_error_m,
+        ok,
+        why,
+        worst: (r.worst.station, r.worst.stroke),
+        worst_t_s: r.worst.t_s,
+        failing: vec![],
     })
 }

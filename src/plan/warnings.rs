@@ -49,20 +49,19 @@ impl std::fmt::Display for Owner {
 /// Which limit slowed the nozzle below the painting speed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Limit {
-    /// A joint's speed limit (`Limits::NAMES` index).
-    Speed { joint: usize },
+    /// A joint's speed limit (the joint's setpoint name, of the robot's kind).
+    Speed { joint: &'static str },
     /// A joint's acceleration limit.
-    Acceleration { joint: usize },
+    Acceleration { joint: &'static str },
     /// The run-up from rest is too short to reach the speed.
     RunUp,
 }
 
 impl std::fmt::Display for Limit {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let name = |j: usize| crate::robot::Limits::NAMES[j];
         match self {
-            Limit::Speed { joint } => write!(f, "the {} speed limit", name(*joint)),
-            Limit::Acceleration { joint } => write!(f, "the {} acceleration limit", name(*joint)),
+            Limit::Speed { joint } => write!(f, "the {joint} speed limit"),
+            Limit::Acceleration { joint } => write!(f, "the {joint} acceleration limit"),
             Limit::RunUp => write!(f, "the run-up from rest"),
         }
     }
@@ -284,9 +283,11 @@ impl Note {
                     t_s: Some(job::round_ns(*t_s)),
                     factor: None,
                     message: format!(
-                        "station {station}: the arm stops at t = {t_s:.2} s near ({:.3}, {:.3}) m: \
+                        "station {}: the arm stops at t = {t_s:.2} s near ({:.3}, {:.3}) m: \
                          {reason}. {todo}",
-                        at_m[0], at_m[1]
+                        station + 1,
+                        at_m[0],
+                        at_m[1]
                     ),
                 }
             }
@@ -316,7 +317,9 @@ mod tests {
         let slowed = Note::Slowed {
             stroke: 4,
             owner: owner(),
-            limit: Limit::Acceleration { joint: 3 },
+            limit: Limit::Acceleration {
+                joint: "ee_yaw_rad",
+            },
             at_m: [-1.0524, 0.6081],
             t_s: 19.3249999999,
             film_ratio: 1.05,

@@ -383,6 +383,29 @@ pub fn title_block_height(n: usize) -> f64 {
     20.0 + 15.0 * n as f64
 }
 
+/// Average advance of one character of the 11 px table text (px).
+/// assumed: Helvetica's mean glyph width is about 0.55 em, with room to spare.
+const TABLE_CHAR_PX: f64 = 6.5;
+
+/// `widths` widened where a column's longest cell (or its header) needs
+/// more room, so a long symbol name does not run into the next column.
+pub fn fit_widths(widths: &[f64], header: &[&str], rows: &[Vec<String>]) -> Vec<f64> {
+    widths
+        .iter()
+        .enumerate()
+        .map(|(c, &w)| {
+            let longest = rows
+                .iter()
+                .filter_map(|r| r.get(c))
+                .map(|s| s.chars().count())
+                .chain(header.get(c).map(|h| h.chars().count()))
+                .max()
+                .unwrap_or(0);
+            w.max(longest as f64 * TABLE_CHAR_PX + 10.0)
+        })
+        .collect()
+}
+
 /// A table with a header row; `widths` are the column widths in px.
 pub fn table(x: f64, y: f64, widths: &[f64], header: &[&str], rows: &[Vec<String>]) -> Group {
     let row_h = 15.0;

@@ -254,8 +254,8 @@ pub fn build(input: &Input) -> Sheet {
     let time_on_site_s = time_on_site_s(job);
     let paint_m3 = job.summary.paint_volume_m3;
     let life = (
-        job.robot.paint.tip_life_min_m3,
-        job.robot.paint.tip_life_max_m3,
+        job.robot.paint().tip_life_min_m3,
+        job.robot.paint().tip_life_max_m3,
     );
     let tip_left_m3 = input
         .tip_used_before_m3
@@ -293,7 +293,7 @@ pub fn build(input: &Input) -> Sheet {
     let facts = vec![
         ("job file".into(), input.job_name.to_string()),
         ("job sha256".into(), job.sha256.chars().take(16).collect()),
-        ("robot".into(), job.robot.name.clone()),
+        ("robot".into(), job.robot.name().to_string()),
         (
             "lane".into(),
             format!(

@@ -15,8 +15,9 @@ pub enum RobotError {
     },
     /// A valid description of a kind the command does not take yet.
     #[error(
-        "{origin}: a robot of kind \"{kind}\": compile, preview and simulate take BASR only so far; \
-         check, robot, pose, workspace and design take every kind (docs/robot-kinds.md)"
+        "{origin}: a robot of kind \"{kind}\", but this needs BASR's description; compile, \
+         preview, check, simulate, robot, pose, workspace and design take every kind \
+         (docs/robot-kinds.md)"
     )]
     Kind { origin: String, kind: &'static str },
 }

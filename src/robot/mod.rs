@@ -5,6 +5,7 @@
 //! The description is an immutable model (DESIGN: model apart from state);
 //! every computation takes it by reference.
 
+pub mod any;
 pub mod articulated;
 pub mod design;
 pub mod dynamics;
@@ -12,6 +13,7 @@ pub mod envelope;
 pub mod fourbar;
 pub mod kind;
 pub mod kinematics;
+pub mod reach;
 pub mod section;
 pub mod telescopic;
 pub mod workspace;

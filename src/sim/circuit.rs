@@ -75,9 +75,11 @@ impl Circuit {
     /// `p_ex`, piloted by the inlet side `p_pilot`.
     #[inline]
     pub fn cb_opening(&self, p_ex: f64, p_pilot: f64) -> f64 {
-        // a small fraction stays open: the valve's damping orifice
+        // closed below cracking: a load-holding poppet (its damping is the
+        // bleed across the motor, `cb_bleed`); a 5 % floor let a motor whose
+        // inlet had lost pressure coast on at 0.2 rad/s (issue 12, faults)
         ((p_ex + self.cb_pilot_ratio * p_pilot - self.cb_crack_pa) / self.cb_band_pa)
-            .clamp(0.05, 1.0)
+            .clamp(0.0, 1.0)
     }
 
     /// Natural frequency of one line (Hz): inertance on the hose's compliance.

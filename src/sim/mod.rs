@@ -7,13 +7,18 @@
 pub mod circuit;
 pub mod control;
 pub mod ee;
+pub mod fault;
 pub mod model;
 pub mod plant;
 pub mod plants;
+mod reference;
 pub mod report;
+pub mod safety;
 pub mod servo;
+pub mod servo_job;
 pub mod svg;
 pub mod synthetic;
+mod tally;
 
 pub use control::{Command, Controller, ControllerKind, Measurement, Reference};
 pub use model::SimModel;
@@ -22,9 +27,9 @@ pub use report::{Report, TraceRow};
 use crate::job::Job;
 use crate::robot::Joints;
 use plant::{Inputs, State};
-use report::{
-    AxisErrors, LimitViolation, PeakPressures, Place, Saturation, StrokeError, Unit, Waviness,
-};
+use reference::{curve, within, NutTable, Pose};
+use report::{AxisErrors, LimitViolation, PeakPressures, Place, Saturation, StrokeError, Unit};
+use tally::{ErrStats, LimitTrack};
 
 /// Errors from setting up a simulation (bad input: exit 2).
 #[derive(Debug, thiserror::Error)]
@@ -73,121 +78,6 @@ pub fn nozzle_base(model: &SimModel, theta: f64, r: f64) -> [f64; 2] {
     let (s, c) = theta.sin_cos();
     let a2 = model.arm.a2_m;
     [r * c + a2 * s, r * s - a2 * c]
-}
-
-/// Station pose helpers: base frame ↔ road frame (SPEC §2).
-#[derive(Clone, Copy, Debug)]
-struct Pose {
-    x: f64,
-    y: f64,
-    c: f64,
-    s: f64,
-}
-
-impl Pose {
-    fn new(st: &crate::job::Station) -> Pose {
-        let (s, c) = (st.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
-        Pose {
-            x: st.x_m,
-            y: st.y_m,
-            c,
-            s,
-        }
-    }
-    fn to_road(self, b: [f64; 2]) -> [f64; 2] {
-        [
-            self.x + self.c * b[0] - self.s * b[1],
-            self.y + self.s * b[0] + self.c * b[1],
-        ]
-    }
-    fn to_base(self, r: [f64; 2]) -> [f64; 2] {
-        let (dx, dy) = (r[0] - self.x, r[1] - self.y);
-        [self.c * dx + self.s * dy, -self.s * dx + self.c * dy]
-    }
-}
-
-/// Catmull-Rom interpolation of a uniformly sampled column: value, first and
-/// second time derivatives at `t` (the controller's trajectory generator
-/// between the job's setpoints).
-fn catmull_rom(v: &[f64], dt: f64, t: f64) -> [f64; 3] {
-    let n = v.len();
-    if n == 1 {
-        return [v[0], 0.0, 0.0];
-    }
-    let sidx = (t / dt).max(0.0);
-    let i = (sidx.floor() as usize).min(n - 2);
-    let u = (sidx - i as f64).clamp(0.0, 1.0);
-    let p0 = v[i.saturating_sub(1)];
-    let p1 = v[i];
-    let p2 = v[i + 1];
-    let p3 = v[(i + 2).min(n - 1)];
-    let a = -p0 + p2;
-    let b = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
-    let c = -p0 + 3.0 * p1 - 3.0 * p2 + p3;
-    [
-        0.5 * (2.0 * p1 + a * u + b * u * u + c * u * u * u),
-        0.5 * (a + 2.0 * b * u + 3.0 * c * u * u) / dt,
-        0.5 * (2.0 * b + 6.0 * c * u) / (dt * dt),
-    ]
-}
-
-/// A joint reference held within the joint's range `lo..=hi`: at rest on
-/// the limit where the curve through the rows would overshoot it (a row
-/// sitting on the limit next to a fast move dips past it by up to 7.4 % of
-/// the next step), as the end-effector setpoints are clipped to their
-/// travel. A monotone interpolant (PCHIP) would not overshoot either, but it
-/// flattens every extremum of the rows and its acceleration kicks moved
-/// STOP's worst sjct error from 5.3 to 7.1 mm.
-fn within(r: [f64; 3], lo: f64, hi: f64) -> [f64; 3] {
-    if r[0] < lo {
-        [lo, 0.0, 0.0]
-    } else if r[0] > hi {
-        [hi, 0.0, 0.0]
-    } else {
-        r
-    }
-}
-
-/// Tilt from ball-nut travel by a table of the four-bar's exact nut(β):
-/// the robot's own inverse is a root search, too slow for every 5 ms tick.
-struct NutTable {
-    nut: Vec<f64>,
-    beta: Vec<f64>,
-}
-
-impl NutTable {
-    fn new(robot: &crate::robot::Robot) -> NutTable {
-        let l = &robot.limits.tilt_rad;
-        let span = l.min.abs().max(l.max.abs()) * 1.2;
-        let n = 2000;
-        let mut pts: Vec<(f64, f64)> = (0..=n)
-            .filter_map(|i| {
-                let b = -span + 2.0 * span * i as f64 / n as f64;
-                robot.end_effector.fourbar.nut_m(b).map(|x| (x, b))
-            })
-            .collect();
-        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-        NutTable {
-            nut: pts.iter().map(|p| p.0).collect(),
-            beta: pts.iter().map(|p| p.1).collect(),
-        }
-    }
-
-    /// β for nut travel `x` (clamped to the table; 0 without a table).
-    fn tilt(&self, x: f64) -> f64 {
-        let n = self.nut.len();
-        if n < 2 {
-            return 0.0;
-        }
-        let i = self.nut.partition_point(|&v| v < x).clamp(1, n - 1);
-        let (x0, x1) = (self.nut[i - 1], self.nut[i]);
-        let t = if x1 > x0 {
-            ((x - x0) / (x1 - x0)).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        self.beta[i - 1] + t * (self.beta[i] - self.beta[i - 1])
-    }
 }
 
 /// Check the job's numbers before running (bad input → exit 2).
@@ -243,93 +133,6 @@ fn validate_job(job: &Job) -> Result<(), SimError> {
     Ok(())
 }
 
-/// Accumulates one limit's violations.
-struct LimitTrack {
-    kind: &'static str,
-    fails: bool,
-    limit: f64,
-    first: Option<Place>,
-    worst: f64,
-    ticks: u64,
-    what: &'static str,
-    unit: Unit,
-}
-
-impl LimitTrack {
-    fn new(kind: &'static str, what: &'static str, unit: Unit, fails: bool) -> LimitTrack {
-        LimitTrack {
-            kind,
-            fails,
-            limit: 0.0,
-            first: None,
-            worst: 0.0,
-            ticks: 0,
-            what,
-            unit,
-        }
-    }
-    /// Record `value` past `limit` by `excess` > 0 at `place`.
-    fn hit(&mut self, excess: f64, value: f64, limit: f64, place: &Place) {
-        if excess <= 0.0 {
-            return;
-        }
-        self.ticks += 1;
-        if self.first.is_none() || excess > (self.worst - self.limit).abs() {
-            self.worst = value;
-            self.limit = limit;
-        }
-        if self.first.is_none() {
-            self.first = Some(place.clone());
-        }
-    }
-    fn finish(self, period: f64) -> Option<LimitViolation> {
-        let first = self.first?;
-        let message = format!(
-            "{} (reached {} against {}) first at {}, for {:.3} s",
-            self.what,
-            self.unit.show(self.worst),
-            self.unit.show(self.limit),
-            first.describe(),
-            self.ticks as f64 * period
-        );
-        Some(LimitViolation {
-            kind: self.kind.into(),
-            fails: self.fails,
-            first,
-            duration_s: self.ticks as f64 * period,
-            worst_value: self.worst,
-            limit: self.limit,
-            message,
-        })
-    }
-}
-
-#[derive(Default)]
-struct ErrStats {
-    max: f64,
-    sum2: f64,
-    n: u64,
-    worst: Place,
-}
-
-impl ErrStats {
-    fn add(&mut self, e: f64, p: &Place) {
-        if e > self.max || self.n == 0 {
-            self.max = e;
-            self.worst = p.clone();
-        }
-        self.sum2 += e * e;
-        self.n += 1;
-    }
-    fn rms(&self) -> f64 {
-        if self.n == 0 {
-            0.0
-        } else {
-            (self.sum2 / self.n as f64).sqrt()
-        }
-    }
-}
-
 /// Run `job` through `model` in closed loop. `progress(done, total)` is called
 /// now and then with control ticks.
 pub fn simulate(
@@ -341,6 +144,18 @@ pub fn simulate(
     simulate_plant(job, model, model, opts, progress)
 }
 
+/// [`simulate`] with hardware faults injected (`--fault`): the report's
+/// `safety` says what happened, when and where, and how the arm stopped.
+pub fn simulate_faulted(
+    job: &Job,
+    model: &SimModel,
+    opts: &Options,
+    faults: &[fault::Fault],
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
+    run(job, model, model, opts, faults, progress)
+}
+
 /// [`simulate`] with the controller built for the `nominal` model (the
 /// robot description) driving another `model` (a plant drawn around it).
 pub fn simulate_plant(
@@ -350,7 +165,25 @@ pub fn simulate_plant(
     opts: &Options,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
+    run(job, nominal, model, opts, &[], progress)
+}
+
+fn run(
+    job: &Job,
+    nominal: &SimModel,
+    model: &SimModel,
+    opts: &Options,
+    faults: &[fault::Fault],
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
     validate_job(job)?;
+    // The hydraulic plant is BASR's; the electric kinds have theirs (`servo_job`).
+    let robot = job.robot.basr().ok_or_else(|| {
+        SimError::Job(format!(
+            "its robot is of the {} kind, which the hydraulic plant does not model",
+            job.robot.kind().name()
+        ))
+    })?;
     nominal.validate().map_err(SimError::Model)?;
     model.validate().map_err(SimError::Model)?;
     if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
@@ -365,6 +198,11 @@ pub fn simulate_plant(
         )));
     }
     let substeps = opts.substeps.unwrap_or(model.substeps);
+    fault::check(
+        faults,
+        (job.samples.len().saturating_sub(1)) as f64 * job.control_period_s,
+    )
+    .map_err(SimError::Option)?;
     let s = &job.samples;
     let n = s.len();
     let dt_job = job.control_period_s;
@@ -390,35 +228,41 @@ pub fn simulate_plant(
     let sens = &model.sensors;
     let base_q = std::f64::consts::TAU / sens.base_counts_per_turn;
     let p_q = sens.adc_step_v * sens.pressure_pa_per_volt;
-    let measure = |st: &State, t: f64, reference: Reference| -> Measurement {
+    let measure = |st: &State, t: f64, reference: Reference, f: &fault::Active| -> Measurement {
         let quant = |v: f64, q: f64| if sens.exact { v } else { (v / q).round() * q };
         // pressures go through the transducer's volts and the ADC's steps
         let pres = |p: f64| quant(p * sens.pressure_gain, p_q);
         let r = model.arm.r_of_x(st[plant::X]);
         Measurement {
             t_s: t,
-            base_rot_rad: quant(st[plant::TH], base_q),
+            base_rot_rad: quant(st[plant::TH] + f.encoder_offset_rad, base_q),
             extension_m: model.arm.r_min_m
                 + quant(r - model.arm.r_min_m, sens.extension_m_per_count),
             motor_pa: [pres(st[plant::PA1]), pres(st[plant::PB1])],
             cylinder_pa: [pres(st[plant::PA2]), pres(st[plant::PB2])],
+            supply_pa: pres(st[plant::PS]),
             reference,
         }
     };
     let (r_lo, r_hi) = (model.arm.r_min_m, model.arm.r_of_x(model.arm.x_max_m()));
     let (th_lo, th_hi) = (model.arm.theta_min_rad, model.arm.theta_max_rad);
     let reference_at = |t: f64| -> Reference {
-        let nx = catmull_rom(&bx, dt_job, t);
-        let ny = catmull_rom(&by, dt_job, t);
+        let nx = curve(&bx, dt_job, t);
+        let ny = curve(&by, dt_job, t);
         Reference {
-            base_rot: within(catmull_rom(&s.base_rot_rad, dt_job, t), th_lo, th_hi),
-            extension: within(catmull_rom(&s.extension_m, dt_job, t), r_lo, r_hi),
+            base_rot: within(curve(&s.base_rot_rad, dt_job, t), th_lo, th_hi),
+            extension: within(curve(&s.extension_m, dt_job, t), r_lo, r_hi),
             nozzle: [[nx[0], ny[0]], [nx[1], ny[1]], [nx[2], ny[2]]],
         }
     };
 
-    let nut_to_tilt = NutTable::new(&job.robot);
-    let m0 = measure(&state, 0.0, reference_at(0.0));
+    let nut_to_tilt = NutTable::new(robot);
+    let m0 = measure(
+        &state,
+        0.0,
+        reference_at(0.0),
+        &fault::Active::at(faults, 0.0, sens.base_counts_per_turn),
+    );
     let mut ctrl = opts.controller.build(nominal, &m0);
 
     let mut all = ErrStats::default();
@@ -479,11 +323,13 @@ pub fn simulate_plant(
     let r_max = model.arm.r_of_x(model.arm.x_max_m());
 
     let mut diverged: Option<f64> = None;
+    let mut monitor = safety::Monitor::new(model, faults);
     for k in 0..ticks {
         let t = k as f64 * period;
         let row = ((t / dt_job + 1e-9).floor() as usize).min(n - 1);
         let reference = reference_at(t);
-        let meas = measure(&state, t, reference);
+        let active = fault::Active::at(faults, t, sens.base_counts_per_turn);
+        let meas = measure(&state, t, reference, &active);
         let cmd = ctrl.step(&meas);
         let station = s.station[row];
         let station_pose = &poses[station as usize];
@@ -491,7 +337,7 @@ pub fn simulate_plant(
         // linkage's deflection
         let r_act = model.arm.r_of_x(state[plant::X]);
         let tilt = nut_to_tilt.tilt(nut.pos);
-        let pose = job.robot.fk(&Joints {
+        let pose = robot.fk(&Joints {
             base_rot_rad: state[plant::TH],
             extension_m: r_act,
             vertical_m: vert.pos,
@@ -515,7 +361,21 @@ pub fn simulate_plant(
             y_m: des_road[1],
         };
         let painting = s.paint[row] != 0;
-        all.add(err, &place);
+        // the safety monitor: the nozzle off its path by the encoders
+        monitor.note_faults(t, period, &place);
+        let w_meas = nozzle_base(model, meas.base_rot_rad, meas.extension_m);
+        let w_ref = nozzle_base(model, reference.base_rot[0], reference.extension[0]);
+        let follow = (w_meas[0] - w_ref[0]).hypot(w_meas[1] - w_ref[1]);
+        let before_stop = !monitor.stopped();
+        let estop = monitor.check(model, &meas, follow, &place);
+        let gun = monitor.gun_open(painting, follow, opts.tolerance_m);
+        monitor.nozzle(t, station_pose.to_road(act), err, gun, opts.tolerance_m);
+        let cmd = if estop { Command::default() } else { cmd };
+        // the job's painting ends where the arm was stopped
+        let painting = painting && before_stop;
+        if before_stop {
+            all.add(err, &place);
+        }
         if painting {
             painting_ticks += 1;
             paint.add(err, &place);
@@ -590,9 +450,9 @@ pub fn simulate_plant(
             sat.cylinder_valve_s += period;
         }
         // end-effector setpoints, clipped to their travel (noted if past it)
-        let yaw_ref = catmull_rom(&s.ee_yaw_rad, dt_job, t);
-        let nut_ref = catmull_rom(&s.tilt_nut_m, dt_job, t);
-        let vert_ref = catmull_rom(&s.vertical_m, dt_job, t);
+        let yaw_ref = curve(&s.ee_yaw_rad, dt_job, t);
+        let nut_ref = curve(&s.tilt_nut_m, dt_job, t);
+        let vert_ref = curve(&s.vertical_m, dt_job, t);
         // travel is judged on the job's own rows (the interpolation may
         // overshoot a setpoint that sits exactly on a limit), within 1 µm
         let ax = &model.tilt_nut;
@@ -652,6 +512,8 @@ pub fn simulate_plant(
         let inputs = Inputs {
             u_motor: cmd.u_motor,
             u_cyl: cmd.u_cyl,
+            estop,
+            faults: active,
         };
         let (mut ys, mut ts, mut vs) = (false, false, false);
         let clip = |v: f64, a: &model::ServoAxis| v.clamp(a.min, a.max);
@@ -678,44 +540,13 @@ pub fn simulate_plant(
         if k % 2000 == 0 {
             progress(k, ticks);
         }
+        if monitor.done(t) {
+            break;
+        }
     }
     progress(ticks, ticks);
 
-    // waviness: high-pass each painting segment's error above the path's content
-    turn_rates.sort_by(f64::total_cmp);
-    let f_path = turn_rates
-        .get(((turn_rates.len() as f64) * 0.95) as usize)
-        .or(turn_rates.last())
-        .copied()
-        .unwrap_or(0.0)
-        / std::f64::consts::TAU;
-    let cutoff = (4.0 * f_path).clamp(0.5, 5.0);
-    let mut waviness = Waviness {
-        cutoff_hz: cutoff,
-        ..Default::default()
-    };
-    let (mut w2, mut wn) = (0.0, 0u64);
-    let mut i = 0;
-    while i < wav.len() {
-        let id = wav[i].0;
-        let j = wav[i..]
-            .iter()
-            .position(|w| w.0 != id)
-            .map_or(wav.len(), |p| i + p);
-        let mut ex: Vec<f64> = wav[i..j].iter().map(|w| w.1).collect();
-        let mut ey: Vec<f64> = wav[i..j].iter().map(|w| w.2).collect();
-        highpass_and_measure(
-            &mut ex,
-            &mut ey,
-            cutoff,
-            period,
-            &mut waviness.max_m,
-            &mut w2,
-            &mut wn,
-        );
-        i = j;
-    }
-    waviness.rms_m = if wn > 0 { (w2 / wn as f64).sqrt() } else { 0.0 };
+    let waviness = tally::waviness(&wav, &mut turn_rates, period);
 
     let verdict_stats = if paint.n > 0 { &paint } else { &all };
     let mut reasons = Vec::new();
@@ -724,6 +555,14 @@ pub fn simulate_plant(
             "the closed loop diverged (the arm's state grew without bound) at t = {t:.3} s: \
              the {} controller is unstable on this job",
             opts.controller.name()
+        ));
+    }
+    let safety = monitor.finish();
+    if let Some(stop) = safety.as_ref().and_then(|s| s.stop.as_ref()) {
+        reasons.push(format!(
+            "the safety monitor stopped the arm at {}: {}",
+            stop.at.describe(),
+            stop.cause
         ));
     }
     if verdict_stats.max > opts.tolerance_m {
@@ -780,81 +619,7 @@ pub fn simulate_plant(
         control_period_s: period,
         integrator_step_s: h,
         plants: None,
+        safety,
     };
     Ok(Outcome { report, trace })
-}
-
-fn highpass_and_measure(
-    ex: &mut [f64],
-    ey: &mut [f64],
-    cutoff: f64,
-    dt: f64,
-    max: &mut f64,
-    sum2: &mut f64,
-    n: &mut u64,
-) {
-    report::highpass_zero_phase(ex, cutoff, dt);
-    report::highpass_zero_phase(ey, cutoff, dt);
-    for (a, b) in ex.iter().zip(ey.iter()) {
-        let e = a.hypot(*b);
-        *max = max.max(e);
-        *sum2 += e * e;
-        *n += 1;
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn catmull_rom_passes_through_samples_and_differentiates_lines() {
-        let v: Vec<f64> = (0..10).map(|i| 0.5 + 2.0 * i as f64 * 0.032).collect();
-        for i in 0..10 {
-            let r = catmull_rom(&v, 0.032, i as f64 * 0.032);
-            assert!((r[0] - v[i]).abs() < 1e-12);
-        }
-        let r = catmull_rom(&v, 0.032, 0.1);
-        assert!((r[1] - 2.0).abs() < 1e-9 && r[2].abs() < 1e-6);
-    }
-
-    #[test]
-    fn the_curve_through_rows_on_a_limit_overshoots_and_is_held_within() {
-        // held on a limit, then leaving it by 10 mm a row: Catmull-Rom dips
-        // 0.74 mm below the limit before the step
-        let v = [1.55, 1.55, 1.55, 1.56, 1.60];
-        let lowest = (0..=128)
-            .map(|k| catmull_rom(&v, 0.032, k as f64 * 0.001)[0])
-            .fold(f64::INFINITY, f64::min);
-        assert!((1.55 - lowest - 0.01 * 2.0 / 27.0).abs() < 1e-6, "{lowest}");
-        let r = within(catmull_rom(&v, 0.032, 0.032 * (1.0 + 2.0 / 3.0)), 1.55, 5.0);
-        assert_eq!(r, [1.55, 0.0, 0.0]);
-        let free = catmull_rom(&v, 0.032, 0.11);
-        assert_eq!(within(free, 1.55, 5.0), free);
-    }
-
-    #[test]
-    fn nut_table_inverts_the_four_bar() {
-        let r = crate::robot::Robot::basr();
-        let t = NutTable::new(&r);
-        for b in [-0.25, -0.1, 0.0, 0.07, 0.26] {
-            let x = r.end_effector.fourbar.nut_m(b).unwrap();
-            assert!((t.tilt(x) - b).abs() < 1e-6, "{b}");
-        }
-    }
-
-    #[test]
-    fn pose_round_trips() {
-        let p = Pose::new(&crate::job::Station {
-            x_m: 1.0,
-            y_m: 4.0,
-            heading_rad: -std::f64::consts::FRAC_PI_2,
-        });
-        let b = [0.3, 2.0];
-        let r = p.to_road(b);
-        let back = p.to_base(r);
-        assert!((back[0] - b[0]).abs() < 1e-12 && (back[1] - b[1]).abs() < 1e-12);
-        // heading −π/2: +y_B points to −y_R
-        assert!((r[1] - (4.0 - 2.0)).abs() < 1e-12);
-    }
 }

@@ -270,7 +270,9 @@ impl SimModel {
     /// The simulator's model of `robot`: kinematics, hydraulics, sensors,
     /// limits and control timing from their tables, the rest from its
     /// `[dynamics]` table.
-    pub fn from_robot(robot: &crate::robot::Robot) -> Result<SimModel, String> {
+    /// A job's robot of another kind than BASR has no hydraulic model (Err).
+    pub fn from_robot(robot: &impl HydraulicRobot) -> Result<SimModel, String> {
+        let robot = robot.hydraulic_robot()?;
         let h = &robot.hydraulics;
         let arm = &robot.arm;
         let dy = &robot.dynamics;
@@ -520,6 +522,31 @@ impl SimModel {
             return Err(format!("substeps = {} must be 1–100", self.substeps));
         }
         Ok(())
+    }
+}
+
+/// What a hydraulic model is built from: BASR's description, or a job's
+/// robot of any kind (`AnyRobot`), which is refused unless it is BASR's:
+/// the electric kinds have their servo plant (`sim::servo_job`).
+pub trait HydraulicRobot {
+    fn hydraulic_robot(&self) -> Result<&crate::robot::Robot, String>;
+}
+
+impl HydraulicRobot for crate::robot::Robot {
+    fn hydraulic_robot(&self) -> Result<&crate::robot::Robot, String> {
+        Ok(self)
+    }
+}
+
+impl HydraulicRobot for crate::robot::AnyRobot {
+    fn hydraulic_robot(&self) -> Result<&crate::robot::Robot, String> {
+        self.basr().ok_or_else(|| {
+            format!(
+                "the robot is of the {} kind, which has no hydraulic plant: `basr simulate` \
+                 runs its servo plant",
+                self.kind().name()
+            )
+        })
     }
 }
 

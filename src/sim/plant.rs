@@ -57,6 +57,13 @@ pub struct Inputs {
     pub u_motor: f64,
     /// Extension-cylinder servovalve command.
     pub u_cyl: f64,
+    /// The safety monitor's stop: the supply dump valve unloads the valves'
+    /// supply to tank (the counterbalance valves, their pilot lost, brake
+    /// the motor) and the extension's enable valve (000 §III: open only
+    /// while powered) blocks both cylinder ports.
+    pub estop: bool,
+    /// Injected faults (`--fault`) acting on the plant.
+    pub faults: super::fault::Active,
 }
 
 /// Mass-matrix diagonal and its x-derivatives at A–C distance `x`.
@@ -236,8 +243,15 @@ pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
     let h = &m.hydraulics;
     let c = &m.circuit;
     let ps = s[PS];
-    let (va1, vb1, qs1) = valve_flows(h, c, &m.motor, s[Y1], ps, s[LP], s[LP + 1], true);
-    let (va2, vb2, qs2) = valve_flows(h, c, &m.cylinder, s[Y2], ps, s[LP + 2], s[LP + 3], false);
+    // the valves' supply: the accumulator's, or tank behind the dump valve
+    let ps_valves = if u.estop { h.tank_pa } else { ps };
+    let (va1, vb1, qs1) = valve_flows(h, c, &m.motor, s[Y1], ps_valves, s[LP], s[LP + 1], true);
+    let (va2, vb2, qs2) = if u.estop {
+        (0.0, 0.0, 0.0)
+    } else {
+        valve_flows(h, c, &m.cylinder, s[Y2], ps, s[LP + 2], s[LP + 3], false)
+    };
+    let (qs1, qs2) = if u.estop { (0.0, 0.0) } else { (qs1, qs2) };
     // the hoses: compliance at the valve end, inertance and friction along
     let valve_q = [va1, vb1, va2, vb2];
     let chamber = [s[PA1], s[PB1], s[PA2], s[PB2]];
@@ -273,8 +287,15 @@ pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
     // the accumulator: pump in, both valves' inlets out
     // (the manifold's oil at its pure-oil modulus: eq. 13 is within 5 % of
     // it at supply pressure)
-    ds[PS] =
-        (c.pump_flow(ps, h.supply_pa) - qs1 - qs2) / c.supply_capacitance(ps, h.bulk_modulus_pa);
+    let pump = if u.faults.supply_lost {
+        0.0
+    } else {
+        c.pump_flow(ps, h.supply_pa)
+    };
+    ds[PS] = (pump - qs1 - qs2) / c.supply_capacitance(ps, h.bulk_modulus_pa);
+    if u.faults.supply_lost {
+        ds[PS] -= (ps - h.tank_pa) / super::fault::SUPPLY_VENT_TAU_S;
+    }
     // eq. 17 with K_s folded into the valve gain; the spool stops at ±1
     let spool = |y: f64, cmd: f64, tau: f64| {
         let r = (cmd.clamp(-1.0, 1.0) - y) / tau;
@@ -284,7 +305,11 @@ pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
             r
         }
     };
-    ds[Y1] = spool(s[Y1], u.u_motor, m.motor.valve_tau_s);
+    ds[Y1] = if u.faults.motor_spool_stuck {
+        0.0
+    } else {
+        spool(s[Y1], u.u_motor, m.motor.valve_tau_s)
+    };
     ds[Y2] = spool(s[Y2], u.u_cyl, m.cylinder.valve_tau_s);
     // tip acceleration of W(θ1, R) (a2's contribution, 1 cm, is neglected here)
     let k = m.arm.k;

@@ -136,6 +136,20 @@ pub fn draw(seed: u64, i: u32, spread: f64) -> Vec<f64> {
         .collect()
 }
 
+/// The uncertain numbers' names, in the order of [`draw`]'s factors.
+pub fn names() -> Vec<&'static str> {
+    UNCERTAIN.iter().map(|u| u.0).collect()
+}
+
+/// `nominal` with each uncertain number scaled by its factor of `f`.
+pub fn scaled(nominal: &SimModel, f: &[f64]) -> SimModel {
+    let mut m = nominal.clone();
+    for ((_, scale), fi) in UNCERTAIN.iter().zip(f) {
+        scale(&mut m, *fi);
+    }
+    m
+}
+
 /// The p-quantile (0..1) of sorted `v` (nearest rank).
 fn quantile(v: &[f64], p: f64) -> f64 {
     let k = ((p * v.len() as f64).ceil() as usize).clamp(1, v.len());
@@ -157,10 +171,7 @@ pub fn run(
         .into_par_iter()
         .map(|i| {
             let f = draw(plants.seed, i, plants.spread);
-            let mut m = nominal.clone();
-            for ((_, scale), fi) in UNCERTAIN.iter().zip(&f) {
-                scale(&mut m, *fi);
-            }
+            let m = scaled(nominal, &f);
             let o = simulate_plant(job, nominal, &m, opts, &mut |_, _| {})?;
             Ok((o.report.max_error_m, o.report.passed(), f))
         })

@@ -152,6 +152,10 @@ pub struct Report {
     /// drawn around the description (the verdict is then on its p95).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub plants: Option<super::plants::PlantsSummary>,
+    /// With `--fault`, or when the safety monitor stopped the arm: what
+    /// happened, when and where, and how the arm came to rest.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub safety: Option<super::safety::SafetyReport>,
 }
 
 impl Report {
@@ -205,6 +209,9 @@ impl Report {
                 st.worst.t_s,
                 mm(st.rms_error_m)
             );
+        }
+        if let Some(safety) = &self.safety {
+            s += &safety.human();
         }
         for l in &self.limits {
             s += &format!("  limit: {}\n", l.message);

@@ -89,6 +89,20 @@ fn reference(sp: &[Q], period: f64, t: f64, k: usize) -> (f64, f64, f64) {
     (q, v, a)
 }
 
+/// One controller sample of a servo simulation.
+#[derive(Clone, Copy, Debug)]
+pub struct Tick {
+    pub t_s: f64,
+    /// The setpoint nearest in time.
+    pub index: usize,
+    /// Tip distance from where the setpoints put it (m).
+    pub tip_error_m: f64,
+    /// The followed joints.
+    pub q: Q,
+    /// |effort| / max_effort asked of each joint (over 1: saturated).
+    pub effort_fraction: [f64; 5],
+}
+
 /// Follow `setpoints` (joint sets every `period_s`) with the servo loops,
 /// starting at rest on the first setpoint.
 pub fn simulate(
@@ -105,8 +119,41 @@ pub fn simulate(
         effort_fraction: [0.0; 5],
         speed_fraction: [0.0; 5],
     };
+    let mut sum2 = 0.0;
+    let mut n = 0usize;
+    let speeds = follow(arm, joints, setpoints, period_s, sample_s, &mut |tick| {
+        let err = tick.tip_error_m;
+        sum2 += err * err;
+        n += 1;
+        if err > report.max_tip_error_m {
+            report.max_tip_error_m = err;
+            report.worst_index = tick.index;
+        }
+        for k in 0..5 {
+            report.effort_fraction[k] = report.effort_fraction[k].max(tick.effort_fraction[k]);
+        }
+    });
+    report.speed_fraction = speeds;
+    if n > 0 {
+        report.rms_tip_error_m = (sum2 / n as f64).sqrt();
+    }
+    report
+}
+
+/// The servo loops following `setpoints` from rest on the first, every
+/// controller sample given to `tick`; returns each joint's largest
+/// |speed| / max_vel.
+pub fn follow(
+    arm: &dyn ArmKind,
+    joints: &[ServoJoint; 5],
+    setpoints: &[Q],
+    period_s: f64,
+    sample_s: f64,
+    tick: &mut dyn FnMut(&Tick),
+) -> [f64; 5] {
+    let mut speed_fraction = [0.0; 5];
     if setpoints.is_empty() || !(period_s > 0.0 && sample_s > 0.0) {
-        return report;
+        return speed_fraction;
     }
     let loops = joints.map(|j| Loop::of(&j));
     let mut s: [State; 5] = std::array::from_fn(|k| State {
@@ -116,10 +163,10 @@ pub fn simulate(
     let end = (setpoints.len() - 1) as f64 * period_s;
     let steps = (end / sample_s).ceil() as usize;
     let h = sample_s / SUBSTEPS as f64;
-    let mut sum2 = 0.0;
     for step in 0..=steps {
         let t = step as f64 * sample_s;
         let mut effort = [0.0; 5];
+        let mut fraction = [0.0; 5];
         let mut want = [0.0; 5];
         for k in 0..5 {
             let (qr, vr, ar) = reference(setpoints, period_s, t, k);
@@ -133,29 +180,30 @@ pub fn simulate(
             if effort[k] == u {
                 s[k].integral += e * sample_s;
             }
-            report.effort_fraction[k] = report.effort_fraction[k].max(u.abs() / j.max_effort);
+            fraction[k] = u.abs() / j.max_effort;
         }
         let got: Q = std::array::from_fn(|k| s[k].q);
         let (a, b) = (arm.fk(&got), arm.fk(&want));
         let err =
             ((a.x_m - b.x_m).powi(2) + (a.y_m - b.y_m).powi(2) + (a.z_m - b.z_m).powi(2)).sqrt();
-        sum2 += err * err;
-        if err > report.max_tip_error_m {
-            report.max_tip_error_m = err;
-            report.worst_index = ((t / period_s).round() as usize).min(setpoints.len() - 1);
-        }
+        tick(&Tick {
+            t_s: t,
+            index: ((t / period_s).round() as usize).min(setpoints.len() - 1),
+            tip_error_m: err,
+            q: got,
+            effort_fraction: fraction,
+        });
         for _ in 0..SUBSTEPS {
             for k in 0..5 {
                 let j = &joints[k];
                 let vmax = j.max_vel * SPEED_HEADROOM;
                 s[k].v = (s[k].v + h * effort[k] / j.inertia).clamp(-vmax, vmax);
                 s[k].q += h * s[k].v;
-                report.speed_fraction[k] = report.speed_fraction[k].max(s[k].v.abs() / j.max_vel);
+                speed_fraction[k] = f64::max(speed_fraction[k], s[k].v.abs() / j.max_vel);
             }
         }
     }
-    report.rms_tip_error_m = (sum2 / (steps + 1) as f64).sqrt();
-    report
+    speed_fraction
 }
 
 #[cfg(test)]

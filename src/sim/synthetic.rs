@@ -248,7 +248,7 @@ fn sealed(
             name: "none".into(),
             sha256: String::new(),
         },
-        robot,
+        robot: robot.into(),
         robot_sha256: String::new(),
         paint,
         control_period_s: period,

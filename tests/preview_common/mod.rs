@@ -30,39 +30,32 @@ pub struct Rung {
     pub tilt: f64,
 }
 
+/// The station every synthetic job paints from: 4 m up the road from the
+/// letters, facing down it, so they lie within the arm's reach and its
+/// base-rotation window.
+pub const STATION: Station = Station {
+    x_m: 0.0,
+    y_m: 4.0,
+    heading_rad: -PI / 2.0,
+};
+
+/// Seconds of each speed ramp before and after the painting pass: slow
+/// enough for every joint's acceleration limit (robots/basr.toml).
+const RAMP_S: f64 = 1.0;
+
+/// Road-frame tip poses (x, y, z, yaw), tilt, gun and width of one row.
+type Row = ((f64, f64, f64, f64), f64, bool, f64);
+
 /// Samples that paint `rungs` in order at v = k/w (speed of the rung's
-/// midpoint), preceded and followed by a short air move.
+/// midpoint), run up to from rest along the first rung's direction of
+/// travel with a raised-cosine speed ramp and run out the same way, with
+/// every joint column from the robot's inverse kinematics so `basr check`
+/// (and preview's content checks) find nothing to say.
 pub fn samples_for(rungs: &[Rung]) -> Samples {
-    let mut s = Samples::default();
-    let mut t = 0.0;
-    let mut push = |t: f64, pose: (f64, f64, f64, f64), tilt: f64, on: bool, w: f64| {
-        s.push(&SampleRow {
-            t_s: t,
-            station: 0,
-            stroke: if on { 0 } else { -1 },
-            paint: on as u8,
-            x_m: pose.0,
-            y_m: pose.1,
-            z_m: pose.2,
-            yaw_rad: pose.3,
-            tilt_rad: tilt,
-            speed_mps: if on { k() / w } else { 0.0 },
-            width_m: if on { w } else { 0.0 },
-            ..Default::default()
-        });
-    };
     // Dense path along the rung midpoints, resampled in time at v = k/w.
     let mid = |r: &Rung| [(r.a[0] + r.b[0]) / 2.0, (r.a[1] + r.b[1]) / 2.0];
     let width = |r: &Rung| (r.b[0] - r.a[0]).hypot(r.b[1] - r.a[1]);
-    let first = planned_tip(rungs[0].a, rungs[0].b, rungs[0].tilt, ALPHA);
-    push(
-        t,
-        (first.0, first.1 - 0.2, first.2, first.3),
-        0.0,
-        false,
-        0.0,
-    );
-    t += PERIOD;
+    let mut paint: Vec<Row> = Vec::new();
     let mut u = 0.0; // position along the rung sequence, in rungs
     let last = (rungs.len() - 1) as f64;
     while u < last {
@@ -76,20 +69,114 @@ pub fn samples_for(rungs: &[Rung]) -> Samples {
             tilt: r0.tilt + f * (r1.tilt - r0.tilt),
         };
         let tip = planned_tip(r.a, r.b, r.tilt, ALPHA);
-        push(t, tip, r.tilt, true, width(&r));
+        paint.push((tip, r.tilt, true, width(&r)));
         // Advance the midpoint by v·dt.
         let step_len = {
             let (m0, m1) = (mid(r0), mid(r1));
             (m1[0] - m0[0]).hypot(m1[1] - m0[1]).max(1e-9)
         };
         u += k() / width(&r) * PERIOD / step_len;
-        t += PERIOD;
     }
-    let r = rungs.last().unwrap();
-    let tip = planned_tip(r.a, r.b, r.tilt, ALPHA);
-    push(t, tip, r.tilt, false, 0.0);
-    t += PERIOD;
-    push(t, (tip.0, tip.1 + 0.2, tip.2, tip.3), 0.0, false, 0.0);
+    // run-up and run-out: straight on from the pass' ends at its speed,
+    // slowing to rest over RAMP_S (a raised-cosine speed profile covers
+    // v·RAMP_S/2)
+    let ramp = |end: &Row, next: &Row, ahead: bool| -> Vec<Row> {
+        let (p, q) = (end.0, next.0);
+        let (dx, dy) = (p.0 - q.0, p.1 - q.1);
+        let v = dx.hypot(dy) / PERIOD;
+        let (ux, uy) = (dx / dx.hypot(dy), dy / dx.hypot(dy));
+        let n = (RAMP_S / PERIOD).round() as usize;
+        let mut out: Vec<Row> = (1..=n + 10)
+            .map(|i| {
+                let t = (i as f64 * PERIOD).min(RAMP_S);
+                // distance covered slowing from v to rest over RAMP_S at
+                // the speed v·(1 + cos(πt/T))/2
+                let d = 0.5 * v * (t + RAMP_S / PI * (PI * t / RAMP_S).sin());
+                // the fan keeps turning as it did per metre (a ring's)
+                let turn = (p.3 - q.3) / dx.hypot(dy) * d;
+                (
+                    (p.0 + ux * d, p.1 + uy * d, p.2, p.3 + turn),
+                    end.1,
+                    false,
+                    0.0,
+                )
+            })
+            .collect();
+        if !ahead {
+            out.reverse();
+        }
+        out
+    };
+    let before = ramp(&paint[0], &paint[1], false);
+    let after = ramp(&paint[paint.len() - 1], &paint[paint.len() - 2], true);
+    let rows: Vec<Row> = before.into_iter().chain(paint).chain(after).collect();
+    rows_to_samples(&rows)
+}
+
+/// The samples of `rows` from the station, every column from the robot's
+/// kinematics (joints by IK nearest the previous row's).
+fn rows_to_samples(rows: &[Row]) -> Samples {
+    use basr::robot::{kinematics::wrap_pi, Joints, NozzlePose};
+    let robot = Robot::basr();
+    let (s0, c0) = (STATION.heading_rad - PI / 2.0).sin_cos();
+    let to_base = |x: f64, y: f64| {
+        let (dx, dy) = (x - STATION.x_m, y - STATION.y_m);
+        [c0 * dx + s0 * dy, -s0 * dx + c0 * dy]
+    };
+    let mut s = Samples::default();
+    let mut prev: Option<Joints> = None;
+    for (i, ((x, y, z, yaw), tilt, on, w)) in rows.iter().enumerate() {
+        let b = to_base(*x, *y);
+        let pose = NozzlePose {
+            x_m: b[0],
+            y_m: b[1],
+            z_m: *z,
+            yaw_rad: wrap_pi(yaw - (STATION.heading_rad - PI / 2.0)),
+            tilt_rad: *tilt,
+        };
+        let j = match prev {
+            Some(p) => robot.ik_nearest(&pose, &p),
+            None => robot.ik(&pose).map(|all| all[0]),
+        }
+        .unwrap_or_else(|e| panic!("row {i} out of reach: {e:?}"));
+        prev = Some(j);
+        // the nozzle columns from the joints, as compile writes them
+        let fk = robot.fk(&j);
+        let act = robot.actuators(&j);
+        let enc = robot.encoders(&j);
+        s.push(&SampleRow {
+            t_s: i as f64 * PERIOD,
+            station: 0,
+            stroke: if *on { 0 } else { -1 },
+            paint: *on as u8,
+            x_m: STATION.x_m + c0 * fk.x_m - s0 * fk.y_m,
+            y_m: STATION.y_m + s0 * fk.x_m + c0 * fk.y_m,
+            z_m: fk.z_m,
+            yaw_rad: wrap_pi(fk.yaw_rad + STATION.heading_rad - PI / 2.0),
+            tilt_rad: j.tilt_rad,
+            speed_mps: 0.0,
+            width_m: if *on { *w } else { 0.0 },
+            base_rot_rad: j.base_rot_rad,
+            extension_m: j.extension_m,
+            cylinder_m: act.cylinder_m,
+            vertical_m: j.vertical_m,
+            ee_yaw_rad: j.ee_yaw_rad,
+            tilt_nut_m: act.tilt_nut_m,
+            enc_base: enc.base,
+            enc_extension: enc.extension,
+            enc_yaw: enc.yaw,
+            enc_tilt: enc.tilt,
+            enc_vertical: enc.vertical,
+        });
+    }
+    // nozzle speed as compile writes it: central difference of the road
+    // columns, one-sided at the ends
+    let n = s.len();
+    for i in 0..n {
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+        s.speed_mps[i] =
+            (s.x_m[b] - s.x_m[a]).hypot(s.y_m[b] - s.y_m[a]) / ((b - a) as f64 * PERIOD);
+    }
     s
 }
 
@@ -106,7 +193,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             name: "synthetic".into(),
             sha256: String::new(),
         },
-        robot: Robot::basr(),
+        robot: Robot::basr().into(),
         robot_sha256: String::new(),
         paint: Paint {
             fan_angle_rad: ALPHA,
@@ -122,11 +209,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             tilt_method: tilt_method.into(),
             glyphs: vec![glyph],
         },
-        stations: vec![Station {
-            x_m: 0.0,
-            y_m: 2.5,
-            heading_rad: -PI / 2.0,
-        }],
+        stations: vec![STATION],
         samples,
         summary: Summary {
             duration_s: duration,

@@ -55,6 +55,7 @@ mod air;
 mod path;
 mod resample;
 mod spline;
+pub mod sync;
 #[cfg(test)]
 mod tests;
 
@@ -111,6 +112,12 @@ pub struct PathPoint<const N: usize> {
     pub q: [f64; N],
     /// Requested painting speed ds/dt here (m/s), or `None` (gun off: as fast as the joints allow).
     pub max_speed_mps: Option<f64>,
+    /// `max_speed_mps` only caps the speed (gun off): falling short of it
+    /// is no slowdown.
+    pub cap_only: bool,
+    /// dq/ds here where the caller knows it exactly (a designed join);
+    /// else the shape-preserving spline's own.
+    pub dq_ds: Option<[f64; N]>,
 }
 
 /// Tuning of [`time_path`].

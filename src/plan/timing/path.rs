@@ -367,6 +367,7 @@ fn find_slowdowns<const N: usize>(
         let g = waypoint_grid[k];
         let short = p
             .max_speed_mps
+            .filter(|_| !p.cap_only)
             .map(|v| (grid[g].sd / v, v))
             .filter(|&(f, _)| f < 1.0 - SLOW_TOLERANCE);
         match (short, open.as_mut()) {

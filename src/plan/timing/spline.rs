@@ -57,6 +57,11 @@ impl<const N: usize> Spline<N> {
             m[0][j] = end(h(0), h(1), d(0), d(1));
             m[n - 1][j] = end(h(n - 2), h(n - 3), d(n - 2), d(n - 3));
         }
+        for (mk, p) in m.iter_mut().zip(points) {
+            if let Some(d) = p.dq_ds {
+                *mk = d;
+            }
+        }
         Spline { s, q, m }
     }
 

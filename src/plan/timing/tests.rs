@@ -49,6 +49,8 @@ fn straight_path(n: usize, speed: Option<f64>) -> Vec<PathPoint<3>> {
             PathPoint {
                 s_m: s,
                 q: [s, 0.5 * s, 0.0],
+                cap_only: false,
+                dq_ds: None,
                 max_speed_mps: speed,
             }
         })
@@ -82,6 +84,8 @@ fn velocity_limit_slows_painting_and_names_the_joint() {
             PathPoint {
                 s_m: s,
                 q: [0.0, 2.0 * s, 0.0],
+                cap_only: false,
+                dq_ds: None,
                 max_speed_mps: if (10..90).contains(&k) {
                     Some(0.2)
                 } else {
@@ -112,6 +116,8 @@ fn a_joint_held_at_its_bound_never_overshoots() {
             PathPoint {
                 s_m: s,
                 q: [s, 0.0, held],
+                cap_only: false,
+                dq_ds: None,
                 max_speed_mps: Some(0.1),
             }
         })
@@ -277,6 +283,8 @@ fn random_path() -> impl Strategy<Value = Vec<PathPoint<3>>> {
                 PathPoint {
                     s_m: s,
                     q,
+                    cap_only: false,
+                    dq_ds: None,
                     max_speed_mps: v,
                 }
             })

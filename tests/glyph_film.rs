@@ -1,0 +1,131 @@
+//! Issue 11's film acceptance, swept through the binary: every glyph A–Z,
+//! 0–9 compiled alone at the default options, then `preview --json`: cv ≤
+//! 0.05, coverage ≥ 0.98, overspray ≤ 0.03, and no painting sample at more
+//! than 1.15 × the target film (compile's `slowed` notes carry the film
+//! ratio where a limit holds the nozzle below the film law's speed).
+//!
+//! Glyphs that still miss a bound are listed in `MISSES` with the figures
+//! measured when they were listed: they must not get worse (10 % slack on
+//! the excess), and the test fails once one meets every bound, so the list
+//! only shrinks.
+
+use assert_cmd::Command;
+
+const CV_MAX: f64 = 0.05;
+const COVERAGE_MIN: f64 = 0.98;
+const OVERSPRAY_MAX: f64 = 0.03;
+const FILM_MAX: f64 = 1.15;
+
+/// (glyph, cv, coverage, overspray, worst film ratio) measured 2026-12-01
+/// on the planner branch: the bowls' quarters meet on one rung with the
+/// fan turned off it (B P R 3), the loops of 6, 8, 9, Q's tail, and the
+/// thin joins of H, N, U (coverage).
+const MISSES: &[(char, f64, f64, f64, f64)] = &[
+    ('B', 0.0595, 0.9907, 0.0274, 1.117),
+    ('H', 0.0289, 0.9792, 0.0181, 1.0),
+    ('N', 0.0131, 0.9765, 0.0215, 1.0),
+    ('P', 0.0578, 0.9862, 0.0262, 1.003),
+    ('Q', 0.0504, 0.9869, 0.0266, 1.0),
+    ('R', 0.0552, 0.9873, 0.0254, 1.003),
+    ('U', 0.0197, 0.9795, 0.0291, 1.0),
+    ('3', 0.0629, 0.9927, 0.0346, 1.117),
+    ('6', 0.0610, 0.9904, 0.0337, 1.0),
+    ('8', 0.1850, 0.9853, 0.0546, 2.207),
+    ('9', 0.0626, 0.9898, 0.0337, 1.0),
+];
+
+#[derive(Debug, Clone, Copy)]
+struct Film {
+    cv: f64,
+    coverage: f64,
+    overspray: f64,
+    worst_film: f64,
+}
+
+impl Film {
+    fn meets_all(&self) -> bool {
+        self.cv <= CV_MAX
+            && self.coverage >= COVERAGE_MIN
+            && self.overspray <= OVERSPRAY_MAX
+            && self.worst_film <= FILM_MAX
+    }
+
+    /// No bound missed by more than 10 % beyond the recorded miss.
+    fn no_worse_than(&self, m: &Film) -> bool {
+        let over = |now: f64, then: f64, bound: f64| now <= bound.max(then) * 1.1;
+        over(self.cv, m.cv, CV_MAX)
+            && over(self.overspray, m.overspray, OVERSPRAY_MAX)
+            && over(self.worst_film, m.worst_film, FILM_MAX)
+            && 1.0 - self.coverage <= (1.0 - COVERAGE_MIN.min(m.coverage)) * 1.1
+    }
+}
+
+fn film_of(glyph: char) -> Film {
+    let dir = tempfile::tempdir().unwrap();
+    let job = dir.path().join("g.json");
+    let out = Command::cargo_bin("basr")
+        .unwrap()
+        .args(["compile", &glyph.to_string(), "--json", "-o"])
+        .arg(&job)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "compile {glyph}");
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let worst_film = summary["summary"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|w| w["kind"] == "slowed")
+        .filter_map(|w| w["factor"].as_f64())
+        .fold(1.0, f64::max);
+    let prev = Command::cargo_bin("basr")
+        .unwrap()
+        .arg("preview")
+        .arg(&job)
+        .args(["--json", "-o"])
+        .arg(dir.path().join("g.svg"))
+        .output()
+        .unwrap();
+    let p: serde_json::Value = serde_json::from_slice(&prev.stdout)
+        .unwrap_or_else(|e| panic!("preview {glyph} --json: {e}"));
+    let overspray = p["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["metric"] == "overspray")
+        .and_then(|c| c["value"].as_f64())
+        .expect("overspray");
+    Film {
+        cv: p["cv"].as_f64().unwrap(),
+        coverage: p["coverage"].as_f64().unwrap(),
+        overspray,
+        worst_film,
+    }
+}
+
+#[test]
+fn every_glyph_alone_meets_the_film_bounds() {
+    let glyphs: Vec<char> = ('A'..='Z').chain('0'..='9').collect();
+    let mut failures = vec![];
+    for g in glyphs {
+        let f = film_of(g);
+        match MISSES.iter().find(|m| m.0 == g) {
+            None if !f.meets_all() => failures.push(format!("{g}: {f:?} misses a bound")),
+            Some(&(_, cv, coverage, overspray, worst_film)) => {
+                let then = Film {
+                    cv,
+                    coverage,
+                    overspray,
+                    worst_film,
+                };
+                if f.meets_all() {
+                    failures.push(format!("{g}: now meets every bound: drop it from MISSES"));
+                } else if !f.no_worse_than(&then) {
+                    failures.push(format!("{g}: {f:?} is worse than the recorded {then:?}"));
+                }
+            }
+            None => {}
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -1,0 +1,279 @@
+//! Issue 17's acceptance through the binary: for every shipped robot kind
+//! the description checks ok, `compile STOP --robot F` exits 0, and the job
+//! passes `check` and `simulate --robot F` with the planner's verified
+//! error within 0.75 × 6.35 mm; a sweep of words per kind; the electric
+//! kinds' CSV columns; the articulated arm's tilt.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+
+fn basr() -> Command {
+    Command::cargo_bin("basr").unwrap()
+}
+
+const ROBOTS: [&str; 3] = [
+    "robots/basr.toml",
+    "robots/telescopic.toml",
+    "robots/articulated.toml",
+];
+
+/// issue 11's verify bound: 0.75 × 1/4 in.
+const BOUND_M: f64 = 0.75 * 6.35e-3;
+
+fn robot(f: &str) -> PathBuf {
+    std::fs::canonicalize(f).unwrap()
+}
+
+/// Compile `word` for `robot` into `dir` (exit 0); the job's path.
+fn compile(dir: &Path, word: &str, robot: &Path, extra: &[&str]) -> PathBuf {
+    let job = dir.join(format!("{word}.job.json"));
+    basr()
+        .args(["compile", word, "--robot"])
+        .arg(robot)
+        .arg("-o")
+        .arg(&job)
+        .args(extra)
+        .assert()
+        .success();
+    job
+}
+
+fn json(p: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap()
+}
+
+/// The job passes `check` and `simulate --robot F`, and compile verified it
+/// within the bound; its verified error.
+fn passes_check_and_simulate(job: &Path, robot: &Path) -> f64 {
+    basr()
+        .arg("check")
+        .arg(job)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(": ok"));
+    let out = basr()
+        .arg("simulate")
+        .arg(job)
+        .arg("--robot")
+        .arg(robot)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}: {}",
+        job.display(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let rep: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(rep["verdict"], "pass", "{rep}");
+    let v = verified(job);
+    assert!(v <= BOUND_M, "{}: verified {v} m", job.display());
+    v
+}
+
+#[test]
+fn every_shipped_kind_checks_compiles_stop_and_its_job_passes_check_and_simulate() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in ROBOTS {
+        basr().args(["check", f]).assert().success();
+        let r = robot(f);
+        let sub = dir.path().join(r.file_stem().unwrap());
+        std::fs::create_dir(&sub).unwrap();
+        let job = compile(&sub, "STOP", &r, &[]);
+        let v = passes_check_and_simulate(&job, &r);
+        eprintln!("{f}: STOP verified within {:.3} mm", v * 1e3);
+    }
+}
+
+#[test]
+fn a_sweep_of_words_compiles_and_simulates_for_every_electric_kind() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in &ROBOTS[1..] {
+        let r = robot(f);
+        for (i, word) in ["XING", "SCHOOL", "BUS", "AHEAD", "8"].iter().enumerate() {
+            let sub = dir
+                .path()
+                .join(format!("{i}-{}", r.file_stem().unwrap().to_string_lossy()));
+            std::fs::create_dir(&sub).unwrap();
+            let job = compile(&sub, word, &r, &[]);
+            passes_check_and_simulate(&job, &r);
+        }
+        // The ends of the letter-height range an 8 ft lane word uses.
+        for h in ["1.2", "2.44"] {
+            let sub = dir
+                .path()
+                .join(format!("h{h}-{}", r.file_stem().unwrap().to_string_lossy()));
+            std::fs::create_dir(&sub).unwrap();
+            let job = compile(&sub, "ONLY", &r, &["--letter-height", h]);
+            passes_check_and_simulate(&job, &r);
+        }
+    }
+}
+
+#[test]
+fn an_electric_kinds_csv_has_its_own_joint_and_encoder_columns_and_checks_with_its_job() {
+    let dir = tempfile::tempdir().unwrap();
+    for (f, cols) in [
+        (
+            ROBOTS[1],
+            "base_rot_rad,boom_rad,stroke_m,ee_yaw_rad,tilt_rad,enc_base_rot,enc_boom,enc_stroke,enc_ee_yaw,enc_tilt",
+        ),
+        (
+            ROBOTS[2],
+            "waist_rad,shoulder_rad,elbow_rad,pitch_rad,gun_tilt_rad,enc_waist,enc_shoulder,enc_elbow,enc_pitch,enc_gun_tilt",
+        ),
+    ] {
+        let r = robot(f);
+        let csv = dir.path().join("STOP.csv");
+        let job = compile(dir.path(), "STOP", &r, &["--csv", csv.to_str().unwrap()]);
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let header = text.lines().next().unwrap();
+        assert!(
+            header.starts_with("t_s,station,stroke,paint,") && header.ends_with(cols),
+            "{header}"
+        );
+        // BASR's joint columns are 0 (not applicable), the kind's are not.
+        let names: Vec<&str> = header.split(',').collect();
+        let at = |n: &str| names.iter().position(|c| *c == n).unwrap();
+        let rows: Vec<Vec<&str>> = text.lines().skip(1).map(|l| l.split(',').collect()).collect();
+        assert!(rows.iter().all(|r| r[at("extension_m")] == "0"));
+        assert!(rows.iter().any(|r| r[names.len() - 1] != "0"));
+        basr().arg("check").arg(&job).arg(&csv).assert().success();
+        basr().arg("check").arg(&csv).assert().success();
+        // An edited kind column is found.
+        let edited = text.replacen(&format!("\n{}", rows[5].join(",")), &{
+            let mut r = rows[5].clone();
+            let last = names.len() - 2;
+            r[last] = "12345";
+            format!("\n{}", r.join(","))
+        }, 1);
+        let bad = dir.path().join("bad.csv");
+        std::fs::write(&bad, edited).unwrap();
+        basr()
+            .arg("check")
+            .arg(&job)
+            .arg(&bad)
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains("row 5"));
+    }
+}
+
+#[test]
+fn the_articulated_arm_paints_untilted_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = robot(ROBOTS[2]);
+    let job = compile(dir.path(), "STOP", &r, &["--tilt", "quadrilateral"]);
+    let j = json(&job);
+    assert_eq!(j["layout"]["tilt_method"], "none");
+    // Untilted while painting (joint curves between knots lean the gun by
+    // a fraction of a milliradian).
+    let s = &j["samples"];
+    let tilts = s["tilt_rad"].as_array().unwrap();
+    let gun = s["paint"].as_array().unwrap();
+    assert!(tilts
+        .iter()
+        .zip(gun)
+        .filter(|(_, g)| g.as_u64() == Some(1))
+        .all(|(t, _)| t.as_f64().unwrap().abs() < 1e-3));
+    let says = j["summary"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| {
+            w["message"]
+                .as_str()
+                .unwrap()
+                .contains("--tilt quadrilateral is painted as --tilt none")
+        });
+    assert!(says, "{}", j["summary"]["warnings"]);
+    // The telescopic head tilts as BASR's does.
+    let t = compile(dir.path(), "STOP", &robot(ROBOTS[1]), &[]);
+    let tilts = json(&t)["samples"]["tilt_rad"].clone();
+    assert!(tilts
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|t| t.as_f64().unwrap().abs() > 0.01));
+}
+
+#[test]
+fn a_job_checked_or_simulated_against_another_kind_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = compile(dir.path(), "IT", &robot(ROBOTS[1]), &[]);
+    basr()
+        .arg("simulate")
+        .arg(&job)
+        .arg("--robot")
+        .arg(robot(ROBOTS[2]))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("another robot description"));
+    // The hydraulic-only options are refused for an electric kind.
+    basr()
+        .arg("simulate")
+        .arg(&job)
+        .arg("--robot")
+        .arg(robot(ROBOTS[1]))
+        .arg("--plants")
+        .arg("5")
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("telescopic kind"));
+}
+
+/// The verified error compile recorded for a job (issue 11's guarantee).
+fn verified(job: &Path) -> f64 {
+    json(job)["summary"]["verified_max_error_m"]
+        .as_f64()
+        .expect("compile verified the job")
+}
+
+#[test]
+fn every_library_symbol_and_shipped_marking_compiles_verified_for_every_electric_kind() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = basr().arg("symbols").output().unwrap();
+    let list = String::from_utf8(out.stdout).unwrap() + &String::from_utf8(out.stderr).unwrap();
+    let symbols: Vec<&str> = list
+        .lines()
+        .skip(1)
+        .filter(|l| l.starts_with(|c: char| c.is_ascii_lowercase()))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(symbols.len() >= 15, "{symbols:?}");
+    let markings: Vec<PathBuf> = std::fs::read_dir("markings")
+        .unwrap()
+        .map(|e| std::fs::canonicalize(e.unwrap().path()).unwrap())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    for f in &ROBOTS[1..] {
+        let r = robot(f);
+        for s in &symbols {
+            let job = dir.path().join(format!("{s}.job.json"));
+            basr()
+                .args(["compile", "--symbol", s, "--robot"])
+                .arg(&r)
+                .arg("-o")
+                .arg(&job)
+                .assert()
+                .success();
+            assert!(verified(&job) <= BOUND_M, "{f} {s}");
+        }
+        for m in &markings {
+            let job = dir.path().join("scene.job.json");
+            basr()
+                .args(["compile", "--marking"])
+                .arg(m)
+                .arg("--robot")
+                .arg(&r)
+                .arg("-o")
+                .arg(&job)
+                .assert()
+                .success();
+            assert!(verified(&job) <= BOUND_M, "{f} {}", m.display());
+        }
+    }
+}
