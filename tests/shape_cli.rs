@@ -254,21 +254,25 @@ fn scene_dir(items: &str) -> (tempfile::TempDir, PathBuf) {
     (dir, scene)
 }
 
+/// Compile a scene file to `job`; the job as JSON.
+fn compile_scene(scene: &Path, job: &Path) -> serde_json::Value {
+    basr()
+        .args(["compile", "--marking"])
+        .arg(scene)
+        .arg("-o")
+        .arg(job)
+        .assert()
+        .success();
+    serde_json::from_str(&std::fs::read_to_string(job).expect("job")).expect("json")
+}
+
 #[test]
 fn a_scene_with_a_shape_item_compiles_previews_and_simulates() {
     let scene = data("scene.toml");
     basr().arg("check").arg(&scene).assert().success();
     let dir = tempfile::tempdir().expect("tmp");
     let job = dir.path().join("scene.job.json");
-    basr()
-        .args(["compile", "--marking"])
-        .arg(&scene)
-        .arg("-o")
-        .arg(&job)
-        .assert()
-        .success();
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&job).expect("job")).expect("json");
+    let v = compile_scene(&scene, &job);
     assert_eq!(v["message"], "[ring.svg]\n[arrow-through]");
     let chars: Vec<_> = v["layout"]["glyphs"]
         .as_array()
@@ -295,16 +299,7 @@ fn a_shape_item_is_placed_turned_and_checked_like_any_item() {
     // Turned a quarter turn about its anchor (the centre of its near edge):
     // the ring's centre moves from (0, 1.6) to (-0.6, 1.0).
     let (dir, scene) = scene_dir(&item("rotate_deg = 90\n"));
-    let job = dir.path().join("j.json");
-    basr()
-        .args(["compile", "--marking"])
-        .arg(&scene)
-        .arg("-o")
-        .arg(&job)
-        .assert()
-        .success();
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&job).expect("job")).expect("json");
+    let v = compile_scene(&scene, &dir.path().join("j.json"));
     let pts: Vec<(f64, f64)> = v["layout"]["glyphs"][0]["strokes"]
         .as_array()
         .expect("strokes")

@@ -842,7 +842,7 @@ mod tests {
 
     fn bands() -> Bands {
         crate::plan::shapes::bands(
-            &crate::robot::Robot::load_or_default(None).expect("embedded robot"),
+            &crate::robot::AnyRobot::load_or_default(None).expect("embedded robot"),
         )
     }
 
