@@ -2,7 +2,7 @@
 //! cubic path segments, resolve it into regions and decompose it into
 //! strokes and the font text (issue 14: under 2 s).
 
-use basr::shape::{self, Bands, Size};
+use basr::shape::{self, Size};
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 
 /// A closed wavy blob with a hole: 1 000 cubic segments in all.
@@ -42,8 +42,8 @@ fn import(c: &mut Criterion) {
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("blob.svg");
     std::fs::write(&path, svg()).expect("write the SVG");
-    let robot = basr::robot::Robot::load_or_default(None).expect("embedded robot");
-    let bands = Bands::for_robot(&robot);
+    let robot = basr::robot::AnyRobot::load_or_default(None).expect("embedded robot");
+    let bands = basr::plan::shapes::bands(&robot);
     let mut g = c.benchmark_group("shape");
     g.sample_size(10);
     g.bench_function("import an SVG of 1000 cubic segments (2.5 m)", |b| {

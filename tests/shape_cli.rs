@@ -31,6 +31,7 @@ fn every_test_shape_imports_checks_and_compiles() {
         ("heart.svg", Some("2")),
         ("arch.svg", Some("2")),
         ("arrow.dxf", None),
+        ("shield.dxf", None),
     ] {
         let toml = dir.path().join(format!("{name}.toml"));
         let mut cmd = basr();
@@ -55,6 +56,11 @@ fn every_test_shape_imports_checks_and_compiles() {
             text.contains("\"kind\": \"shape\""),
             "{name}: the job names the method"
         );
+        // The job's message and layout name the shape by its file's stem.
+        let v: serde_json::Value = serde_json::from_str(&text).expect("json");
+        let stem = name.split('.').next().expect("stem");
+        assert_eq!(v["message"], format!("[{stem}]"), "{name}");
+        assert_eq!(v["layout"]["glyphs"][0]["char"], stem, "{name}");
     }
 }
 
@@ -206,4 +212,139 @@ fn compile_refuses_a_size_without_a_shape() {
         .args(["compile", "STOP", "--shape-height-m", "2"])
         .assert()
         .code(2);
+}
+
+#[test]
+fn a_hatch_is_read_from_its_boundary_edges_with_its_hole() {
+    // tests/data/shapes/shield.dxf: one HATCH, an edge loop of lines and an
+    // arc (a 1.2 m square under a half disc) around a polyline hole of two
+    // bulged sides (a disc of radius 0.25 m), metres.
+    let out = basr()
+        .arg("import")
+        .arg(data("shield.dxf"))
+        .args(["--json", "-o"])
+        .arg(tempfile::tempdir().expect("tmp").path().join("s.toml"))
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    let pi = std::f64::consts::PI;
+    let want = 1.44 + 0.5 * pi * 0.36 - pi * 0.0625;
+    let area = v["area_m2"].as_f64().expect("area");
+    assert!((area - want).abs() < 0.002, "{area} vs {want}");
+    assert!((v["height_m"].as_f64().expect("h") - 1.8).abs() < 1e-6);
+    // The same hatch with a corrupt edge type is refused by handle and line.
+    let text = std::fs::read_to_string(data("shield.dxf")).expect("shield");
+    let bad = text.replacen("72\n2\n", "72\n7\n", 1);
+    assert_ne!(bad, text);
+    let e = refused("h.dxf", &bad, &[]);
+    assert!(
+        e.contains("HATCH (handle 4B)") && e.contains("edge type 7") && e.contains("line "),
+        "{e}"
+    );
+}
+
+/// A scene file in a temporary folder with ring.svg beside it.
+fn scene_dir(items: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().expect("tmp");
+    std::fs::copy(data("ring.svg"), dir.path().join("ring.svg")).expect("copy");
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, items).expect("write");
+    (dir, scene)
+}
+
+/// Compile a scene file to `job`; the job as JSON.
+fn compile_scene(scene: &Path, job: &Path) -> serde_json::Value {
+    basr()
+        .args(["compile", "--marking"])
+        .arg(scene)
+        .arg("-o")
+        .arg(job)
+        .assert()
+        .success();
+    serde_json::from_str(&std::fs::read_to_string(job).expect("job")).expect("json")
+}
+
+#[test]
+fn a_scene_with_a_shape_item_compiles_previews_and_simulates() {
+    let scene = data("scene.toml");
+    basr().arg("check").arg(&scene).assert().success();
+    let dir = tempfile::tempdir().expect("tmp");
+    let job = dir.path().join("scene.job.json");
+    let v = compile_scene(&scene, &job);
+    assert_eq!(v["message"], "[ring.svg]\n[arrow-through]");
+    let chars: Vec<_> = v["layout"]["glyphs"]
+        .as_array()
+        .expect("glyphs")
+        .iter()
+        .map(|g| g["char"].as_str().unwrap_or("").to_string())
+        .collect();
+    assert_eq!(chars, ["ring", "arrow-through"]);
+    basr()
+        .arg("preview")
+        .arg(&job)
+        .arg("-o")
+        .arg(dir.path().join("scene.svg"))
+        .assert()
+        .success();
+    basr().arg("simulate").arg(&job).assert().success();
+}
+
+#[test]
+fn a_shape_item_is_placed_turned_and_checked_like_any_item() {
+    let item = |extra: &str| {
+        format!("[[item]]\nshape = \"ring.svg\"\nat_m = [0.0, 1.0]\nheight_m = 1.2\n{extra}")
+    };
+    // Turned a quarter turn about its anchor (the centre of its near edge):
+    // the ring's centre moves from (0, 1.6) to (-0.6, 1.0).
+    let (dir, scene) = scene_dir(&item("rotate_deg = 90\n"));
+    let v = compile_scene(&scene, &dir.path().join("j.json"));
+    let pts: Vec<(f64, f64)> = v["layout"]["glyphs"][0]["strokes"]
+        .as_array()
+        .expect("strokes")
+        .iter()
+        .flat_map(|s| ["left", "right"].map(|e| s[e].as_array().cloned().unwrap_or_default()))
+        .flatten()
+        .map(|p| (p[0].as_f64().unwrap_or(0.0), p[1].as_f64().unwrap_or(0.0)))
+        .collect();
+    assert!(!pts.is_empty());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for (x, y) in pts {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    for (got, want) in [(x0, -1.2), (x1, 0.0), (y0, 0.4), (y1, 1.6)] {
+        assert!((got - want).abs() < 0.01, "extent {x0} {x1} {y0} {y1}");
+    }
+    // Wider than the lane, a missing file, and two items on the same paint.
+    for (text, want) in [
+        (
+            "[[item]]\nshape = \"ring.svg\"\nat_m = [0.0, 0.0]\nwidth_m = 4.0\n".to_string(),
+            "lane",
+        ),
+        (
+            "[[item]]\nshape = \"nope.svg\"\nat_m = [0.0, 0.0]\nheight_m = 2.0\n".to_string(),
+            "nope.svg",
+        ),
+        (
+            format!("{}[[item]]\nword = \"BIKE\"\nat_m = [0.0, 1.5]\n", item("")),
+            "overlap",
+        ),
+    ] {
+        let (dir, scene) = scene_dir(&text);
+        let job = dir.path().join("j.json");
+        let out = basr()
+            .args(["compile", "--marking"])
+            .arg(&scene)
+            .arg("-o")
+            .arg(&job)
+            .assert()
+            .code(2)
+            .get_output()
+            .clone();
+        let e = String::from_utf8_lossy(&out.stderr);
+        assert!(e.contains("item 1") && e.contains(want), "{want}: {e}");
+        assert!(!job.exists());
+        basr().arg("check").arg(&scene).assert().failure();
+    }
 }

@@ -129,6 +129,17 @@ fn job_for<'a>(
         .or(if jobs.len() == 1 { jobs.first() } else { None })
 }
 
+/// Problems of a marking file; a scene's shape items are imported for the
+/// embedded robot (the one `compile` paints with unless `--robot` says).
+fn marking_problems(text: &str, origin: &str) -> Vec<String> {
+    let robot = match basr::robot::AnyRobot::load_or_default(None) {
+        Ok(r) => r,
+        Err(e) => return vec![e.to_string()],
+    };
+    let shapes = |p: &std::path::Path, s| basr::plan::shapes::import_item(&robot, origin, p, s);
+    basr::layout::check_marking_source_with(text, origin, &shapes)
+}
+
 /// Problems in one file's text (empty when valid).
 fn text_problems(text: &str, origin: &str) -> Vec<String> {
     if text.trim().is_empty() {
@@ -141,13 +152,11 @@ fn text_problems(text: &str, origin: &str) -> Vec<String> {
             Ok(job) => basr::job::verify::problems(&job, origin),
             Err(e) => vec![e.to_string()],
         },
-        Some(Kind::Marking) => basr::layout::check_marking_source(text, origin),
+        Some(Kind::Marking) => marking_problems(text, origin),
         Some(Kind::Csv) => basr::job::csv::check_source(text, origin),
         // Checked against its job when one is given.
         Some(Kind::Adept) => vec![],
-        None if basr::layout::looks_like_marking(text) => {
-            basr::layout::check_marking_source(text, origin)
-        }
+        None if basr::layout::looks_like_marking(text) => marking_problems(text, origin),
         Some(Kind::Robot) => basr::robot::check_source(text, origin),
         // A robot file with a TOML syntax error: report where, not "unknown".
         None if basr::robot::looks_like_robot(text) => basr::robot::check_source(text, origin),

@@ -236,8 +236,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         _ if args.symbol.is_some() => Source::Symbol(args.symbol.clone().unwrap_or_default()),
         (None, None) if args.shape.is_some() => {
             let path = args.shape.as_deref().unwrap_or(Path::new(""));
-            let bands = super::import::bands_of(args.robot.as_deref())?;
-            let imported = basr::shape::import(path, args.shape_size.size(), &bands)?;
+            let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
+            let bands = basr::plan::shapes::bands(&robot);
+            let imported =
+                basr::plan::shapes::import_measured(path, args.shape_size.size(), &robot)?;
             shape = Some((imported, bands));
             Source::Message(basr::shape::GLYPH.to_string())
         }
@@ -312,7 +314,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 .file_stem()
                 .map(|s| s.to_string_lossy().to_string())
                 .unwrap_or_else(|| "shape".into());
-            basr::shape::compile_shape(&req, imported, bands, &label)
+            basr::plan::shapes::compile_shape(&req, imported, bands, &label)
         }
         _ => compile_job(&req),
     };

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use basr::shape::{self, Bands, Size};
+use basr::shape::{self, Size};
 
 use super::{Global, Outcome};
 
@@ -67,19 +67,14 @@ pub struct Args {
     pub json: bool,
 }
 
-/// The bands of the robot given (or the embedded one).
-pub fn bands_of(robot: Option<&std::path::Path>) -> anyhow::Result<Bands> {
-    let robot = basr::robot::Robot::load_or_default(robot)?;
-    Ok(Bands::for_robot(&robot))
-}
-
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     super::refuse_clashes(
         &[("the font file (-o)", &args.output)],
         &[("the shape file", &args.file)],
     )?;
-    let bands = bands_of(args.robot.as_deref())?;
-    let imported = shape::import(&args.file, args.size.size(), &bands)?;
+    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
+    let bands = basr::plan::shapes::bands(&robot);
+    let imported = basr::plan::shapes::import_measured(&args.file, args.size.size(), &robot)?;
     // The file must load back as it will be used.
     imported.font(&args.output.display().to_string())?;
     basr::io::write_atomic(&args.output, imported.toml.as_bytes())?;
@@ -120,7 +115,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             imported.height_m,
             d.area_m2
         );
-        for l in shape::report_lines(d, &bands) {
+        for l in shape::report_lines(d, &bands).iter().chain(&imported.notes) {
             note!("  {l}");
         }
         note!(

@@ -19,7 +19,9 @@ pub mod place;
 pub mod rules;
 pub mod scene;
 
-pub use place::{glyph_box, lay_marking, lay_scene, Laid, PlacedMark};
+pub use place::{
+    glyph_box, lay_marking, lay_scene, lay_scene_with, Laid, PlacedMark, ShapeImport, ShapeStrokes,
+};
 pub use scene::{is_scene, Item, ItemKind, Scene, ShapeSize};
 
 /// Letter height when none is given (SPEC §4: 8 ft).
@@ -161,11 +163,12 @@ pub enum LayoutError {
     Overlap { a: String, b: String, area_m2: f64 },
     #[error("{message}{}", if *more > 0 { format!(" (and {more} more)") } else { String::new() })]
     Rule { message: String, more: usize },
-    #[error(
-        "item {item}: shape {path:?}: outline files need the shapes importer (issue 14), \
-         which is not in this build yet; use a library symbol (`basr symbols`)"
-    )]
-    ShapeNotYet { item: usize, path: String },
+    #[error("item {item}: shape {path:?}: {message}")]
+    Shape {
+        item: usize,
+        path: String,
+        message: String,
+    },
 }
 
 /// The settings of one marking: its lines and how to lay them out.
@@ -442,14 +445,20 @@ pub fn looks_like_marking(text: &str) -> bool {
         .any(|l| l.trim() == "[marking]" || l.trim() == "[[item]]")
 }
 
-/// Every problem of a marking file's text (empty when valid); for `basr check`.
+/// Every problem of a marking file's text (empty when valid); for `basr
+/// check` (a scene's shape items are refused: see [`check_marking_source_with`]).
 pub fn check_marking_source(text: &str, origin: &str) -> Vec<String> {
+    check_marking_source_with(text, origin, &place::no_shapes)
+}
+
+/// [`check_marking_source`] with the importer a scene's shape items need.
+pub fn check_marking_source_with(text: &str, origin: &str, shapes: ShapeImport) -> Vec<String> {
     if is_scene(text) {
         let font = crate::font::Font::embedded();
         let lib = crate::font::Library::embedded();
         return match Scene::from_toml(text, origin, &Overrides::default()) {
             Err(e) => vec![e.to_string()],
-            Ok(s) => match lay_scene(&s, font, lib) {
+            Ok(s) => match lay_scene_with(&s, font, lib, shapes) {
                 Ok(_) => vec![],
                 Err(e) => vec![format!("{origin}: {e}")],
             },

@@ -7,10 +7,12 @@
 //! or name a symbol the library lacks; applies the MUTCD rules
 //! (`layout::rules`): errors refuse, warnings travel with the result.
 
+use std::path::Path;
+
 use kurbo::{Affine, Point};
 
 use super::rules::{self, RuleItem};
-use super::scene::{Item, ItemKind, Scene};
+use super::scene::{Item, ItemKind, Scene, ShapeSize};
 use super::{
     place, GlyphBox, LayoutError, Marking, DEFAULT_LETTER_SPACING_UNITS, GRID_HEIGHT_UNITS,
     MIN_LINE_GAP_HEIGHTS,
@@ -93,13 +95,46 @@ pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, La
     })
 }
 
-/// Lay out a scene: each item placed and turned, then lane, overlap and
-/// MUTCD checks over all of them.
+/// A scene's shape item decomposed into strokes: the shape's frame (its
+/// lower-left corner at the origin, metres, y up = along the traffic).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeStrokes {
+    pub strokes: Vec<Stroke>,
+    pub width_m: f64,
+    pub height_m: f64,
+}
+
+/// Imports a shape item's file at its size (`plan::shapes::importer`: the
+/// decomposition needs the robot's fan, which the layout does not know);
+/// the error says what is wrong with the file and how to fix it.
+pub type ShapeImport<'a> = &'a dyn Fn(&Path, ShapeSize) -> Result<ShapeStrokes, String>;
+
+/// The importer of a layout without a robot: refuses shape items.
+pub(super) fn no_shapes(_: &Path, _: ShapeSize) -> Result<ShapeStrokes, String> {
+    Err(
+        "shape items are imported by `basr compile` and `basr check`; this caller \
+         has no shapes importer"
+            .into(),
+    )
+}
+
+/// Lay out a scene without shape items (see [`lay_scene_with`]).
 pub fn lay_scene(s: &Scene, font: &Font, lib: &Library) -> Result<Laid, LayoutError> {
+    lay_scene_with(s, font, lib, &no_shapes)
+}
+
+/// Lay out a scene: each item placed and turned, then lane, overlap and
+/// MUTCD checks over all of them. `shapes` imports shape items.
+pub fn lay_scene_with(
+    s: &Scene,
+    font: &Font,
+    lib: &Library,
+    shapes: ShapeImport,
+) -> Result<Laid, LayoutError> {
     let mut marks: Vec<PlacedMark> = vec![];
     let mut rule_items = vec![];
     for (i, item) in s.items.iter().enumerate() {
-        let placed = item_marks(i, item, font, lib)?;
+        let placed = item_marks(i, item, font, lib, shapes)?;
         let (lo, hi) = extent(placed.iter());
         check_lane(i, item, lo, hi, s.lane_width_m)?;
         let (word, symbol, h, scale) = match &item.kind {
@@ -161,6 +196,7 @@ fn item_marks(
     item: &Item,
     font: &Font,
     lib: &Library,
+    shapes: ShapeImport,
 ) -> Result<Vec<PlacedMark>, LayoutError> {
     let to_road = Affine::translate((item.at_m[0], item.at_m[1])) * Affine::rotate(item.rotate_rad);
     match &item.kind {
@@ -205,10 +241,25 @@ fn item_marks(
                 strokes: sym.strokes.iter().map(|s| s.transformed(&m)).collect(),
             }])
         }
-        ItemKind::Shape { path, .. } => Err(LayoutError::ShapeNotYet {
-            item: i + 1,
-            path: path.display().to_string(),
-        }),
+        ItemKind::Shape { path, size } => {
+            let s = shapes(path, *size).map_err(|message| LayoutError::Shape {
+                item: i + 1,
+                path: path.display().to_string(),
+                message,
+            })?;
+            // The shape's near edge centred on its anchor (SPEC §5).
+            let m = to_road * Affine::translate((-0.5 * s.width_m, 0.0));
+            let label = path.file_stem().map_or_else(
+                || path.display().to_string(),
+                |n| n.to_string_lossy().into(),
+            );
+            Ok(vec![PlacedMark {
+                label,
+                line: i,
+                kind: "shape",
+                strokes: s.strokes.iter().map(|st| st.transformed(&m)).collect(),
+            }])
+        }
     }
 }
 

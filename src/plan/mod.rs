@@ -18,6 +18,7 @@ pub mod request;
 pub mod rungs;
 pub mod samples;
 pub mod seal;
+pub mod shapes;
 pub mod stations;
 pub mod stow;
 pub mod tilt;

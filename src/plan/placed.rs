@@ -56,7 +56,8 @@ pub fn lay_out(req: &CompileRequest, font: &Font) -> Result<(Marking, PlacedStro
             layout::lay_marking(&Marking::from_message(m, o)?, font, o.low_speed)?
         }
         Source::Marking { text, origin } if layout::is_scene(text) => {
-            layout::lay_scene(&Scene::from_toml(text, origin, o)?, font, lib)?
+            let shapes = super::shapes::importer(req, origin);
+            layout::lay_scene_with(&Scene::from_toml(text, origin, o)?, font, lib, &shapes)?
         }
         Source::Marking { text, origin } => {
             layout::lay_marking(&Marking::from_toml(text, origin, o)?, font, o.low_speed)?

@@ -1,7 +1,7 @@
 //! DXF → filled contours with the `dxf` crate: closed LWPOLYLINE / POLYLINE
 //! (bulges become circular arcs), CIRCLE, full ELLIPSE and closed SPLINE.
-//! The crate (0.6) reads no HATCH entity, so hatches are not imported; draw
-//! the hatch's boundary as a closed polyline.
+//! The crate (0.6) reads no HATCH entity; `hatch` reads their boundaries
+//! from the group codes.
 
 use dxf::entities::EntityType;
 use dxf::enums::Units;
@@ -12,7 +12,7 @@ use super::{Element, FillRule, Outline, ShapeError};
 /// Curve flattening of arcs into cubics (file units, relative to the size).
 /// assumed: 1e-4 of a unit keeps arcs exact to well under a millimetre at any
 /// plausible drawing unit.
-const ARC_TOLERANCE: f64 = 1e-4;
+pub(super) const ARC_TOLERANCE: f64 = 1e-4;
 /// Points per knot span when a SPLINE is sampled. assumed: a span of a road
 /// drawing is a gentle curve; 32 chords keep it within a millimetre.
 const SPLINE_SAMPLES_PER_SPAN: usize = 32;
@@ -87,11 +87,12 @@ pub fn read_dxf(text: &str, origin: &str) -> Result<Outline, ShapeError> {
             path,
         });
     }
+    elements.extend(super::hatch::read_hatches(text, origin)?);
     if elements.is_empty() {
         return Err(ShapeError::invalid(
             origin,
             "no closed outline in the file: basr fills closed LWPOLYLINE / POLYLINE, CIRCLE, \
-             ELLIPSE and SPLINE entities",
+             ELLIPSE and SPLINE entities and HATCH boundaries",
         ));
     }
     Ok(Outline {
@@ -147,10 +148,21 @@ fn closed(
             ),
         ));
     }
-    let mut path = BezPath::new();
-    path.move_to(pts[0].0);
     let count = if first_last_meet { n - 1 } else { n };
-    for i in 0..count {
+    Ok(bulge_path(&pts[..count]))
+}
+
+/// The closed path through `pts`, each vertex's bulge (tan of a quarter of
+/// the arc's angle to the next vertex, positive counter-clockwise: the DXF
+/// reference's definition) making that side a circular arc.
+pub(super) fn bulge_path(pts: &[(Point, f64)]) -> BezPath {
+    let n = pts.len();
+    let mut path = BezPath::new();
+    let Some(first) = pts.first() else {
+        return path;
+    };
+    path.move_to(first.0);
+    for i in 0..n {
         let (a, bulge) = pts[i];
         let b = pts[(i + 1) % n].0;
         if bulge.abs() < 1e-12 {
@@ -174,7 +186,7 @@ fn closed(
         arc.to_cubic_beziers(ARC_TOLERANCE, |p1, p2, p| path.curve_to(p1, p2, p));
     }
     path.close_path();
-    Ok(path)
+    path
 }
 
 fn ellipse(el: &dxf::entities::Ellipse, name: &str, origin: &str) -> Result<BezPath, ShapeError> {
@@ -203,26 +215,13 @@ fn spline(s: &dxf::entities::Spline, name: &str, origin: &str) -> Result<BezPath
         .iter()
         .map(|c| Point::new(c.x, c.y))
         .collect();
-    let pts: Vec<Point> = if cps.len() > p && s.knot_values.len() == cps.len() + p + 1 {
-        let w: Vec<f64> = if s.weight_values.len() == cps.len() {
-            s.weight_values.clone()
-        } else {
-            vec![1.0; cps.len()]
-        };
-        let k = &s.knot_values;
-        let mut out = vec![];
-        for span in p..cps.len() {
-            let (t0, t1) = (k[span], k[span + 1]);
-            if t1 <= t0 {
-                continue;
-            }
-            for j in 0..SPLINE_SAMPLES_PER_SPAN {
-                let t = t0 + (t1 - t0) * j as f64 / SPLINE_SAMPLES_PER_SPAN as f64;
-                out.push(de_boor(span, t, p, k, &cps, &w));
-            }
-        }
-        out.push(de_boor(cps.len() - 1, k[cps.len()], p, k, &cps, &w));
-        out
+    let w: Vec<f64> = if s.weight_values.len() == cps.len() {
+        s.weight_values.clone()
+    } else {
+        vec![1.0; cps.len()]
+    };
+    let pts: Vec<Point> = if let Some(pts) = sample_spline(p, &s.knot_values, &cps, &w) {
+        pts
     } else if s.fit_points.len() >= 3 {
         s.fit_points.iter().map(|c| Point::new(c.x, c.y)).collect()
     } else {
@@ -245,6 +244,33 @@ fn spline(s: &dxf::entities::Spline, name: &str, origin: &str) -> Result<BezPath
     }
     path.close_path();
     Ok(path)
+}
+
+/// Points along a (rational) B-spline of `degree` over its knot spans, or
+/// `None` when the knot vector does not fit the control points.
+pub(super) fn sample_spline(
+    degree: usize,
+    k: &[f64],
+    cps: &[Point],
+    w: &[f64],
+) -> Option<Vec<Point>> {
+    let p = degree.max(1);
+    if !(cps.len() > p && k.len() == cps.len() + p + 1 && w.len() == cps.len()) {
+        return None;
+    }
+    let mut out = vec![];
+    for span in p..cps.len() {
+        let (t0, t1) = (k[span], k[span + 1]);
+        if t1 <= t0 {
+            continue;
+        }
+        for j in 0..SPLINE_SAMPLES_PER_SPAN {
+            let t = t0 + (t1 - t0) * j as f64 / SPLINE_SAMPLES_PER_SPAN as f64;
+            out.push(de_boor(span, t, p, k, cps, w));
+        }
+    }
+    out.push(de_boor(cps.len() - 1, k[cps.len()], p, k, cps, w));
+    (out.len() >= 2).then_some(out)
 }
 
 /// De Boor's algorithm for the rational B-spline of degree p at t in span k.

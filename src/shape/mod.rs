@@ -8,11 +8,14 @@
 //! i_overlay) → [`decompose`] (regions → strokes in metres plus a report of
 //! narrow places and of the method chosen per region) → [`font_toml`] (the
 //! strokes as a one-glyph font file, editable, that `--font` reads back).
+//!
+//! The robot enters only as the fan's [`Bands`] (`plan::shapes::bands`);
+//! compiling a shape, alone or as a scene's item, is `plan::shapes`.
 
-mod compile;
 mod convex;
 mod decompose;
 mod dxf;
+mod hatch;
 mod region;
 mod ring;
 mod svg;
@@ -23,8 +26,10 @@ use std::path::Path;
 
 use kurbo::BezPath;
 
-pub use compile::compile_shape;
-pub use decompose::{decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport};
+pub use decompose::{
+    candidates, decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport, Steep,
+    MAX_CANDIDATES,
+};
 pub use region::{regions, Region};
 pub use write::{font_toml, GLYPH};
 
@@ -155,20 +160,6 @@ pub fn bounds(outline: &Outline) -> kurbo::Rect {
         .unwrap_or(kurbo::Rect::ZERO)
 }
 
-impl Bands {
-    /// The bands the robot's nozzle paints: narrowest from the lowest tip
-    /// height, widest from the highest (`plan::passes::paint_law`).
-    pub fn for_robot(robot: &crate::robot::Robot) -> Bands {
-        let law = crate::plan::passes::basr_paint_law(robot);
-        Bands {
-            min_width_m: law.width_at_height(law.min_height_m),
-            max_width_m: law.max_width_m(),
-            k_m2ps: law.k_m2ps,
-            yaw_rate_rad_s: robot.limits.ee_yaw_rad.max_vel,
-        }
-    }
-}
-
 /// A shape file read, sized, resolved and decomposed.
 #[derive(Clone, Debug)]
 pub struct Imported {
@@ -176,6 +167,11 @@ pub struct Imported {
     /// Size on the road (m).
     pub width_m: f64,
     pub height_m: f64,
+    /// Where the file came from (the font file's header names it).
+    pub source: String,
+    /// Lines for a person besides [`report_lines`] (how the decomposition
+    /// was picked: `plan::shapes` measures the candidates' film).
+    pub notes: Vec<String>,
     /// The decomposition as a one-glyph font file ([`font_toml`]).
     pub toml: String,
 }
@@ -190,26 +186,51 @@ impl Imported {
             )
         })
     }
+
+    /// `self` with `notes`, its font file's header saying them too.
+    pub fn with_notes(mut self, notes: Vec<String>) -> Imported {
+        self.notes = notes;
+        self.toml = font_toml(
+            &self.decomposition,
+            self.width_m,
+            self.height_m,
+            &self.source,
+            &self.notes,
+        );
+        self
+    }
 }
 
-/// Every stage from the file to the font text.
+/// Every stage from the file to the font text, the decomposition with the
+/// best predicted film.
 pub fn import(path: &Path, size: Size, bands: &Bands) -> Result<Imported, ShapeError> {
+    let mut all = import_candidates(path, size, bands)?;
+    Ok(all.swap_remove(0))
+}
+
+/// Every stage from the file to the font text, for each candidate
+/// decomposition ([`candidates`], best predicted first; never empty).
+pub fn import_candidates(
+    path: &Path,
+    size: Size,
+    bands: &Bands,
+) -> Result<Vec<Imported>, ShapeError> {
     let outline = read(path)?;
     import_outline(&outline, size, bands)
 }
 
-/// [`import`] of an outline already read.
+/// [`import_candidates`] of an outline already read.
 pub fn import_outline(
     outline: &Outline,
     size: Size,
     bands: &Bands,
-) -> Result<Imported, ShapeError> {
+) -> Result<Vec<Imported>, ShapeError> {
     let scale = scale_for(outline, size)?;
     let bb = bounds(outline);
     let (width_m, height_m) = (bb.width() * scale, bb.height() * scale);
     let regions = regions(outline, scale)?;
-    let decomposition = decompose(&regions, bands, &outline.origin)?;
-    if decomposition.strokes.is_empty() {
+    let all = candidates(&regions, bands, &outline.origin)?;
+    if all.iter().all(|d| d.strokes.is_empty()) {
         return Err(ShapeError::invalid(
             &outline.origin,
             format!(
@@ -219,14 +240,26 @@ pub fn import_outline(
             ),
         ));
     }
-    let toml = font_toml(&decomposition, width_m, height_m, &outline.origin);
-    Ok(Imported {
-        decomposition,
-        width_m,
-        height_m,
-        toml,
-    })
+    Ok(all
+        .into_iter()
+        .filter(|d| !d.strokes.is_empty())
+        .map(|decomposition| {
+            let toml = font_toml(&decomposition, width_m, height_m, &outline.origin, &[]);
+            Imported {
+                decomposition,
+                width_m,
+                height_m,
+                source: outline.origin.clone(),
+                notes: vec![],
+                toml,
+            }
+        })
+        .collect())
 }
+
+/// Methods a region's report line names besides the one kept (the font
+/// file's header lists them all). assumed: three fit a terminal line or two.
+const REPORT_OTHERS: usize = 3;
 
 /// Lines for a person: the method per region and the narrow places.
 pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
@@ -242,6 +275,7 @@ pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
             100.0 * r.chosen.film_error,
             r.others
                 .iter()
+                .take(REPORT_OTHERS)
                 .map(|o| format!(
                     "; not {} ({} strokes, {:.0} s, {:.1} %)",
                     o.method,
@@ -249,6 +283,10 @@ pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
                     o.time_s,
                     100.0 * o.film_error
                 ))
+                .chain((r.others.len() > REPORT_OTHERS).then(|| format!(
+                    "; {} more in the font file's header",
+                    r.others.len() - REPORT_OTHERS
+                )))
                 .collect::<String>()
         ));
     }
@@ -265,6 +303,14 @@ pub fn report_lines(d: &Decomposition, bands: &Bands) -> Vec<String> {
             bands.min_width_m,
             n.unpainted_m2,
             n.overspray_m2
+        ));
+    }
+    for s in &d.steep {
+        out.push(format!(
+            "steep end: near ({:.3}, {:.3}) m from the shape's lower-left corner a band's width \
+             changes faster than the nozzle height follows; its last {:.3} m past a {:.3} m rung \
+             are left bare: {:.4} m²",
+            s.at.x, s.at.y, s.length_m, s.width_m, s.unpainted_m2
         ));
     }
     out

@@ -75,7 +75,14 @@ fn edge_toml(pts: &[[f64; 2]]) -> String {
 
 /// The font file text. `height_m` is the shape's height on the road (the
 /// letter height to compile it with); `source` names the file it came from.
-pub fn font_toml(d: &Decomposition, width_m: f64, height_m: f64, source: &str) -> String {
+/// `notes` are further header lines (how the decomposition was picked).
+pub fn font_toml(
+    d: &Decomposition,
+    width_m: f64,
+    height_m: f64,
+    source: &str,
+    notes: &[String],
+) -> String {
     let per_m = GRID_HEIGHT / height_m;
     let width = round(width_m * per_m);
     let mut s = String::new();
@@ -119,6 +126,9 @@ pub fn font_toml(d: &Decomposition, width_m: f64, height_m: f64, source: &str) -
                 100.0 * o.film_error
             );
         }
+    }
+    for n in notes {
+        let _ = writeln!(s, "# {n}");
     }
     let _ = writeln!(s);
     let name = std::path::Path::new(source)

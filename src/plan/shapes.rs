@@ -1,0 +1,234 @@
+//! Shapes in the pipeline: the fan's bands a decomposition plans for, a
+//! `compile --shape` job through the placed-strokes seam, and the importer
+//! a scene's `shape =` items are laid out with (SPEC §5).
+//!
+//! `compile --shape FILE`: the shape's font is laid out like a one-letter
+//! message (centred in the lane, its near edge at the anchor) so that
+//! `compile --shape FILE` and `compile S --font IMPORTED.toml
+//! --letter-height H` place the same strokes; the strokes are then
+//! labelled as the shape they are, and the job's message names the file.
+
+use std::path::{Path, PathBuf};
+
+use crate::job::{Job, Warning};
+use crate::layout::{ShapeSize, ShapeStrokes};
+use crate::paint::preview::{preview_job, Options};
+use crate::plan::compile::{compile_strokes, CompileError, CompileRequest, Source};
+use crate::plan::placed::lay_out;
+use crate::plan::warnings::Owner;
+use crate::plan::{inputs, request};
+use crate::robot::AnyRobot;
+use crate::shape::{self, report_lines, Bands, Imported, ShapeError, Size};
+
+/// Film targets a candidate decomposition must meet to be kept on its cv
+/// alone: issue 14's acceptance (coverage ≥ 0.97, overspray ≤ 0.04).
+const MIN_COVERAGE: f64 = 0.97;
+/// See [`MIN_COVERAGE`].
+const MAX_OVERSPRAY: f64 = 0.04;
+/// Candidates whose cv differ by less than this are equally even; the
+/// shorter paint time decides. assumed: half a percent of cv.
+const CV_TIE: f64 = 0.005;
+/// Largest raster the candidates' film is measured on (cells). assumed:
+/// 2 M cells is a 5 mm raster over 7 × 7 m and takes a fraction of a second.
+const MEASURE_CELLS: usize = 2_000_000;
+
+/// The bands the robot's nozzle paints: narrowest from the lowest tip
+/// height, widest from the highest (`passes::paint_law`).
+pub fn bands(robot: &AnyRobot) -> Bands {
+    let law = super::passes::paint_law(robot);
+    Bands {
+        min_width_m: law.width_at_height(law.min_height_m),
+        max_width_m: law.max_width_m(),
+        k_m2ps: law.k_m2ps,
+        yaw_rate_rad_s: robot.limits()[robot.fan_joint()].max_vel,
+    }
+}
+
+/// The job's message for a shape: its file's stem in brackets, as a
+/// scene's shape items are written (`layout::Scene::message`).
+pub fn message_of(label: &str) -> String {
+    format!("[{label}]")
+}
+
+/// Compile `imported` (its height is the letter height) with the rest of
+/// `req`; `label` names the shape in the job (`layout.glyphs[].char` and
+/// the message).
+pub fn compile_shape(
+    req: &CompileRequest,
+    imported: &Imported,
+    bands: &Bands,
+    label: &str,
+) -> Result<Job, CompileError> {
+    let mut req = req.clone();
+    req.overrides.letter_height_m = Some(imported.height_m);
+    req.font = None;
+    request::check_settings(&req)?;
+    let inputs = inputs::read(&req)?;
+    let font = imported
+        .font(label)
+        .map_err(|e| CompileError::Font(e.to_string()))?;
+    let (mut marking, mut strokes) = lay_out(&req, &font)?;
+    marking.lines = vec![message_of(label)];
+    for it in &mut strokes.items {
+        it.owner = Owner {
+            kind: "shape",
+            label: label.to_string(),
+            line: 0,
+        };
+    }
+    let mut job = compile_strokes(&req, &marking, &font, inputs.robot, &strokes)?;
+    // The job says how the shape was decomposed: per region the method kept
+    // and the ones it beat, and the places narrower than the fan paints.
+    let lines = report_lines(&imported.decomposition, bands);
+    for l in lines.iter().chain(&imported.notes) {
+        job.summary.warnings.push(Warning {
+            kind: "shape".into(),
+            severity: "info".into(),
+            stroke: -1,
+            t_s: None,
+            factor: None,
+            message: format!("shape {l}"),
+        });
+    }
+    job.seal();
+    Ok(job)
+}
+
+/// A candidate's film, compiled with compile's defaults and previewed.
+#[derive(Clone, Copy, Debug)]
+struct Measured {
+    cv: f64,
+    coverage: f64,
+    overspray: f64,
+    paint_s: f64,
+}
+
+fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Option<Measured> {
+    let mut req = CompileRequest::message(shape::GLYPH.encode_utf8(&mut [0; 4]));
+    req.source = Source::Message(shape::GLYPH.to_string());
+    req.robot_description = Some(robot.clone());
+    let job = compile_shape(&req, imported, b, label).ok()?;
+    let opts = Options {
+        fit_cells: Some(MEASURE_CELLS),
+        ..Options::default()
+    };
+    let m = preview_job(&job, &opts).ok()?.metrics;
+    Some(Measured {
+        cv: m.cv?,
+        coverage: m.coverage?,
+        overspray: m.overspray?,
+        paint_s: job.summary.paint_time_s,
+    })
+}
+
+/// The shape's name in jobs: its file's stem.
+pub fn label_of(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(|| "shape".into(), |s| s.to_string_lossy().to_string())
+}
+
+/// Read, size and decompose a shape file for `robot`, keeping the
+/// candidate decomposition ([`shape::candidates`]) whose film is the most
+/// even when it is compiled (with compile's defaults) and previewed: the
+/// film model itself is the prediction. The decomposition's notes list
+/// every candidate's measured film.
+pub fn import_measured(path: &Path, size: Size, robot: &AnyRobot) -> Result<Imported, ShapeError> {
+    let b = bands(robot);
+    let mut all = shape::import_candidates(path, size, &b)?;
+    let label = label_of(path);
+    let measured: Vec<Option<Measured>> =
+        all.iter().map(|c| measure(c, robot, &b, &label)).collect();
+    let key = |m: &Measured| {
+        let ok = m.coverage >= MIN_COVERAGE && m.overspray <= MAX_OVERSPRAY;
+        (!ok, (m.cv / CV_TIE).floor() as i64, m.paint_s)
+    };
+    let pick = measured
+        .iter()
+        .enumerate()
+        .filter_map(|(i, m)| m.map(|m| (i, key(&m))))
+        .min_by(|a, b| {
+            (a.1 .0, a.1 .1)
+                .cmp(&(b.1 .0, b.1 .1))
+                .then(a.1 .2.total_cmp(&b.1 .2))
+        })
+        .map_or(0, |(i, _)| i);
+    let name = |c: &Imported| {
+        c.decomposition
+            .regions
+            .iter()
+            .map(|r| r.chosen.method.to_string())
+            .collect::<Vec<_>>()
+            .join(" + ")
+    };
+    let mut notes = vec![format!(
+        "film of each candidate decomposition, compiled with compile's defaults and previewed \
+         (kept: the most even film with coverage ≥ {MIN_COVERAGE} and overspray ≤ {MAX_OVERSPRAY}, \
+         then the shorter paint time):"
+    )];
+    for (i, (c, m)) in all.iter().zip(&measured).enumerate() {
+        let kept = if i == pick { "kept" } else { "not kept" };
+        notes.push(match m {
+            Some(m) => format!(
+                "  {kept}: {}: cv {:.3}, coverage {:.3}, overspray {:.3}, paint {:.0} s",
+                name(c),
+                m.cv,
+                m.coverage,
+                m.overspray,
+                m.paint_s
+            ),
+            None => format!("  {kept}: {}: does not compile for this robot", name(c)),
+        });
+    }
+    let chosen = all.swap_remove(pick);
+    Ok(chosen.with_notes(notes))
+}
+
+/// The robot a request paints with (as `inputs::read` finds it).
+fn robot_of(req: &CompileRequest) -> Result<AnyRobot, String> {
+    match &req.robot_description {
+        Some(r) => Ok(r.clone()),
+        None => AnyRobot::load_or_default(req.robot.as_deref()).map_err(|e| e.to_string()),
+    }
+}
+
+/// A scene item's shape file: relative paths are relative to the marking
+/// file's folder (SPEC §5).
+pub fn resolve(path: &Path, marking_file: &str) -> PathBuf {
+    if path.is_absolute() {
+        return path.to_path_buf();
+    }
+    Path::new(marking_file)
+        .parent()
+        .unwrap_or(Path::new(""))
+        .join(path)
+}
+
+/// Import one scene shape for the robot: its strokes in the shape's frame
+/// (lower-left corner at the origin, metres) and its size.
+pub fn import_item(
+    robot: &AnyRobot,
+    marking_file: &str,
+    path: &Path,
+    size: ShapeSize,
+) -> Result<ShapeStrokes, String> {
+    let file = resolve(path, marking_file);
+    let size = match size {
+        ShapeSize::HeightM(h) => Size::HeightM(h),
+        ShapeSize::WidthM(w) => Size::WidthM(w),
+    };
+    let imported = import_measured(&file, size, robot).map_err(|e| e.to_string())?;
+    Ok(ShapeStrokes {
+        strokes: imported.decomposition.strokes,
+        width_m: imported.width_m,
+        height_m: imported.height_m,
+    })
+}
+
+/// The importer `layout::lay_scene_with` takes, for a scene read from
+/// `marking_file` and compiled with `req`'s robot.
+pub fn importer<'a>(
+    req: &'a CompileRequest,
+    marking_file: &'a str,
+) -> impl Fn(&Path, ShapeSize) -> Result<ShapeStrokes, String> + 'a {
+    move |path, size| import_item(&robot_of(req)?, marking_file, path, size)
+}
