@@ -399,7 +399,12 @@ fn page(panels: &[Panel]) -> Page {
         header.push(("message".into(), p.job.message.replace('\n', " / ")));
         header.push((
             "robot".into(),
-            format!("{} ({} stations)", p.job.robot.name(), p.job.stations.len()),
+            format!(
+                "{} ({} station{})",
+                p.job.robot.name(),
+                p.job.stations.len(),
+                if p.job.stations.len() == 1 { "" } else { "s" }
+            ),
         ));
         if panels.len() == 1 {
             header.push(("tilt method".into(), p.job.layout.tilt_method.clone()));
