@@ -392,7 +392,8 @@ fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
             c.add(
                 "width",
                 format!(
-                    "{origin}: row {i}: width_m is {} with the gun {}; it is the stroke's                      width while painting and 0 otherwise",
+                    "{origin}: row {i}: width_m is {} with the gun {}; it is the stroke's \
+                     width while painting and 0 otherwise",
                     s.width_m[i],
                     if s.paint[i] == 1 { "on" } else { "off" }
                 ),
