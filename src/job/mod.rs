@@ -250,6 +250,30 @@ pub struct SampleRow {
     pub enc_vertical: i64,
 }
 
+impl SampleRow {
+    /// This row with BASR's joint, actuator and encoder columns written
+    /// from `j` by `robot`'s kinematics; the nozzle columns stay as they are.
+    pub fn with_basr_joints(self, robot: &crate::robot::Robot, j: &crate::robot::Joints) -> Self {
+        let act = robot.actuators(j);
+        let enc = robot.encoders(j);
+        SampleRow {
+            tilt_rad: j.tilt_rad,
+            base_rot_rad: j.base_rot_rad,
+            extension_m: j.extension_m,
+            cylinder_m: act.cylinder_m,
+            vertical_m: j.vertical_m,
+            ee_yaw_rad: j.ee_yaw_rad,
+            tilt_nut_m: act.tilt_nut_m,
+            enc_base: enc.base,
+            enc_extension: enc.extension,
+            enc_yaw: enc.yaw,
+            enc_tilt: enc.tilt,
+            enc_vertical: enc.vertical,
+            ..self
+        }
+    }
+}
+
 macro_rules! samples_struct {
     ($($name:ident : $ty:ty),* $(,)?) => {
         /// The setpoints, column-wise (SPEC §3): equal-length arrays.

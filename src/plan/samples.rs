@@ -227,24 +227,7 @@ fn append_samples(
 
 /// A BASR row: the nozzle columns with BASR's joints, actuators and encoders.
 fn basr_row(robot: &Robot, nozzle: SampleRow, q: &Q) -> SampleRow {
-    let j = joints_of(q);
-    let act = robot.actuators(&j);
-    let enc = robot.encoders(&j);
-    SampleRow {
-        tilt_rad: j.tilt_rad,
-        base_rot_rad: j.base_rot_rad,
-        extension_m: j.extension_m,
-        cylinder_m: act.cylinder_m,
-        vertical_m: j.vertical_m,
-        ee_yaw_rad: j.ee_yaw_rad,
-        tilt_nut_m: act.tilt_nut_m,
-        enc_base: enc.base,
-        enc_extension: enc.extension,
-        enc_yaw: enc.yaw,
-        enc_tilt: enc.tilt,
-        enc_vertical: enc.vertical,
-        ..nozzle
-    }
+    nozzle.with_basr_joints(robot, &joints_of(q))
 }
 
 /// Rung width and painting speed at arc length `s`, linear between knots.

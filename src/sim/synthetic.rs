@@ -176,8 +176,6 @@ pub fn row_from_joints(
 ) -> SampleRow {
     let (s, c) = (station.heading_rad - std::f64::consts::FRAC_PI_2).sin_cos();
     let pose = robot.fk(j);
-    let act = robot.actuators(j);
-    let enc = robot.encoders(j);
     SampleRow {
         t_s: t,
         station: 0,
@@ -189,21 +187,11 @@ pub fn row_from_joints(
         yaw_rad: crate::robot::kinematics::wrap_pi(
             pose.yaw_rad + station.heading_rad - std::f64::consts::FRAC_PI_2,
         ),
-        tilt_rad: j.tilt_rad,
         speed_mps: 0.0,
         width_m: width,
-        base_rot_rad: j.base_rot_rad,
-        extension_m: j.extension_m,
-        cylinder_m: act.cylinder_m,
-        vertical_m: j.vertical_m,
-        ee_yaw_rad: j.ee_yaw_rad,
-        tilt_nut_m: act.tilt_nut_m,
-        enc_base: enc.base,
-        enc_extension: enc.extension,
-        enc_yaw: enc.yaw,
-        enc_tilt: enc.tilt,
-        enc_vertical: enc.vertical,
+        ..SampleRow::default()
     }
+    .with_basr_joints(robot, j)
 }
 
 /// Nozzle speed as compile writes it: central difference of the road
