@@ -543,7 +543,11 @@ mod tests {
         let loc = Locator::new(text, "f.toml");
         for offset in 0..text.len() + 3 {
             let (line, col) = crate::io::line_col(text, offset);
-            assert_eq!(loc.at(offset), format!("f.toml:{line}:{col}"), "offset {offset}");
+            assert_eq!(
+                loc.at(offset),
+                format!("f.toml:{line}:{col}"),
+                "offset {offset}"
+            );
         }
     }
 }
