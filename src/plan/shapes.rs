@@ -280,7 +280,7 @@ fn measured_notes(all: &[Imported], outcomes: &[Outcome], pick: usize) -> Vec<St
                 format!("  {kept}: {}: does not compile for this robot", name(c))
             }
             Outcome::CopyOf(k) => format!(
-                "  not measured: {}: predicted the same as {} (the shape's symmetry turns one into the other)",
+                "  not measured: {}: predicted the same as {}, turned by the shape's symmetry",
                 name(c),
                 name(&all[*k])
             ),
