@@ -284,7 +284,7 @@ pub fn candidates(
     lim: &Bands,
     origin: &str,
 ) -> Result<Vec<Decomposition>, ShapeError> {
-    let mut ranked: Vec<(f64, Vec<Plan>)> = vec![];
+    let mut ranked: Vec<(f64, Vec<Plan>, Vec<Candidate>)> = vec![];
     for r in regions {
         let area = r.area();
         let mut plans = region_plans(r, area, lim, origin)?;
@@ -298,11 +298,12 @@ pub fn candidates(
             let (ka, kb) = (key(a), key(b));
             ka.0.total_cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
         });
-        ranked.push((area, plans));
+        let every: Vec<Candidate> = plans.iter().map(|p| p.candidate.clone()).collect();
+        ranked.push((area, shortlist(plans), every));
     }
     let n = ranked
         .iter()
-        .map(|(_, p)| p.len())
+        .map(|(_, p, _)| p.len())
         .max()
         .unwrap_or(1)
         .clamp(1, MAX_CANDIDATES);
@@ -315,7 +316,7 @@ pub fn candidates(
             steep: vec![],
             area_m2: 0.0,
         };
-        for (area, plans) in &ranked {
+        for (area, plans, every) in &ranked {
             let k = j.min(plans.len().saturating_sub(1));
             let Some(chosen) = plans.get(k) else {
                 continue;
@@ -326,11 +327,10 @@ pub fn candidates(
             d.regions.push(RegionReport {
                 area_m2: *area,
                 chosen: chosen.candidate.clone(),
-                others: plans
+                others: every
                     .iter()
-                    .enumerate()
-                    .filter(|(i, _)| *i != k)
-                    .map(|(_, p)| p.candidate.clone())
+                    .filter(|c| **c != chosen.candidate)
+                    .cloned()
                     .collect(),
             });
             d.area_m2 += area;
@@ -338,6 +338,63 @@ pub fn candidates(
         out.push(d);
     }
     Ok(out)
+}
+
+/// A plan's family: the predictor ranks them on film it cannot fully see
+/// (the planner slows where cells are short or the fan turns fast), so
+/// each family's best is measured before the list ends.
+fn family(m: &Method) -> u8 {
+    match m {
+        Method::Sweep {
+            cells_own_axes: false,
+            ..
+        } => 0,
+        Method::Sweep { .. } => 1,
+        Method::Ring => 2,
+        Method::Convex { .. } => 3,
+    }
+}
+
+/// The ranked plans of one region cut to [`MAX_CANDIDATES`]: a plan the
+/// predictor cannot tell from an earlier one (the same strokes, film and
+/// time: a symmetric shape's sweep turned to a symmetric angle) is dropped,
+/// so the list holds distinct decompositions; the best plan of every
+/// [`family`] that would fall off the end takes the last places, in rank
+/// order. At some sizes the predictor's favourites all paint badly (a star
+/// 2 m tall: its sweeps leave cells too short for the run-up) while the
+/// convex pieces it ranks tenth paint evenly.
+fn shortlist(plans: Vec<Plan>) -> Vec<Plan> {
+    let pred = |p: &Plan| Prediction {
+        film_error: p.candidate.film_error,
+        time_s: p.candidate.time_s,
+        strokes: p.candidate.strokes,
+    };
+    let mut distinct: Vec<Plan> = vec![];
+    for p in plans {
+        if !distinct.iter().any(|q| pred(q).same(&pred(&p))) {
+            distinct.push(p);
+        }
+    }
+    if distinct.len() <= MAX_CANDIDATES {
+        return distinct;
+    }
+    let mut missing: Vec<usize> = vec![];
+    for (i, p) in distinct.iter().enumerate().skip(MAX_CANDIDATES) {
+        let f = family(&p.candidate.method);
+        let seen = |j: &usize| family(&distinct[*j].candidate.method) == f;
+        if !distinct[..MAX_CANDIDATES]
+            .iter()
+            .any(|q| family(&q.candidate.method) == f)
+            && !missing.iter().any(seen)
+        {
+            missing.push(i);
+        }
+    }
+    let head = MAX_CANDIDATES - missing.len();
+    let tail: Vec<Plan> = missing.iter().map(|&i| distinct[i].clone()).collect();
+    distinct.truncate(head);
+    distinct.extend(tail);
+    distinct
 }
 
 /// Every plan of one region: sweeps along each of its directions (with
