@@ -32,6 +32,9 @@ const CV_TIE: f64 = 0.005;
 /// the search for a better candidate. assumed: two thirds of issue 14's
 /// acceptance cv (0.06), so the kept film meets it with margin.
 const GOOD_CV: f64 = 0.04;
+/// A decomposition note that starts with this is a problem of the job
+/// (`compile_shape`): no candidate paints the shape within its targets.
+pub const UNEVEN: &str = "uneven: ";
 /// Issue 14's acceptance cv: a kept film within it and without problems
 /// (a READY job) beats a more even one with a problem. assumed: the issue's
 /// figure.
@@ -89,9 +92,10 @@ pub fn compile_shape(
     // and the ones it beat, and the places narrower than the fan paints.
     let lines = report_lines(&imported.decomposition, bands);
     for l in lines.iter().chain(&imported.notes) {
+        let severity = if l.starts_with(UNEVEN) { "problem" } else { "info" };
         job.summary.warnings.push(Warning {
             kind: "shape".into(),
-            severity: "info".into(),
+            severity: severity.into(),
             stroke: -1,
             t_s: None,
             factor: None,
@@ -117,6 +121,20 @@ struct Measured {
 impl Measured {
     fn meets_bounds(&self) -> bool {
         self.coverage >= MIN_COVERAGE && self.overspray <= MAX_OVERSPRAY
+    }
+    /// Meets issue 14's film targets and has no problem: a READY job.
+    fn ready(&self) -> bool {
+        self.meets_bounds() && self.cv <= ACCEPT_CV && self.problems == 0
+    }
+    /// How far the film misses its targets: the largest of cv, bare area
+    /// and overspray over their bounds (1 = on a bound), plus a tenth per
+    /// problem. assumed: the bounds weigh alike (a star 0.8 m tall: convex
+    /// pieces at cv 0.047 with overspray 0.044 beat a sweep at cv 0.75).
+    fn shortfall(&self) -> f64 {
+        let over = (self.cv / ACCEPT_CV)
+            .max((1.0 - self.coverage) / (1.0 - MIN_COVERAGE))
+            .max(self.overspray / MAX_OVERSPRAY);
+        over + 0.1 * self.problems as f64
     }
     /// Even enough that no further candidate needs measuring.
     fn good(&self) -> bool {
@@ -201,16 +219,17 @@ fn measure_ranked(all: &[Imported], robot: &AnyRobot, b: &Bands, label: &str) ->
     out
 }
 
-/// The kept candidate among the measured: the most even film (within
-/// [`CV_TIE`]) of those within the coverage and overspray bounds, then the
-/// shorter paint time; the first when none compiled.
+/// The kept candidate among the measured: of those [`Measured::ready`],
+/// the most even film (within [`CV_TIE`]), then the shorter paint time;
+/// when none is, the one nearest its targets ([`Measured::shortfall`]);
+/// the first when none compiled.
 fn pick(outcomes: &[Outcome]) -> usize {
     let key = |m: &Measured| {
-        (
-            !m.meets_bounds(),
-            m.problems > 0 || m.cv > ACCEPT_CV,
-            (m.cv / CV_TIE).floor() as i64,
-        )
+        if m.ready() {
+            (0, (m.cv / CV_TIE).floor() as i64)
+        } else {
+            (1, (m.shortfall() / CV_TIE).floor() as i64)
+        }
     };
     outcomes
         .iter()
@@ -279,9 +298,9 @@ fn measured_notes(all: &[Imported], outcomes: &[Outcome], pick: usize) -> Vec<St
     let mut notes = vec![format!(
         "film of the candidate decompositions, compiled with compile's defaults and previewed \
          in the predictor's order until one has cv ≤ {GOOD_CV} and no problem, and every \
-         candidate predicted as good as it is measured (kept: of those with coverage ≥ \
-         {MIN_COVERAGE} and overspray ≤ {MAX_OVERSPRAY}, one with cv ≤ {ACCEPT_CV} and no \
-         problem if any, the most even film, then the shorter paint time):"
+         candidate predicted as good as it is measured (kept: of those with cv ≤ {ACCEPT_CV}, \
+         coverage ≥ {MIN_COVERAGE}, overspray ≤ {MAX_OVERSPRAY} and no problem, the most even \
+         film, then the shorter paint time; when none, the nearest those targets):"
     )];
     for (i, (c, o)) in all.iter().zip(outcomes).enumerate() {
         let kept = if i == pick { "kept" } else { "not kept" };
@@ -311,6 +330,18 @@ fn measured_notes(all: &[Imported], outcomes: &[Outcome], pick: usize) -> Vec<St
                 p.time_s
             ),
         });
+    }
+    if let Some(Outcome::Measured(Some(m))) = outcomes.get(pick) {
+        if !m.ready() {
+            notes.push(format!(
+                "{UNEVEN}no decomposition of the shape paints it evenly at this size: the best \
+                 measured cv {:.3} (target ≤ {ACCEPT_CV}), coverage {:.3} (≥ {MIN_COVERAGE}), \
+                 overspray {:.3} (≤ {MAX_OVERSPRAY}), {} places where the arm cannot keep the \
+                 painting speed (listed in the job); parts narrower than the fan paints or too \
+                 short for the run-up are the usual cause: give a larger --shape-height-m",
+                m.cv, m.coverage, m.overspray, m.problems
+            ));
+        }
     }
     notes
 }
