@@ -124,3 +124,22 @@ fn the_star_at_two_metres_keeps_an_even_film() {
         imported.notes
     );
 }
+
+/// A star 0.8 m tall: its arms are narrower than the fan paints and its
+/// strips too short for the run-up, so no candidate is READY. The kept one
+/// is the nearest its targets (convex pieces, cv about 0.05, not a sweep at
+/// cv 0.75), and the decomposition says why as a note the job makes a
+/// problem of (`plan::shapes::UNEVEN`).
+#[test]
+fn a_star_too_small_to_paint_evenly_says_so() {
+    let robot = AnyRobot::load_or_default(None).expect("embedded robot");
+    let imported = import_measured(&data("star.svg"), Size::HeightM(0.8), &robot).expect("imports");
+    let cv = kept_cv(&imported.notes);
+    assert!(cv <= 0.1, "kept cv {cv}: {:#?}", imported.notes);
+    let uneven = imported
+        .notes
+        .iter()
+        .find(|l| l.starts_with(basr::plan::shapes::UNEVEN))
+        .unwrap_or_else(|| panic!("no uneven note: {:#?}", imported.notes));
+    assert!(uneven.contains("--shape-height-m"), "{uneven}");
+}

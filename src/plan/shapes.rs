@@ -92,7 +92,11 @@ pub fn compile_shape(
     // and the ones it beat, and the places narrower than the fan paints.
     let lines = report_lines(&imported.decomposition, bands);
     for l in lines.iter().chain(&imported.notes) {
-        let severity = if l.starts_with(UNEVEN) { "problem" } else { "info" };
+        let severity = if l.starts_with(UNEVEN) {
+            "problem"
+        } else {
+            "info"
+        };
         job.summary.warnings.push(Warning {
             kind: "shape".into(),
             severity: severity.into(),
