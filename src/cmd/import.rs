@@ -74,10 +74,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     )?;
     let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     let bands = basr::plan::shapes::bands(&robot);
-    let imported = basr::plan::shapes::import_measured(&args.file, args.size.size(), &robot)?;
-    // The file must load back as it will be used.
-    imported.font(&args.output.display().to_string())?;
-    basr::io::write_atomic(&args.output, imported.toml.as_bytes())?;
+    // The file must load back as it will be used (checked before it is written).
+    let imported =
+        basr::plan::shapes::import_to_file(&args.file, args.size.size(), &robot, &args.output)?;
     let d = &imported.decomposition;
     if args.json {
         let v = serde_json::json!({
