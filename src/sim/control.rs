@@ -500,9 +500,14 @@ impl Controller for PidPid {
         // up what the counterbalance valves' bleed and the seals pass at that
         // torque (a third of the flow while accelerating at full reach; left
         // out, the arm ended air moves up to 150 mm off).
+        // The torque: inertia, the Coriolis term of an extending arm (the
+        // C(q, q̇)·q̇ of 000 eq. 8, ∂A11/∂x·ẋ·θ̇: 2.4 MPa when an air move
+        // swings at 0.3 rad/s while extending at 0.8 m/s, which left SLOW
+        // 25 mm off) and friction.
         let [_, w_d, a_d] = m.reference.base_rot;
-        let a11 = mass_matrix(md, md.arm.x_of_r(m.extension_m)).a11;
-        let tau = a11 * a_d + md.motor.friction.force(w_d);
+        let mm = mass_matrix(md, md.arm.x_of_r(m.extension_m));
+        let x_rate = m.reference.extension[1] / md.arm.k;
+        let tau = mm.a11 * a_d + mm.a11_dx * x_rate * w_d + md.motor.friction.force(w_d);
         let w = self.windup(m, tau);
         let wind_rate = self
             .windup_prev
