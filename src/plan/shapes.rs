@@ -15,7 +15,7 @@ use crate::layout::{ShapeSize, ShapeStrokes};
 use crate::paint::preview::{preview_job, Options};
 use crate::plan::compile::{compile_strokes, CompileError, CompileRequest, Source};
 use crate::plan::placed::lay_out;
-use crate::plan::warnings::Owner;
+use crate::plan::warnings::{Note, Owner};
 use crate::plan::{inputs, request};
 use crate::robot::AnyRobot;
 use crate::shape::{self, report_lines, Bands, Imported, Prediction, ShapeError, Size};
@@ -280,7 +280,7 @@ fn measured_notes(all: &[Imported], outcomes: &[Outcome], pick: usize) -> Vec<St
                 format!("  {kept}: {}: does not compile for this robot", name(c))
             }
             Outcome::CopyOf(k) => format!(
-                "  not measured: {}: predicted the same as {} (the shape's symmetry turns one into the other)",
+                "  not measured: {}: predicted the same as {}, turned by the shape's symmetry",
                 name(c),
                 name(&all[*k])
             ),
@@ -316,31 +316,50 @@ pub fn resolve(path: &Path, marking_file: &str) -> PathBuf {
 }
 
 /// Import one scene shape for the robot: its strokes in the shape's frame
-/// (lower-left corner at the origin, metres) and its size.
+/// (lower-left corner at the origin, metres) and its size, and what the
+/// job says of its decomposition (as `compile --shape` does).
 pub fn import_item(
     robot: &AnyRobot,
     marking_file: &str,
     path: &Path,
     size: ShapeSize,
-) -> Result<ShapeStrokes, String> {
+) -> Result<(ShapeStrokes, Vec<Note>), String> {
     let file = resolve(path, marking_file);
     let size = match size {
         ShapeSize::HeightM(h) => Size::HeightM(h),
         ShapeSize::WidthM(w) => Size::WidthM(w),
     };
     let imported = import_measured(&file, size, robot).map_err(|e| e.to_string())?;
-    Ok(ShapeStrokes {
-        strokes: imported.decomposition.strokes,
-        width_m: imported.width_m,
-        height_m: imported.height_m,
-    })
+    let label = label_of(path);
+    let notes = report_lines(&imported.decomposition, &bands(robot))
+        .into_iter()
+        .chain(imported.notes.iter().cloned())
+        .map(|text| Note::Shape {
+            label: label.clone(),
+            text,
+        })
+        .collect();
+    Ok((
+        ShapeStrokes {
+            strokes: imported.decomposition.strokes,
+            width_m: imported.width_m,
+            height_m: imported.height_m,
+        },
+        notes,
+    ))
 }
 
 /// The importer `layout::lay_scene_with` takes, for a scene read from
-/// `marking_file` and compiled with `req`'s robot.
+/// `marking_file` and compiled with `req`'s robot; each shape's notes are
+/// added to `notes`.
 pub fn importer<'a>(
     req: &'a CompileRequest,
     marking_file: &'a str,
+    notes: &'a std::cell::RefCell<Vec<Note>>,
 ) -> impl Fn(&Path, ShapeSize) -> Result<ShapeStrokes, String> + 'a {
-    move |path, size| import_item(&robot_of(req)?, marking_file, path, size)
+    move |path, size| {
+        let (strokes, n) = import_item(&robot_of(req)?, marking_file, path, size)?;
+        notes.borrow_mut().extend(n);
+        Ok(strokes)
+    }
 }

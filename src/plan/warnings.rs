@@ -87,6 +87,10 @@ pub enum StopWhy {
 pub enum Note {
     /// A layout rule the marking bends (the layout's own sentence).
     Layout { text: String },
+    /// How a scene's shape item was decomposed, and why (`plan::shapes`:
+    /// the method kept per region, the candidates' measured film, the
+    /// places narrower than the fan); `label` is the shape's file stem.
+    Shape { label: String, text: String },
     /// A stroke wider than one pass paints, painted in parallel passes.
     Passes {
         stroke: usize,
@@ -167,7 +171,7 @@ impl Note {
     pub fn severity(&self) -> Severity {
         match self {
             Note::Layout { .. } => Severity::Notice,
-            Note::Passes { .. } | Note::Stop { .. } => Severity::Info,
+            Note::Passes { .. } | Note::Stop { .. } | Note::Shape { .. } => Severity::Info,
             // A fan visibly wider than the stroke is a problem only if the
             // paint it lays outside, measured over the whole job, could
             // carry the job past the preview's overspray bound.
@@ -222,6 +226,15 @@ impl Note {
                 t_s: None,
                 factor: None,
                 message: format!("{text}. {todo}"),
+            },
+            // As `plan::shapes::compile_shape` writes a `--shape` job's lines.
+            Note::Shape { label, text } => Warning {
+                kind: "shape".into(),
+                severity,
+                stroke: -1,
+                t_s: None,
+                factor: None,
+                message: format!("shape {label}: {text}"),
             },
             Note::Passes {
                 stroke,
