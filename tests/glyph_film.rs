@@ -1,8 +1,10 @@
 //! Issue 11's film acceptance, swept through the binary: every glyph A–Z,
 //! 0–9 compiled alone at the default options, then `preview --json`: cv ≤
 //! 0.05, coverage ≥ 0.98, overspray ≤ 0.03, and no painting sample at more
-//! than 1.15 × the target film (compile's `slowed` notes carry the film
-//! ratio where a limit holds the nozzle below the film law's speed).
+//! than 1.15 × the target film. The worst film is the larger of compile's
+//! `slowed` notes (the time law's film ratio where a limit holds the nozzle
+//! below the film law's speed) and a bound read from the job's own samples
+//! (`sample_film_bound`), so a slow spot the notes missed still counts.
 //!
 //! Glyphs that still miss a bound are listed in `MISSES` with the figures
 //! measured when they were listed: they must not get worse (10 % slack on
@@ -17,21 +19,21 @@ const OVERSPRAY_MAX: f64 = 0.03;
 const FILM_MAX: f64 = 1.15;
 
 /// (glyph, cv, coverage, overspray, worst film ratio) measured 2026-12-01
-/// on the planner branch: the bowls' quarters meet on one rung with the
+/// on the planner branch (turn share 0.85): the bowls' quarters meet on one rung with the
 /// fan turned off it (B P R 3), the loops of 6, 8, 9, Q's tail, and the
 /// thin joins of H, N, U (coverage).
 const MISSES: &[(char, f64, f64, f64, f64)] = &[
-    ('B', 0.0595, 0.9907, 0.0274, 1.117),
-    ('H', 0.0289, 0.9792, 0.0181, 1.0),
-    ('N', 0.0131, 0.9765, 0.0215, 1.0),
-    ('P', 0.0578, 0.9862, 0.0262, 1.003),
-    ('Q', 0.0504, 0.9869, 0.0266, 1.0),
-    ('R', 0.0552, 0.9873, 0.0254, 1.003),
-    ('U', 0.0197, 0.9795, 0.0291, 1.0),
-    ('3', 0.0629, 0.9927, 0.0346, 1.117),
-    ('6', 0.0610, 0.9904, 0.0337, 1.0),
-    ('8', 0.1850, 0.9853, 0.0546, 2.207),
-    ('9', 0.0626, 0.9898, 0.0337, 1.0),
+    ('B', 0.0543, 0.9918, 0.0274, 1.118),
+    ('H', 0.0290, 0.9792, 0.0181, 1.0),
+    ('N', 0.0132, 0.9765, 0.0216, 1.0),
+    ('P', 0.0533, 0.9879, 0.0266, 1.009),
+    ('Q', 0.0503, 0.9875, 0.0270, 1.0),
+    ('R', 0.0521, 0.9877, 0.0254, 1.009),
+    ('U', 0.0194, 0.9796, 0.0291, 1.0),
+    ('3', 0.0566, 0.9927, 0.0340, 1.118),
+    ('6', 0.0615, 0.9900, 0.0334, 1.026),
+    ('8', 0.1835, 0.9862, 0.0546, 2.207),
+    ('9', 0.0610, 0.9905, 0.0339, 1.0),
 ];
 
 #[derive(Debug, Clone, Copy)]
@@ -85,6 +87,7 @@ fn film_of(glyph: char) -> Film {
         .filter(|w| w["kind"] == "slowed")
         .filter_map(|w| w["factor"].as_f64())
         .fold(1.0, f64::max);
+    let worst_film = worst_film.max(sample_film_bound(&job));
     let prev = Command::cargo_bin("basr")
         .unwrap()
         .arg("preview")
@@ -109,6 +112,38 @@ fn film_of(glyph: char) -> Film {
         worst_film,
         clamp_problem,
     }
+}
+
+/// A lower bound of the worst film over the job's painting samples, as a
+/// share of the target: flow × efficiency / (speed × the fan's width on the
+/// road at the sample's height and tilt). The fan sweeps at most its width
+/// per metre, so the film is at least this. A run's first and last samples
+/// are left out (their speed is a central difference across the gun's
+/// switch, where the nozzle turns into the join).
+fn sample_film_bound(job: &std::path::Path) -> f64 {
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(job).unwrap()).unwrap();
+    let p = &v["robot"]["paint"];
+    let f = |x: &serde_json::Value| x.as_f64().unwrap();
+    let k = f(&p["flow_m3ps"]) * f(&p["transfer_efficiency"]) / f(&p["film_m"]);
+    let half = 0.5 * f(&p["fan_angle_rad"]);
+    let s = &v["samples"];
+    let col = |name: &str| -> Vec<f64> { s[name].as_array().unwrap().iter().map(f).collect() };
+    let (paint, stroke) = (col("paint"), col("stroke"));
+    let (speed, z, tilt) = (col("speed_mps"), col("z_m"), col("tilt_rad"));
+    let mut worst = 0.0f64;
+    for i in 1..paint.len().saturating_sub(1) {
+        let inside = (i - 1..=i + 1).all(|j| paint[j] == 1.0 && stroke[j] == stroke[i]);
+        if !inside || speed[i] <= 0.0 {
+            continue;
+        }
+        // 001 eq. 2.24: a tilted fan at height z paints as an untilted one
+        // at z / factor.
+        let b = tilt[i];
+        let factor = (half + b).cos() * (half - b).cos() / (half.cos() * half.cos());
+        let fan_w = 2.0 * z[i] / factor * half.tan();
+        worst = worst.max(k / (speed[i] * fan_w));
+    }
+    worst
 }
 
 #[test]

@@ -159,10 +159,12 @@ pub mod gains {
     /// The derivative (velocity) term is what holds the arm on the planned
     /// speed; a grid of Kp 0.02–0.8, Ki 0.02–0.1, Kd 0–1.6 on STOP, SCHOOL
     /// and STOP at full reach (`--letter-height 3.6`) gave 7–11 mm max for
-    /// Kd 0.3–0.4 and Kp 0.05–0.1; this point keeps 4× gain margin on Kp
-    /// and 5× on Kd. Pressure feedback (static or high-passed, 0.003–0.1 per
-    /// MPa) made every point worse: it turns the valve into a torque source
-    /// the position PID cannot hold.
+    /// Kd 0.3–0.4 and Kp 0.05–0.1, a flat region (with the friction and
+    /// Coriolis terms fed forward since: 5.6–7.5 mm); Kp 0.4 still stays
+    /// bounded at Kd ≥ 0.2 (4× margin), Kd 1.6 does not (5×). Pressure
+    /// feedback (static or high-passed, 0.003–0.1 per MPa) made every point
+    /// worse: it turns the valve into a torque source the position PID
+    /// cannot hold.
     pub const ROT_PID_KP: f64 = 0.1;
     pub const ROT_PID_KI: f64 = 0.02;
     pub const ROT_PID_KD: f64 = 0.3;
@@ -500,9 +502,14 @@ impl Controller for PidPid {
         // up what the counterbalance valves' bleed and the seals pass at that
         // torque (a third of the flow while accelerating at full reach; left
         // out, the arm ended air moves up to 150 mm off).
+        // The torque: inertia, the Coriolis term of an extending arm (the
+        // C(q, q̇)·q̇ of 000 eq. 8, ∂A11/∂x·ẋ·θ̇: 2.4 MPa when an air move
+        // swings at 0.3 rad/s while extending at 0.8 m/s, which left SLOW
+        // 25 mm off) and friction.
         let [_, w_d, a_d] = m.reference.base_rot;
-        let a11 = mass_matrix(md, md.arm.x_of_r(m.extension_m)).a11;
-        let tau = a11 * a_d + md.motor.friction.force(w_d);
+        let mm = mass_matrix(md, md.arm.x_of_r(m.extension_m));
+        let x_rate = m.reference.extension[1] / md.arm.k;
+        let tau = mm.a11 * a_d + mm.a11_dx * x_rate * w_d + md.motor.friction.force(w_d);
         let w = self.windup(m, tau);
         let wind_rate = self
             .windup_prev
