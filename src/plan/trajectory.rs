@@ -259,16 +259,38 @@ fn time_station(
     let ch = chain(robot, runs, &limits, &pace.joins);
     let first = ch.points[0].q;
     let last = ch.points[ch.points.len() - 1].q;
-    let pieces = vec![
+    let cut = cut_path(robot, runs, &ch, &limits, pace, &options)?;
+    let mut pieces = Vec::with_capacity(cut.pieces.len() + 2);
+    pieces.push(
         timing::air_move(home, first, &air_limits, options.margin)
             .map_err(|e| err(format!("air move to stroke {}: {e}", runs[0].stroke)))?,
-        timing::time_path(&ch.points, &limits, &options)
-            .map_err(|e| err(format!("station path: {e}")))?,
+    );
+    pieces.extend(cut.pieces);
+    pieces.push(
         timing::air_move(last, home, &air_limits, options.margin)
             .map_err(|e| err(format!("air move to the stow pose: {e}")))?,
-    ];
-    let path = &pieces[1];
-    let t_path = pieces[0].duration_s();
+    );
+    // starts[p]: station time at which piece p starts.
+    let starts: Vec<f64> = pieces
+        .iter()
+        .scan(0.0, |t, p| {
+            let t0 = *t;
+            *t += p.duration_s();
+            Some(t0)
+        })
+        .collect();
+    // Segment k of the path is piece 1 + 2k; the station time at path
+    // parameter s.
+    let segment_at = |s: f64| {
+        cut.ranges
+            .iter()
+            .rposition(|r| ch.points[r.0].s_m <= s + 1e-12)
+            .unwrap_or(0)
+    };
+    let time_at = |s: f64| {
+        let k = segment_at(s);
+        starts[1 + 2 * k] + pieces[1 + 2 * k].time_at(s)
+    };
     let sampled = timing::resample(&pieces, period_s).map_err(|e| err(e.to_string()))?;
     // Gun command windows (station time).
     let windows: Vec<(f64, f64)> = runs
@@ -276,20 +298,18 @@ fn time_station(
         .enumerate()
         .map(|(ri, run)| {
             let s0 = ch.spans[ri].offset;
-            let (on, off) = path.gun_times(
-                s0 + ch.arcs[ri][run.paint_first],
-                s0 + ch.arcs[ri][run.paint_last],
-                gun_lead_s,
-                gun_lag_s,
-            );
-            (t_path + on, t_path + off)
+            (
+                time_at(s0 + ch.arcs[ri][run.paint_first]) - gun_lead_s,
+                time_at(s0 + ch.arcs[ri][run.paint_last]) - gun_lag_s,
+            )
         })
         .collect();
     let mut out = Vec::with_capacity(sampled.len());
     let mut w = 0usize;
     for k in 0..sampled.len() {
         let t = sampled.t_s[k];
-        let (run, s) = if sampled.piece[k] == 1 {
+        let p = sampled.piece[k];
+        let (run, s) = if p >= 1 && p <= 2 * cut.ranges.len() - 1 && (p - 1) % 2 == 0 {
             ch.run_at(sampled.s[k])
         } else {
             (None, 0.0)
@@ -309,35 +329,141 @@ fn time_station(
         });
     }
     let mut slows = vec![];
-    for sd in &path.slowdowns {
-        let (ri, knot) = ch.knot_of(sd.worst_waypoint);
-        let limit = match sd.binding {
-            timing::Binding::Velocity { joint } => Limit::Speed {
-                joint: robot.joint_names()[joint],
-            },
-            timing::Binding::Acceleration { joint } => Limit::Acceleration {
-                joint: robot.joint_names()[joint],
-            },
-            timing::Binding::Rest => Limit::RunUp,
-        };
-        slows.push(Slow {
-            run: ri,
-            factor: 1.0 / sd.factor.max(1e-9),
-            knot,
-            t_s: t_path + path.time_at(ch.points[sd.worst_waypoint].s_m),
-            limit,
-        });
+    for (k, r) in cut.ranges.iter().enumerate() {
+        for sd in &pieces[1 + 2 * k].slowdowns {
+            let wp = r.0 + sd.worst_waypoint;
+            let (ri, knot) = ch.knot_of(wp);
+            let limit = match sd.binding {
+                timing::Binding::Velocity { joint } => Limit::Speed {
+                    joint: robot.joint_names()[joint],
+                },
+                timing::Binding::Acceleration { joint } => Limit::Acceleration {
+                    joint: robot.joint_names()[joint],
+                },
+                timing::Binding::Rest => Limit::RunUp,
+            };
+            slows.push(Slow {
+                run: ri,
+                factor: 1.0 / sd.factor.max(1e-9),
+                knot,
+                t_s: time_at(ch.points[wp].s_m),
+                limit,
+            });
+        }
     }
     let stops = ch
         .stops
-        .into_iter()
+        .iter()
         .map(|(ri, why)| {
-            let sp = ch.spans[ri];
-            let t = t_path + path.time_at(sp.offset + ch.arcs[ri][sp.lo]);
-            (t, runs[ri].joints[sp.lo], ri, why)
+            let sp = ch.spans[*ri];
+            let t = time_at(sp.offset + ch.arcs[*ri][sp.lo]);
+            (t, runs[*ri].joints[sp.lo], *ri, why.clone())
         })
         .collect();
     Ok((out, slows, stops))
+}
+
+/// A station's chained path cut at its flown joins: `ranges[k]` the
+/// points (first, last) of segment k, and `pieces` segment 0, join 0,
+/// segment 1, … Each segment is timed from the painting speed at its
+/// first rung to the one at its last (from and to rest at the station's
+/// ends); each join is jerk-limited from the state one segment ends in to
+/// the state the next starts in. A seam whose join cannot be found (or
+/// that would leave a segment of one point) stays in the path, flown
+/// under the acceleration limits as the chain designed it.
+struct Cut {
+    ranges: Vec<(usize, usize)>,
+    pieces: Vec<timing::Trajectory<5>>,
+}
+
+fn cut_path(
+    robot: &AnyRobot,
+    runs: &[Run],
+    ch: &super::chain::Chain,
+    limits: &timing::JointLimits<5>,
+    pace: &Pace,
+    options: &timing::PathOptions,
+) -> Result<Cut, CompileError> {
+    let err = |what: String| CompileError::Timing(what);
+    let n = ch.points.len();
+    let range: timing::join::Ranges<5> = {
+        let l = robot.limits();
+        std::array::from_fn(|j| (l[j].min, l[j].max))
+    };
+    // (seam, from point, to point)
+    let mut cuts: Vec<(usize, usize, usize)> = ch
+        .flown
+        .iter()
+        .enumerate()
+        .filter_map(|(i, f)| f.map(|(a, b)| (i, a, b)))
+        .collect();
+    'retry: loop {
+        let mut kept: Vec<(usize, usize, usize)> = Vec::with_capacity(cuts.len());
+        let mut start = 0;
+        for &c in &cuts {
+            if c.1 > start {
+                kept.push(c);
+                start = c.2;
+            }
+        }
+        while kept.last().is_some_and(|c| c.2 + 1 >= n) {
+            kept.pop();
+        }
+        cuts = kept;
+        let mut ranges = Vec::with_capacity(cuts.len() + 1);
+        let mut start = 0;
+        for c in &cuts {
+            ranges.push((start, c.1));
+            start = c.2;
+        }
+        ranges.push((start, n - 1));
+        let speed = |i: usize| ch.points[i].max_speed_mps.unwrap_or(0.0);
+        let last = ranges.len() - 1;
+        let mut pieces = Vec::with_capacity(2 * ranges.len());
+        for (k, &(a, b)) in ranges.iter().enumerate() {
+            let ends = [
+                if k == 0 { 0.0 } else { speed(a) },
+                if k == last { 0.0 } else { speed(b) },
+            ];
+            let seg = timing::time_path_between(&ch.points[a..=b], limits, options, ends)
+                .map_err(|e| err(format!("station path: {e}")))?;
+            if k > 0 {
+                let c = cuts[k - 1];
+                let share = pace
+                    .joins
+                    .iter()
+                    .find(|(st, _)| *st == runs[c.0 + 1].stroke)
+                    .map_or(1.0, |&(_, f)| f);
+                let from = pieces
+                    .last()
+                    .and_then(|p: &timing::Trajectory<5>| p.path_end(true));
+                let to = seg.path_end(false);
+                let join = from.zip(to).and_then(|(from, to)| {
+                    timing::join_move(&from, &to, &join_limits(limits, share), &range, options.margin)
+                        .ok()
+                });
+                match join {
+                    Some(j) => pieces.push(j),
+                    None => {
+                        cuts.remove(k - 1);
+                        continue 'retry;
+                    }
+                }
+            }
+            pieces.push(seg);
+        }
+        return Ok(Cut { ranges, pieces });
+    }
+}
+
+/// The time law's limits slowed to `share` of the accelerations: time
+/// stretched by 1/√share, so speeds scale by √share and jerks by share^1.5.
+fn join_limits(limits: &timing::JointLimits<5>, share: f64) -> timing::JointLimits<5> {
+    timing::JointLimits {
+        vel: limits.vel.map(|v| v * share.sqrt()),
+        acc: limits.acc.map(|v| v * share),
+        jerk: limits.jerk.map(|v| v * share.powf(1.5)),
+    }
 }
 
 /// A station's samples, slow-downs and stops (station time, joints there,
