@@ -6,6 +6,7 @@
 use crate::robot::{AnyRobot, Joints};
 
 use super::chain::{chain, StopReason};
+use super::flight;
 use super::error::CompileError;
 use super::joints::{JointPaths, Run};
 use super::knots::{self, Knot};
@@ -127,11 +128,16 @@ const JERK_PER_ACC: f64 = 10.0;
 /// after a long fast move), `path` for the chained path through the strokes.
 /// `joins`: (stroke entered, share) for the flown joins into those
 /// strokes alone (the arm arrived behind at the stroke's first rungs).
+/// `fly_in`: the move out of stow flies into the first stroke's first rung
+/// at painting speed; else it comes to rest at the start of the stroke's
+/// lead and the time law runs up from there (the first thing the
+/// verification gives up where the arm arrives behind).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pace {
     pub air: f64,
     pub path: f64,
     pub joins: Vec<(usize, f64)>,
+    pub fly_in: bool,
 }
 
 impl Pace {
@@ -139,6 +145,7 @@ impl Pace {
         air: 1.0,
         path: 1.0,
         joins: Vec::new(),
+        fly_in: true,
     };
 }
 
@@ -234,6 +241,7 @@ fn time_station(
 ) -> Result<StationTiming, CompileError> {
     let limits = timing_limits(robot, pace.path);
     let air_limits = timing_limits(robot, pace.air);
+    let back_limits = timing_limits(robot, 1.0);
     let options = timing::PathOptions::default();
     let err = |what: String| CompileError::Timing(what);
     let home = *stow;
@@ -257,19 +265,21 @@ fn time_station(
         ));
     }
     let ch = chain(robot, runs, &limits, &pace.joins);
-    let first = ch.points[0].q;
-    let last = ch.points[ch.points.len() - 1].q;
-    let cut = cut_path(robot, runs, &ch, &limits, pace, &options)?;
-    let mut pieces = Vec::with_capacity(cut.pieces.len() + 2);
-    pieces.push(
-        timing::air_move(home, first, &air_limits, options.margin)
-            .map_err(|e| err(format!("air move to stroke {}: {e}", runs[0].stroke)))?,
-    );
-    pieces.extend(cut.pieces);
-    pieces.push(
-        timing::air_move(last, home, &air_limits, options.margin)
-            .map_err(|e| err(format!("air move to the stow pose: {e}")))?,
-    );
+    let cut = flight::fly(
+        robot,
+        runs,
+        &ch,
+        &flight::Limits {
+            home,
+            path: &limits,
+            air: &air_limits,
+            back: &back_limits,
+            joins: &pace.joins,
+            fly_in: pace.fly_in,
+        },
+        &options,
+    )?;
+    let pieces = cut.pieces;
     // starts[p]: station time at which piece p starts.
     let starts: Vec<f64> = pieces
         .iter()
@@ -291,6 +301,9 @@ fn time_station(
         let k = segment_at(s);
         starts[1 + 2 * k] + pieces[1 + 2 * k].time_at(s)
     };
+    if std::env::var_os("BASR_JOIN_REPORT").is_some() {
+        eprintln!("stow out {:.3} s, back {:.3} s", pieces[0].duration_s(), pieces[pieces.len()-1].duration_s());
+    }
     let sampled = timing::resample(&pieces, period_s).map_err(|e| err(e.to_string()))?;
     // Gun command windows (station time).
     let windows: Vec<(f64, f64)> = runs
@@ -361,109 +374,6 @@ fn time_station(
         })
         .collect();
     Ok((out, slows, stops))
-}
-
-/// A station's chained path cut at its flown joins: `ranges[k]` the
-/// points (first, last) of segment k, and `pieces` segment 0, join 0,
-/// segment 1, … Each segment is timed from the painting speed at its
-/// first rung to the one at its last (from and to rest at the station's
-/// ends); each join is jerk-limited from the state one segment ends in to
-/// the state the next starts in. A seam whose join cannot be found (or
-/// that would leave a segment of one point) stays in the path, flown
-/// under the acceleration limits as the chain designed it.
-struct Cut {
-    ranges: Vec<(usize, usize)>,
-    pieces: Vec<timing::Trajectory<5>>,
-}
-
-fn cut_path(
-    robot: &AnyRobot,
-    runs: &[Run],
-    ch: &super::chain::Chain,
-    limits: &timing::JointLimits<5>,
-    pace: &Pace,
-    options: &timing::PathOptions,
-) -> Result<Cut, CompileError> {
-    let err = |what: String| CompileError::Timing(what);
-    let n = ch.points.len();
-    let range: timing::join::Ranges<5> = {
-        let l = robot.limits();
-        std::array::from_fn(|j| (l[j].min, l[j].max))
-    };
-    // (seam, from point, to point)
-    let mut cuts: Vec<(usize, usize, usize)> = ch
-        .flown
-        .iter()
-        .enumerate()
-        .filter_map(|(i, f)| f.map(|(a, b)| (i, a, b)))
-        .collect();
-    'retry: loop {
-        let mut kept: Vec<(usize, usize, usize)> = Vec::with_capacity(cuts.len());
-        let mut start = 0;
-        for &c in &cuts {
-            if c.1 > start {
-                kept.push(c);
-                start = c.2;
-            }
-        }
-        while kept.last().is_some_and(|c| c.2 + 1 >= n) {
-            kept.pop();
-        }
-        cuts = kept;
-        let mut ranges = Vec::with_capacity(cuts.len() + 1);
-        let mut start = 0;
-        for c in &cuts {
-            ranges.push((start, c.1));
-            start = c.2;
-        }
-        ranges.push((start, n - 1));
-        let speed = |i: usize| ch.points[i].max_speed_mps.unwrap_or(0.0);
-        let last = ranges.len() - 1;
-        let mut pieces = Vec::with_capacity(2 * ranges.len());
-        for (k, &(a, b)) in ranges.iter().enumerate() {
-            let ends = [
-                if k == 0 { 0.0 } else { speed(a) },
-                if k == last { 0.0 } else { speed(b) },
-            ];
-            let seg = timing::time_path_between(&ch.points[a..=b], limits, options, ends)
-                .map_err(|e| err(format!("station path: {e}")))?;
-            if k > 0 {
-                let c = cuts[k - 1];
-                let share = pace
-                    .joins
-                    .iter()
-                    .find(|(st, _)| *st == runs[c.0 + 1].stroke)
-                    .map_or(1.0, |&(_, f)| f);
-                let from = pieces
-                    .last()
-                    .and_then(|p: &timing::Trajectory<5>| p.path_end(true));
-                let to = seg.path_end(false);
-                let join = from.zip(to).and_then(|(from, to)| {
-                    timing::join_move(&from, &to, &join_limits(limits, share), &range, options.margin)
-                        .ok()
-                });
-                match join {
-                    Some(j) => pieces.push(j),
-                    None => {
-                        cuts.remove(k - 1);
-                        continue 'retry;
-                    }
-                }
-            }
-            pieces.push(seg);
-        }
-        return Ok(Cut { ranges, pieces });
-    }
-}
-
-/// The time law's limits slowed to `share` of the accelerations: time
-/// stretched by 1/√share, so speeds scale by √share and jerks by share^1.5.
-fn join_limits(limits: &timing::JointLimits<5>, share: f64) -> timing::JointLimits<5> {
-    timing::JointLimits {
-        vel: limits.vel.map(|v| v * share.sqrt()),
-        acc: limits.acc.map(|v| v * share),
-        jerk: limits.jerk.map(|v| v * share.powf(1.5)),
-    }
 }
 
 /// A station's samples, slow-downs and stops (station time, joints there,

@@ -82,14 +82,18 @@ fn solve<const N: usize>(
     // The end states may use the whole limit (the painting path's own
     // margin is on the limits themselves); the join keeps `margin` in
     // reserve except where an end state already needs more.
-    let need = |a: f64, b: f64| a.abs().max(b.abs()) * (1.0 + 1e-9);
+    let jerk: [f64; N] = std::array::from_fn(|j| limits.jerk[j] * keep);
+    // The speed a joint reaches from an end state once its acceleration is
+    // brought to zero at the jerk limit (Ruckig refuses limits below it).
+    let coast = |k: &Kinematic<N>, j: usize| k.qd[j].abs() + k.qdd[j] * k.qdd[j] / (2.0 * jerk[j]);
+    let need = |a: f64, b: f64| a.max(b) * (1.0 + 1e-6);
     input.max_velocity = stack(std::array::from_fn(|j| {
-        (limits.vel[j] * keep).max(need(from.qd[j], to.qd[j]))
+        (limits.vel[j] * keep).max(need(coast(from, j), coast(to, j)))
     }));
     input.max_acceleration = stack(std::array::from_fn(|j| {
-        (limits.acc[j] * keep).max(need(from.qdd[j], to.qdd[j]))
+        (limits.acc[j] * keep).max(need(from.qdd[j].abs(), to.qdd[j].abs()))
     }));
-    input.max_jerk = stack(std::array::from_fn(|j| limits.jerk[j] * keep));
+    input.max_jerk = stack(jerk);
     input.min_position = Some(stack(std::array::from_fn(|j| {
         range[j].0.min(from.q[j]).min(to.q[j])
     })));
