@@ -71,9 +71,6 @@ pub fn compile_strokes(
             return Ok(job);
         }
         let verdict = verify::verify(&job)?;
-        if std::env::var_os("BASR_JOIN_REPORT").is_some() {
-            eprintln!("verify: {:.2} mm ok {} worst {:?} at {:.2} s failing {:?} pace {:?}", verdict.max_error_m * 1e3, verdict.ok, verdict.worst, verdict.worst_t_s, verdict.failing, pace);
-        }
         if verdict.ok {
             job.summary.verified_max_error_m = Some(verdict.max_error_m);
             job.seal();

@@ -6,8 +6,8 @@
 use crate::robot::{AnyRobot, Joints};
 
 use super::chain::{chain, StopReason};
-use super::flight;
 use super::error::CompileError;
+use super::flight;
 use super::joints::{JointPaths, Run};
 use super::knots::{self, Knot};
 use super::placed::PlacedStrokes;
@@ -302,7 +302,11 @@ fn time_station(
         starts[1 + 2 * k] + pieces[1 + 2 * k].time_at(s)
     };
     if std::env::var_os("BASR_JOIN_REPORT").is_some() {
-        eprintln!("stow out {:.3} s, back {:.3} s", pieces[0].duration_s(), pieces[pieces.len()-1].duration_s());
+        eprintln!(
+            "stow out {:.3} s, back {:.3} s",
+            pieces[0].duration_s(),
+            pieces[pieces.len() - 1].duration_s()
+        );
     }
     let sampled = timing::resample(&pieces, period_s).map_err(|e| err(e.to_string()))?;
     // Gun command windows (station time).
@@ -322,7 +326,7 @@ fn time_station(
     for k in 0..sampled.len() {
         let t = sampled.t_s[k];
         let p = sampled.piece[k];
-        let (run, s) = if p >= 1 && p <= 2 * cut.ranges.len() - 1 && (p - 1) % 2 == 0 {
+        let (run, s) = if p >= 1 && p < 2 * cut.ranges.len() && (p - 1) % 2 == 0 {
             ch.run_at(sampled.s[k])
         } else {
             (None, 0.0)

@@ -122,8 +122,5 @@ pub(super) fn eval<const N: usize>(traj: &RuckigTrajectory<N>, t: f64) -> ([f64;
         &mut None,
         &mut section,
     );
-    (
-        std::array::from_fn(|j| p[j]),
-        std::array::from_fn(|j| v[j]),
-    )
+    (std::array::from_fn(|j| p[j]), std::array::from_fn(|j| v[j]))
 }
