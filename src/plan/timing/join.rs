@@ -79,19 +79,31 @@ fn solve<const N: usize>(
     input.target_position = stack(to.q);
     input.target_velocity = stack(to.qd);
     input.target_acceleration = stack(to.qdd);
-    // The end states may use the whole limit (the painting path's own
-    // margin is on the limits themselves); the join keeps `margin` in
-    // reserve except where an end state already needs more.
+    // The speed limits are the joints' own: where an end state would carry
+    // a joint past one (its acceleration cannot be brought to zero in time
+    // at the jerk limit), no join is found and the caller keeps the seam in
+    // the path. An end state may accelerate harder than a slowed join's
+    // limit allows (it comes from the path at full pace): that much is
+    // allowed.
     let jerk: [f64; N] = std::array::from_fn(|j| limits.jerk[j] * keep);
-    // The speed a joint reaches from an end state once its acceleration is
-    // brought to zero at the jerk limit (Ruckig refuses limits below it).
-    let coast = |k: &Kinematic<N>, j: usize| k.qd[j].abs() + k.qdd[j] * k.qdd[j] / (2.0 * jerk[j]);
-    let need = |a: f64, b: f64| a.max(b) * (1.0 + 1e-6);
-    input.max_velocity = stack(std::array::from_fn(|j| {
-        (limits.vel[j] * keep).max(need(coast(from, j), coast(to, j)))
-    }));
+    input.max_velocity = stack(std::array::from_fn(|j| limits.vel[j] * keep));
+    for j in 0..N {
+        // Ruckig checks the target so; the start it would brake past.
+        let (v, a) = (from.qd[j], from.qdd[j]);
+        let coast = v.abs()
+            + if v * a > 0.0 {
+                a * a / (2.0 * jerk[j])
+            } else {
+                0.0
+            };
+        if coast > input.max_velocity[j] * (1.0 + 1e-9) {
+            return Err(TimingError::NoJoin(format!(
+                "joint {j} leaves at {v} with acceleration {a}: it passes its speed limit before the jerk limit can level it"
+            )));
+        }
+    }
     input.max_acceleration = stack(std::array::from_fn(|j| {
-        (limits.acc[j] * keep).max(need(from.qdd[j].abs(), to.qdd[j].abs()))
+        (limits.acc[j] * keep).max(from.qdd[j].abs().max(to.qdd[j].abs()) * (1.0 + 1e-9))
     }));
     input.max_jerk = stack(jerk);
     input.min_position = Some(stack(std::array::from_fn(|j| {
