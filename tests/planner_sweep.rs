@@ -10,7 +10,8 @@
 //! and 10 m, lane 30 m) and each tilt method, on a curved letter (S: the
 //! fan turns along it, the hardest case for the time law). Each case runs
 //! `simulate` on the written job as an independent check of compile's own
-//! verification.
+//! verification. The marking files and the words, at the default size, are
+//! also never NOT READY because a stroke is narrower than the fan.
 
 use std::path::Path;
 
@@ -26,6 +27,11 @@ fn basr() -> Command {
 /// Compile `args`; on success simulate the job and check the bound; on
 /// failure require exit 2, a reason on stderr and no job left behind.
 fn holds(args: &[&str]) {
+    holds_then(args, |_| {});
+}
+
+/// `holds`, then `also` on the written job.
+fn holds_then(args: &[&str], also: impl Fn(&Path)) {
     let dir = tempfile::tempdir().unwrap();
     let job = dir.path().join("case.job.json");
     let out = basr()
@@ -61,6 +67,24 @@ fn holds(args: &[&str]) {
         "{args:?}: simulate finds {max} m > {BOUND_M} m"
     );
     assert_eq!(sim.status.code(), Some(0), "{args:?}: simulate fails");
+    also(&job);
+}
+
+/// At the default size no job is NOT READY because a stroke is narrower
+/// than the fan: the paint the wider fan lays outside stays within the
+/// budget that keeps the preview's overspray bound (docs/planner.md).
+fn no_clamp_problem(job: &Path) {
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(job).unwrap()).expect("job JSON");
+    for w in v["summary"]["warnings"].as_array().unwrap() {
+        if w["kind"] == "height_clamped" {
+            assert_ne!(w["severity"], "problem", "{job:?}: {}", w["message"]);
+            assert!(w["message"]
+                .as_str()
+                .unwrap()
+                .contains("over the whole job"));
+        }
+    }
 }
 
 fn verified_error(job: &Path) -> f64 {
@@ -82,7 +106,7 @@ fn every_marking_file() {
     files.sort();
     assert!(!files.is_empty());
     for f in files {
-        holds(&["--marking", f.to_str().unwrap()]);
+        holds_then(&["--marking", f.to_str().unwrap()], no_clamp_problem);
     }
 }
 
@@ -91,7 +115,7 @@ fn common_words_first_half() {
     for w in [
         "STOP", "AHEAD", "SCHOOL", "XING", "ONLY", "BUS", "BIKE", "LANE", "SLOW", "YIELD",
     ] {
-        holds(&[w]);
+        holds_then(&[w], no_clamp_problem);
     }
 }
 
@@ -100,7 +124,7 @@ fn common_words_second_half() {
     for w in [
         "SIGNAL", "PED", "KEEP", "CLEAR", "TURN", "LEFT", "RIGHT", "EXIT", "RR", "HOV", "FIRE",
     ] {
-        holds(&[w]);
+        holds_then(&[w], no_clamp_problem);
     }
 }
 

@@ -281,6 +281,28 @@ fn a_scene_with_a_shape_item_compiles_previews_and_simulates() {
         .map(|g| g["char"].as_str().unwrap_or("").to_string())
         .collect();
     assert_eq!(chars, ["ring", "arrow-through"]);
+    // The job says how the ring was decomposed and why, as a `--shape`
+    // job does: the method kept and the candidates' measured film.
+    let shape: Vec<&str> = v["summary"]["warnings"]
+        .as_array()
+        .expect("warnings")
+        .iter()
+        .filter(|w| w["kind"] == "shape")
+        .inspect(|w| assert_eq!(w["severity"], "info", "{w}"))
+        .filter_map(|w| w["message"].as_str())
+        .collect();
+    assert!(
+        shape
+            .iter()
+            .any(|m| m.starts_with("shape ring: region 1: ") && m.contains("ring-following bands")),
+        "{shape:#?}"
+    );
+    assert!(
+        shape
+            .iter()
+            .any(|m| m.starts_with("shape ring:   kept: ring-following bands: cv ")),
+        "{shape:#?}"
+    );
     basr()
         .arg("preview")
         .arg(&job)

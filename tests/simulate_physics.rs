@@ -88,9 +88,12 @@ fn controllers_behave_as_the_seed_reports() {
     let pid = run(ControllerKind::Pid);
     let scct = run(ControllerKind::Scct);
     assert!(sjct.passed(), "{}", sjct.human());
-    // PID: stays in its window and bounded, but less accurate
-    assert!(pid.max_error_m > 2.0 * sjct.max_error_m);
-    assert!(pid.max_error_m < 0.5, "{}", pid.human());
+    // PID: stays in its window, never stopped by the safety monitor, within
+    // the 25 mm, and less accurate than SJCT (on this small letter
+    // by RMS only; on STOP by 1.5× max and 5× RMS, tests/simulate_compiled.rs)
+    assert!(pid.rms_error_m > 1.2 * sjct.rms_error_m, "{}", pid.human());
+    assert!(pid.max_error_m < 0.025, "{}", pid.human());
+    assert!(pid.safety.is_none(), "{}", pid.human());
     assert!(pid.limits.iter().all(|l| !l.fails), "{}", pid.human());
     // SCCT with the delay estimate on measured efforts (the seed's code
     // diverged): stable, within centimetres

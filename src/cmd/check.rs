@@ -136,7 +136,9 @@ fn marking_problems(text: &str, origin: &str) -> Vec<String> {
         Ok(r) => r,
         Err(e) => return vec![e.to_string()],
     };
-    let shapes = |p: &std::path::Path, s| basr::plan::shapes::import_item(&robot, origin, p, s);
+    let shapes = |p: &std::path::Path, s| {
+        basr::plan::shapes::import_item(&robot, origin, p, s).map(|(strokes, _)| strokes)
+    };
     basr::layout::check_marking_source_with(text, origin, &shapes)
 }
 

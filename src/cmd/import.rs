@@ -39,9 +39,12 @@ impl SizeArgs {
 /// review, edit and compile.
 ///
 /// Each region of the shape (an outline with its holes) is cut into bands
-/// by a boustrophedon sweep along its long axis or across it, or, around a
-/// hole, into ring-following bands; the one with the better predicted film
-/// (then time) is kept and named in the file. Bands wider than one pass are
+/// by boustrophedon sweeps (square to its long edges, along and across its
+/// long axis), into convex pieces, or, around a hole, into ring-following
+/// bands. The candidates are compiled and
+/// previewed, best predicted first, until one paints an even film (cv ≤
+/// 0.04); the most even of those measured (then the shortest paint time) is
+/// kept, and the file's header says which and why. Bands wider than one pass are
 /// split into parallel strokes; where the shape is narrower than the fan's
 /// narrowest band the report says where and by how much.
 #[derive(clap::Args)]
@@ -74,10 +77,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     )?;
     let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     let bands = basr::plan::shapes::bands(&robot);
-    let imported = basr::plan::shapes::import_measured(&args.file, args.size.size(), &robot)?;
-    // The file must load back as it will be used.
-    imported.font(&args.output.display().to_string())?;
-    basr::io::write_atomic(&args.output, imported.toml.as_bytes())?;
+    // The file must load back as it will be used (checked before it is written).
+    let imported =
+        basr::plan::shapes::import_to_file(&args.file, args.size.size(), &robot, &args.output)?;
     let d = &imported.decomposition;
     if args.json {
         let v = serde_json::json!({

@@ -23,12 +23,30 @@ pub struct Built {
 pub struct Locator<'a> {
     pub(super) text: &'a str,
     pub(super) origin: &'a str,
+    /// Byte offset of each line's start: every segment of a font names its
+    /// place, and scanning the text from its start for each is quadratic
+    /// (an imported shape has thousands of segments).
+    line_starts: Vec<usize>,
 }
 
-impl Locator<'_> {
+impl<'a> Locator<'a> {
+    pub fn new(text: &'a str, origin: &'a str) -> Locator<'a> {
+        let line_starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        Locator {
+            text,
+            origin,
+            line_starts,
+        }
+    }
+
     pub fn at(&self, offset: usize) -> String {
-        let (line, col) = crate::io::line_col(self.text, offset);
-        format!("{}:{line}:{col}", self.origin)
+        // The line holding `offset`; `io::line_col` counts its column.
+        let i = self.line_starts.partition_point(|&s| s <= offset).max(1) - 1;
+        let start = self.line_starts[i];
+        let (_, col) = crate::io::line_col(&self.text[start..], offset - start);
+        format!("{}:{}:{col}", self.origin, i + 1)
     }
 
     /// A context string `origin:line:col: what` without its location, so a
@@ -58,7 +76,7 @@ const FAR_OFF: f64 = 1e6;
 const MAX_GRID_WIDTH: f64 = 1000.0;
 
 pub fn build(text: &str, origin: &str) -> Built {
-    let loc = Locator { text, origin };
+    let loc = Locator::new(text, origin);
     let mut out = Built {
         name: String::new(),
         grid_width: GRID_WIDTH,
@@ -513,4 +531,23 @@ pub(super) fn transform(
         m = step_m * m;
     }
     Some(m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Locator;
+
+    #[test]
+    fn locator_names_the_place_io_line_col_does() {
+        let text = "a = 1\n\nb = \"é\"\nc = 2";
+        let loc = Locator::new(text, "f.toml");
+        for offset in 0..text.len() + 3 {
+            let (line, col) = crate::io::line_col(text, offset);
+            assert_eq!(
+                loc.at(offset),
+                format!("f.toml:{line}:{col}"),
+                "offset {offset}"
+            );
+        }
+    }
 }

@@ -202,7 +202,7 @@ struct LetterSpec {
 }
 
 fn build(text: &str, origin: &str) -> (String, BTreeMap<String, Symbol>, Vec<String>) {
-    let loc = Locator { text, origin };
+    let loc = Locator::new(text, origin);
     let mut problems = vec![];
     let mut out = BTreeMap::new();
     if text.trim().is_empty() {

@@ -53,6 +53,8 @@ pub fn passes(
         .tilt_limit()
         .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0));
     let mut out = Passes::default();
+    let mut painted_m2 = 0.0;
+    let mut outside = vec![];
     for (sid, stroke_rungs) in rungs.rungs.iter().enumerate() {
         let owner = strokes.owner(sid);
         let what =
@@ -61,6 +63,7 @@ pub fn passes(
         let mut clamped = 0usize;
         let mut rung_count = 0usize;
         let mut worst = 1.0f64;
+        let mut outside_m2 = 0.0;
         // knots::KnotPlan keeps U in percent; the job keeps fractions.
         let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
         let mut u_tilted = u_untilted;
@@ -98,6 +101,9 @@ pub fn passes(
                 .count()
                 + raised.len();
             rung_count += kp.knots.len();
+            let (outside, painted) = outside_area(&kp.knots);
+            outside_m2 += outside;
+            painted_m2 += painted;
             for k in &kp.knots {
                 if k.width_m > 0.0 {
                     worst = worst.max(k.fan_width_m / k.width_m);
@@ -133,10 +139,61 @@ pub fn passes(
                 rungs: rung_count,
                 min_height_m: law.min_height_m,
                 worst_ratio: worst,
+                outside_share: 0.0,
+                job_outside_share: 0.0,
             });
+            outside.push(outside_m2);
         }
     }
+    // Shares of the whole job's paint, known once every pass is.
+    let job: f64 = outside.iter().sum();
+    let share = |a: f64| {
+        if painted_m2 > 0.0 {
+            a / painted_m2
+        } else {
+            0.0
+        }
+    };
+    let clamps = out.notes.iter_mut().filter_map(|n| match n {
+        Note::HeightClamped {
+            outside_share,
+            job_outside_share,
+            ..
+        } => Some((outside_share, job_outside_share)),
+        _ => None,
+    });
+    for ((o, j), &a) in clamps.zip(&outside) {
+        *o = share(a);
+        *j = share(job);
+    }
     Ok(out)
+}
+
+/// Road area (m²) a pass's fan lays paint on outside its stroke, where the
+/// fan is wider than the rung (a clamped height), and all the road it lays
+/// paint on: each knot's width over half the tip travel to each neighbour.
+/// The film is on target over the whole fan, so the first over the second
+/// is the share of the paint that lands outside the stroke.
+pub fn outside_area(ks: &[Knot]) -> (f64, f64) {
+    let n = ks.len();
+    let mut outside = 0.0;
+    let mut painted = 0.0;
+    for (i, k) in ks.iter().enumerate() {
+        let before = if i > 0 {
+            (k.mid - ks[i - 1].mid).hypot()
+        } else {
+            0.0
+        };
+        let after = if i + 1 < n {
+            (ks[i + 1].mid - k.mid).hypot()
+        } else {
+            0.0
+        };
+        let ds = 0.5 * (before + after);
+        outside += (k.fan_width_m - k.width_m).max(0.0) * ds;
+        painted += k.fan_width_m.max(k.width_m) * ds;
+    }
+    (outside, painted)
 }
 
 /// The paint law of the robot's nozzle and its painting heights: BASR's

@@ -51,12 +51,14 @@ pub struct PlacedStrokes {
 pub fn lay_out(req: &CompileRequest, font: &Font) -> Result<(Marking, PlacedStrokes), LayoutError> {
     let o = &req.overrides;
     let lib = Library::embedded();
+    // What the scene's shape items say of their decomposition.
+    let shape_notes = std::cell::RefCell::new(vec![]);
     let laid = match &req.source {
         Source::Message(m) => {
             layout::lay_marking(&Marking::from_message(m, o)?, font, o.low_speed)?
         }
         Source::Marking { text, origin } if layout::is_scene(text) => {
-            let shapes = super::shapes::importer(req, origin);
+            let shapes = super::shapes::importer(req, origin, &shape_notes);
             layout::lay_scene_with(&Scene::from_toml(text, origin, o)?, font, lib, &shapes)?
         }
         Source::Marking { text, origin } => {
@@ -73,7 +75,9 @@ pub fn lay_out(req: &CompileRequest, font: &Font) -> Result<(Marking, PlacedStro
         anchor_x_m: 0.0,
         anchor_y_m: 0.0,
     };
-    Ok((record, PlacedStrokes::from_laid(&laid)))
+    let mut placed = PlacedStrokes::from_laid(&laid);
+    placed.notes.extend(shape_notes.into_inner());
+    Ok((record, placed))
 }
 
 impl PlacedStrokes {

@@ -15,10 +15,10 @@ use crate::layout::{ShapeSize, ShapeStrokes};
 use crate::paint::preview::{preview_job, Options};
 use crate::plan::compile::{compile_strokes, CompileError, CompileRequest, Source};
 use crate::plan::placed::lay_out;
-use crate::plan::warnings::Owner;
+use crate::plan::warnings::{Note, Owner};
 use crate::plan::{inputs, request};
 use crate::robot::AnyRobot;
-use crate::shape::{self, report_lines, Bands, Imported, ShapeError, Size};
+use crate::shape::{self, report_lines, Bands, Imported, Prediction, ShapeError, Size};
 
 /// Film targets a candidate decomposition must meet to be kept on its cv
 /// alone: issue 14's acceptance (coverage ≥ 0.97, overspray ≤ 0.04).
@@ -28,6 +28,10 @@ const MAX_OVERSPRAY: f64 = 0.04;
 /// Candidates whose cv differ by less than this are equally even; the
 /// shorter paint time decides. assumed: half a percent of cv.
 const CV_TIE: f64 = 0.005;
+/// A measured cv this low (within the coverage and overspray bounds) ends
+/// the search for a better candidate. assumed: two thirds of issue 14's
+/// acceptance cv (0.06), so the kept film meets it with margin.
+const GOOD_CV: f64 = 0.04;
 /// Largest raster the candidates' film is measured on (cells). assumed:
 /// 2 M cells is a 5 mm raster over 7 × 7 m and takes a fraction of a second.
 const MEASURE_CELLS: usize = 2_000_000;
@@ -103,10 +107,24 @@ struct Measured {
     paint_s: f64,
 }
 
+impl Measured {
+    fn meets_bounds(&self) -> bool {
+        self.coverage >= MIN_COVERAGE && self.overspray <= MAX_OVERSPRAY
+    }
+    /// Even enough that no further candidate needs measuring.
+    fn good(&self) -> bool {
+        self.meets_bounds() && self.cv <= GOOD_CV
+    }
+}
+
+/// Compile a candidate with compile's defaults but without the verifying
+/// simulation (it only slows the time law where the arm falls behind; the
+/// kept decomposition is verified when it is compiled), and preview it.
 fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Option<Measured> {
     let mut req = CompileRequest::message(shape::GLYPH.encode_utf8(&mut [0; 4]));
     req.source = Source::Message(shape::GLYPH.to_string());
     req.robot_description = Some(robot.clone());
+    req.verify = false;
     let job = compile_shape(&req, imported, b, label).ok()?;
     let opts = Options {
         fit_cells: Some(MEASURE_CELLS),
@@ -121,6 +139,76 @@ fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Opt
     })
 }
 
+/// What became of one candidate decomposition.
+#[derive(Clone, Copy, Debug)]
+enum Outcome {
+    /// Compiled and previewed (`None`: it does not compile for the robot).
+    Measured(Option<Measured>),
+    /// Predicted the same as candidate `.0`, measured in its stead.
+    CopyOf(usize),
+    /// Not measured: an earlier candidate was good and none tied with it.
+    Skipped,
+}
+
+/// Measure candidates (ranked by the predictor, best first) until one is
+/// [`Measured::good`]: each round takes the next candidate with every
+/// later one the predictor ties with it (`Prediction::film_tied`),
+/// measures them in parallel, and stands in for copies
+/// (`Prediction::same`) by the first of them.
+fn measure_ranked(all: &[Imported], robot: &AnyRobot, b: &Bands, label: &str) -> Vec<Outcome> {
+    use rayon::prelude::*;
+    let pred: Vec<Prediction> = all.iter().map(|c| c.decomposition.prediction()).collect();
+    let mut out = vec![Outcome::Skipped; all.len()];
+    let mut i = 0;
+    while i < all.len() {
+        let end = (i..all.len())
+            .take_while(|&j| pred[j].film_tied(&pred[i]))
+            .last()
+            .map_or(i + 1, |j| j + 1);
+        let mut todo = vec![];
+        for j in i..end {
+            match (0..j).find(|&k| !matches!(out[k], Outcome::CopyOf(_)) && pred[k].same(&pred[j]))
+            {
+                Some(k) if k < i || todo.contains(&k) => out[j] = Outcome::CopyOf(k),
+                _ => todo.push(j),
+            }
+        }
+        let got: Vec<(usize, Option<Measured>)> = todo
+            .par_iter()
+            .map(|&j| (j, measure(&all[j], robot, b, label)))
+            .collect();
+        let good = got.iter().any(|(_, m)| m.is_some_and(|m| m.good()));
+        for (j, m) in got {
+            out[j] = Outcome::Measured(m);
+        }
+        i = end;
+        if good {
+            break;
+        }
+    }
+    out
+}
+
+/// The kept candidate among the measured: the most even film (within
+/// [`CV_TIE`]) of those within the coverage and overspray bounds, then the
+/// shorter paint time; the first when none compiled.
+fn pick(outcomes: &[Outcome]) -> usize {
+    let key = |m: &Measured| (!m.meets_bounds(), (m.cv / CV_TIE).floor() as i64);
+    outcomes
+        .iter()
+        .enumerate()
+        .filter_map(|(i, o)| match o {
+            Outcome::Measured(Some(m)) => Some((i, *m)),
+            _ => None,
+        })
+        .min_by(|a, b| {
+            key(&a.1)
+                .cmp(&key(&b.1))
+                .then(a.1.paint_s.total_cmp(&b.1.paint_s))
+        })
+        .map_or(0, |(i, _)| i)
+}
+
 /// The shape's name in jobs: its file's stem.
 pub fn label_of(path: &Path) -> String {
     path.file_stem()
@@ -130,28 +218,38 @@ pub fn label_of(path: &Path) -> String {
 /// Read, size and decompose a shape file for `robot`, keeping the
 /// candidate decomposition ([`shape::candidates`]) whose film is the most
 /// even when it is compiled (with compile's defaults) and previewed: the
-/// film model itself is the prediction. The decomposition's notes list
-/// every candidate's measured film.
+/// film model itself decides. Candidates are measured in the predictor's
+/// order until one is good and every tie of it is measured
+/// ([`measure_ranked`]); the decomposition's notes list every candidate's
+/// measured film or why it was not measured.
 pub fn import_measured(path: &Path, size: Size, robot: &AnyRobot) -> Result<Imported, ShapeError> {
     let b = bands(robot);
     let mut all = shape::import_candidates(path, size, &b)?;
     let label = label_of(path);
-    let measured: Vec<Option<Measured>> =
-        all.iter().map(|c| measure(c, robot, &b, &label)).collect();
-    let key = |m: &Measured| {
-        let ok = m.coverage >= MIN_COVERAGE && m.overspray <= MAX_OVERSPRAY;
-        (!ok, (m.cv / CV_TIE).floor() as i64, m.paint_s)
-    };
-    let pick = measured
-        .iter()
-        .enumerate()
-        .filter_map(|(i, m)| m.map(|m| (i, key(&m))))
-        .min_by(|a, b| {
-            (a.1 .0, a.1 .1)
-                .cmp(&(b.1 .0, b.1 .1))
-                .then(a.1 .2.total_cmp(&b.1 .2))
-        })
-        .map_or(0, |(i, _)| i);
+    let outcomes = measure_ranked(&all, robot, &b, &label);
+    let pick = pick(&outcomes);
+    let notes = measured_notes(&all, &outcomes, pick);
+    let chosen = all.swap_remove(pick);
+    Ok(chosen.with_notes(notes))
+}
+
+/// [`import_measured`], its font checked to load back as `--font` reads
+/// it and written to `output` (atomically): what `basr import` does.
+pub fn import_to_file(
+    path: &Path,
+    size: Size,
+    robot: &AnyRobot,
+    output: &Path,
+) -> anyhow::Result<Imported> {
+    let imported = import_measured(path, size, robot)?;
+    imported.font(&output.display().to_string())?;
+    crate::io::write_atomic(output, imported.toml.as_bytes())?;
+    Ok(imported)
+}
+
+/// The candidates' lines for a person: how each was measured and which
+/// was kept.
+fn measured_notes(all: &[Imported], outcomes: &[Outcome], pick: usize) -> Vec<String> {
     let name = |c: &Imported| {
         c.decomposition
             .regions
@@ -161,14 +259,16 @@ pub fn import_measured(path: &Path, size: Size, robot: &AnyRobot) -> Result<Impo
             .join(" + ")
     };
     let mut notes = vec![format!(
-        "film of each candidate decomposition, compiled with compile's defaults and previewed \
-         (kept: the most even film with coverage ≥ {MIN_COVERAGE} and overspray ≤ {MAX_OVERSPRAY}, \
-         then the shorter paint time):"
+        "film of the candidate decompositions, compiled with compile's defaults (without the \
+         verifying simulation) and previewed in the predictor's order until one has cv ≤ {GOOD_CV} \
+         and every candidate predicted as good as it is measured (kept: the most even film with \
+         coverage ≥ {MIN_COVERAGE} and overspray ≤ {MAX_OVERSPRAY}, then the shorter paint time):"
     )];
-    for (i, (c, m)) in all.iter().zip(&measured).enumerate() {
+    for (i, (c, o)) in all.iter().zip(outcomes).enumerate() {
         let kept = if i == pick { "kept" } else { "not kept" };
-        notes.push(match m {
-            Some(m) => format!(
+        let p = c.decomposition.prediction();
+        notes.push(match o {
+            Outcome::Measured(Some(m)) => format!(
                 "  {kept}: {}: cv {:.3}, coverage {:.3}, overspray {:.3}, paint {:.0} s",
                 name(c),
                 m.cv,
@@ -176,11 +276,23 @@ pub fn import_measured(path: &Path, size: Size, robot: &AnyRobot) -> Result<Impo
                 m.overspray,
                 m.paint_s
             ),
-            None => format!("  {kept}: {}: does not compile for this robot", name(c)),
+            Outcome::Measured(None) => {
+                format!("  {kept}: {}: does not compile for this robot", name(c))
+            }
+            Outcome::CopyOf(k) => format!(
+                "  not measured: {}: predicted the same as {}, turned by the shape's symmetry",
+                name(c),
+                name(&all[*k])
+            ),
+            Outcome::Skipped => format!(
+                "  not measured: {}: predicted film error {:.1} % ({:.0} s), worse than a candidate measured good",
+                name(c),
+                100.0 * p.film_error,
+                p.time_s
+            ),
         });
     }
-    let chosen = all.swap_remove(pick);
-    Ok(chosen.with_notes(notes))
+    notes
 }
 
 /// The robot a request paints with (as `inputs::read` finds it).
@@ -204,31 +316,50 @@ pub fn resolve(path: &Path, marking_file: &str) -> PathBuf {
 }
 
 /// Import one scene shape for the robot: its strokes in the shape's frame
-/// (lower-left corner at the origin, metres) and its size.
+/// (lower-left corner at the origin, metres) and its size, and what the
+/// job says of its decomposition (as `compile --shape` does).
 pub fn import_item(
     robot: &AnyRobot,
     marking_file: &str,
     path: &Path,
     size: ShapeSize,
-) -> Result<ShapeStrokes, String> {
+) -> Result<(ShapeStrokes, Vec<Note>), String> {
     let file = resolve(path, marking_file);
     let size = match size {
         ShapeSize::HeightM(h) => Size::HeightM(h),
         ShapeSize::WidthM(w) => Size::WidthM(w),
     };
     let imported = import_measured(&file, size, robot).map_err(|e| e.to_string())?;
-    Ok(ShapeStrokes {
-        strokes: imported.decomposition.strokes,
-        width_m: imported.width_m,
-        height_m: imported.height_m,
-    })
+    let label = label_of(path);
+    let notes = report_lines(&imported.decomposition, &bands(robot))
+        .into_iter()
+        .chain(imported.notes.iter().cloned())
+        .map(|text| Note::Shape {
+            label: label.clone(),
+            text,
+        })
+        .collect();
+    Ok((
+        ShapeStrokes {
+            strokes: imported.decomposition.strokes,
+            width_m: imported.width_m,
+            height_m: imported.height_m,
+        },
+        notes,
+    ))
 }
 
 /// The importer `layout::lay_scene_with` takes, for a scene read from
-/// `marking_file` and compiled with `req`'s robot.
+/// `marking_file` and compiled with `req`'s robot; each shape's notes are
+/// added to `notes`.
 pub fn importer<'a>(
     req: &'a CompileRequest,
     marking_file: &'a str,
+    notes: &'a std::cell::RefCell<Vec<Note>>,
 ) -> impl Fn(&Path, ShapeSize) -> Result<ShapeStrokes, String> + 'a {
-    move |path, size| import_item(&robot_of(req)?, marking_file, path, size)
+    move |path, size| {
+        let (strokes, n) = import_item(&robot_of(req)?, marking_file, path, size)?;
+        notes.borrow_mut().extend(n);
+        Ok(strokes)
+    }
 }

@@ -198,6 +198,59 @@ pub struct Decomposition {
     pub area_m2: f64,
 }
 
+/// A whole decomposition's predicted figures: its regions' film errors
+/// weighted by their areas, their times summed, its strokes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Prediction {
+    pub film_error: f64,
+    pub time_s: f64,
+    pub strokes: usize,
+}
+
+/// Predictions closer than this in film error (fraction of the area) and
+/// [`SAME_TIME_S`] in time, with as many strokes, are one decomposition
+/// turned (a symmetric shape's sweeps at its symmetric angles). assumed: a
+/// hundredth of a percent, far below any real difference of two cuts.
+const SAME_FILM: f64 = 1e-4;
+/// See [`SAME_FILM`]. assumed: 10 ms in minutes of painting.
+const SAME_TIME_S: f64 = 0.01;
+
+impl Prediction {
+    /// Equally good films by the predictor: within the same [`FILM_TIE`]
+    /// step, as [`candidates`] ranks them.
+    pub fn film_tied(&self, o: &Prediction) -> bool {
+        (self.film_error / FILM_TIE).floor() == (o.film_error / FILM_TIE).floor()
+    }
+
+    /// The same decomposition by every predicted figure (a copy turned by
+    /// the shape's symmetry).
+    pub fn same(&self, o: &Prediction) -> bool {
+        self.strokes == o.strokes
+            && (self.film_error - o.film_error).abs() < SAME_FILM
+            && (self.time_s - o.time_s).abs() < SAME_TIME_S
+    }
+}
+
+impl Decomposition {
+    /// What the predictor says of the whole decomposition.
+    pub fn prediction(&self) -> Prediction {
+        let bad: f64 = self
+            .regions
+            .iter()
+            .map(|r| r.chosen.film_error * r.area_m2)
+            .sum();
+        Prediction {
+            film_error: if self.area_m2 > 0.0 {
+                bad / self.area_m2
+            } else {
+                0.0
+            },
+            time_s: self.regions.iter().map(|r| r.chosen.time_s).sum(),
+            strokes: self.strokes.len(),
+        }
+    }
+}
+
 #[derive(Clone)]
 struct Plan {
     candidate: Candidate,

@@ -27,8 +27,8 @@ use std::path::Path;
 use kurbo::BezPath;
 
 pub use decompose::{
-    candidates, decompose, Bands, Candidate, Decomposition, Method, Narrow, RegionReport, Steep,
-    MAX_CANDIDATES,
+    candidates, decompose, Bands, Candidate, Decomposition, Method, Narrow, Prediction,
+    RegionReport, Steep, MAX_CANDIDATES,
 };
 pub use region::{regions, Region};
 pub use write::{font_toml, GLYPH};

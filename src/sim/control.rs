@@ -146,20 +146,28 @@ pub mod gains {
     pub const EXT_KPF: f64 = 1.0e-5;
     /// Time constant of that high-pass (s).
     pub const PF_TAU: f64 = 0.1;
-    /// θ1 PID (valve command per rad), the `/pid` controller, with the flow
-    /// feed-forward: the arm's inertia on the motor's oil resonates at
-    /// 0.4–1.5 Hz with almost no damping, so the loop must stay far below
-    /// it. Tuned by a grid on the letter job (Kp 0.01–0.1, Ki 0.02–0.1):
-    /// larger gains go unstable at full reach; these leave errors of tens of
-    /// millimetres — "stable, but lower accuracy" as 000 section III says.
-    /// Pressure feedback on the motor made it worse at every gain tried.
-    /// With the counterbalance valves' damping (issue 12) the loop gains
-    /// stay; a grid of Kp 0.02–0.1, Ki 0.02–0.3, Kd 0–0.02 on STOP found no
-    /// better point than ~105 mm (the oil column's wind-up under the
-    /// acceleration torque, now fed forward, was 180 mm of it).
-    pub const ROT_PID_KP: f64 = 0.02;
+    /// θ1 PID (valve command per rad; integral per second; derivative·s),
+    /// the `/pid` controller, on top of the flow feed-forward (`PidPid`).
+    /// The arm's inertia on the motor's oil column resonates at 0.4–1.5 Hz,
+    /// damped only by the counterbalance valves' bleed, so the position loop
+    /// must stay far below it: Kp 0.2 with Kd ≤ 0.1 grows without bound on
+    /// STOP, Kd 1.6 at full reach. The seed gives no gains for `/pid`.
+    /// Changed from 0.02 / 0.02 / 0 (issue 12): those left the arm on its
+    /// feed-forward alone (a 4 s time constant), and what that model misses
+    /// (a 2 % pressure shortfall after each reversal of the air moves'
+    /// torque) grew to 25 mm and tripped the safety monitor 0.7 s into STOP.
+    /// The derivative (velocity) term is what holds the arm on the planned
+    /// speed; a grid of Kp 0.02–0.8, Ki 0.02–0.1, Kd 0–1.6 on STOP, SCHOOL
+    /// and STOP at full reach (`--letter-height 3.6`) gave 7–11 mm max for
+    /// Kd 0.3–0.4 and Kp 0.05–0.1, a flat region (with the friction and
+    /// Coriolis terms fed forward since: 5.6–7.5 mm); Kp 0.4 still stays
+    /// bounded at Kd ≥ 0.2 (4× margin), Kd 1.6 does not (5×). Pressure
+    /// feedback (static or high-passed, 0.003–0.1 per MPa) made every point
+    /// worse: it turns the valve into a torque source the position PID
+    /// cannot hold.
+    pub const ROT_PID_KP: f64 = 0.1;
     pub const ROT_PID_KI: f64 = 0.02;
-    pub const ROT_PID_KD: f64 = 0.0;
+    pub const ROT_PID_KD: f64 = 0.3;
     /// Acceleration law of SJCT and dynamic inversion:
     /// θ̈_cmd = θ̈_d + KV·ė + KP·e + KI·∫e, a 2.5 Hz critically damped loop
     /// (raised from 2 Hz on STOP: 6.52 → 6.41 mm).
@@ -431,13 +439,14 @@ fn off(model: &SimModel) -> Command {
     }
 }
 
-/// `/pid`: PID on both joints.
+/// `/pid`: PID on both joints, each with a feed-forward of the flow its
+/// planned motion needs.
 pub struct PidPid {
     model: SimModel,
     est: Estimates,
     ext: ExtensionLoop,
     rot: IncrementalPid,
-    /// Oil-column wind-up J·θ̈_d/K_h of the last tick (rad).
+    /// Oil-column wind-up τ_d/K_h of the last tick (rad).
     windup_prev: Option<f64>,
 }
 
@@ -458,17 +467,22 @@ impl PidPid {
         }
     }
 
-    /// How far the motor's oil column must be compressed to give the planned
-    /// acceleration torque, as an angle: J(x)·θ̈_d / K_h with the column's
-    /// stiffness K_h = E·D²·(1/V_A + 1/V_B) (000 eq. 27's M / D, the seed's
-    /// 6.1782·(1/vA + 1/vB)).
-    fn windup(&self, m: &Measurement) -> f64 {
+    /// How far the motor's oil column must be compressed to give the
+    /// torque `tau`, as an angle: τ/K_h with the column's stiffness
+    /// K_h = D²·(1/C_A + 1/C_B), each side's compliance C = V/E'(p) plus its
+    /// hose's V_l/E_l (000 eq. 13's modulus at the measured pressure). The
+    /// seed's 6.1782·(1/vA + 1/vB) is the same with pure oil and no hoses; it
+    /// over-states the stiffness by 45 % at half supply, and the arm ended
+    /// every air move 20 mm off.
+    fn windup(&self, m: &Measurement, tau: f64) -> f64 {
         let md = &self.model;
-        let a11 = mass_matrix(md, md.arm.x_of_r(m.extension_m)).a11;
+        let (h, c) = (&md.hydraulics, &md.circuit);
         let (va, vb) = volumes(&md.motor, m.base_rot_rad);
+        let hose = c.line_volume_m3 / c.line_bulk_pa;
+        let ca = va / h.bulk(m.motor_pa[0]) + hose;
+        let cb = vb / h.bulk(m.motor_pa[1]) + hose;
         let d = md.motor.area;
-        let k = md.hydraulics.bulk_modulus_pa * d * d * (1.0 / va + 1.0 / vb);
-        a11 * m.reference.base_rot[2] / k
+        tau / (d * d * (1.0 / ca + 1.0 / cb))
     }
 }
 
@@ -476,30 +490,44 @@ impl Controller for PidPid {
     fn step(&mut self, m: &Measurement) -> Command {
         self.est.th.update(m.base_rot_rad);
         self.est.r.update(m.extension_m);
-        if outside_window(&self.model, m.base_rot_rad) {
-            return off(&self.model);
+        let md = &self.model;
+        if outside_window(md, m.base_rot_rad) {
+            return off(md);
         }
         let e = m.reference.base_rot[0] - m.base_rot_rad;
-        // The feed-forward flow moves the motor at the planned speed and
-        // compresses its oil column as the planned acceleration needs: a
-        // flow for speed alone leaves the arm behind by J·θ̈/K_h (0.036 rad,
-        // 180 mm at full reach, at 0.3 rad/s²) for the slow loop to recover.
-        let w = self.windup(m);
+        // The feed-forward flow moves the motor at the planned speed,
+        // compresses its oil column as the planned torque needs (a flow for
+        // speed alone leaves the arm behind by τ/K_h, 0.036 rad or 180 mm at
+        // full reach at 0.3 rad/s², for the slow loop to recover) and makes
+        // up what the counterbalance valves' bleed and the seals pass at that
+        // torque (a third of the flow while accelerating at full reach; left
+        // out, the arm ended air moves up to 150 mm off).
+        // The torque: inertia, the Coriolis term of an extending arm (the
+        // C(q, q̇)·q̇ of 000 eq. 8, ∂A11/∂x·ẋ·θ̇: 2.4 MPa when an air move
+        // swings at 0.3 rad/s while extending at 0.8 m/s, which left SLOW
+        // 25 mm off) and friction.
+        let [_, w_d, a_d] = m.reference.base_rot;
+        let mm = mass_matrix(md, md.arm.x_of_r(m.extension_m));
+        let x_rate = m.reference.extension[1] / md.arm.k;
+        let tau = mm.a11 * a_d + mm.a11_dx * x_rate * w_d + md.motor.friction.force(w_d);
+        let w = self.windup(m, tau);
         let wind_rate = self
             .windup_prev
-            .map_or(0.0, |p| (w - p) / self.model.control.period_s);
+            .map_or(0.0, |p| (w - p) / md.control.period_s);
         self.windup_prev = Some(w);
+        let d = md.motor.area;
+        let leak = (md.motor.leakage + md.circuit.cb_bleed) * tau / (d * d);
         let ff = flow_feedforward(
-            &self.model,
-            &self.model.motor,
-            m.reference.base_rot[1] + wind_rate,
+            md,
+            &md.motor,
+            w_d + wind_rate + leak,
             m.motor_pa[0],
             m.motor_pa[1],
         );
-        let lim = self.model.motor.command_limit;
+        let lim = md.motor.command_limit;
         Command {
             u_motor: (self.rot.step(e) + ff).clamp(-lim, lim),
-            u_cyl: self.ext.step(&self.model, m),
+            u_cyl: self.ext.step(md, m),
         }
     }
 }

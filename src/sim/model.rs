@@ -98,8 +98,17 @@ pub struct Friction {
 
 impl Friction {
     /// Friction force opposing `v` (000 eq. 10 with a smooth sign).
+    #[inline]
     pub fn force(&self, v: f64) -> f64 {
-        let sgn = (v / self.smooth_speed).tanh();
+        let y = v / self.smooth_speed;
+        // tanh(y) = 1 − 2/(e^{2y} + 1): one exp instead of libm's tanh (its
+        // expm1 was 15 % of a simulation's time), within 1e-16 of it; it
+        // rounds to ±1 past |y| ≈ 19
+        let sgn = if y.abs() > 20.0 {
+            y.signum()
+        } else {
+            1.0 - 2.0 / ((2.0 * y).exp() + 1.0)
+        };
         self.viscous * v
             + (self.coulomb + self.stiction * (-(v.abs()) / self.stribeck_speed).exp()) * sgn
     }
