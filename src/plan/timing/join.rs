@@ -87,15 +87,10 @@ fn solve<const N: usize>(
     // allowed.
     let jerk: [f64; N] = std::array::from_fn(|j| limits.jerk[j] * keep);
     input.max_velocity = stack(std::array::from_fn(|j| limits.vel[j] * keep));
-    for j in 0..N {
+    for (j, &jk) in jerk.iter().enumerate() {
         // Ruckig checks the target so; the start it would brake past.
         let (v, a) = (from.qd[j], from.qdd[j]);
-        let coast = v.abs()
-            + if v * a > 0.0 {
-                a * a / (2.0 * jerk[j])
-            } else {
-                0.0
-            };
+        let coast = v.abs() + if v * a > 0.0 { a * a / (2.0 * jk) } else { 0.0 };
         if coast > input.max_velocity[j] * (1.0 + 1e-9) {
             return Err(TimingError::NoJoin(format!(
                 "joint {j} leaves at {v} with acceleration {a}: it passes its speed limit before the jerk limit can level it"
