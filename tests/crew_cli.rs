@@ -116,7 +116,7 @@ fn compile_says_what_where_how_long_and_whether_to_go() {
         "{text}"
     );
     assert!(
-        text.contains("stop 1: arm axis 4.60 m past the near edge of STOP"),
+        text.contains("stop 1: arm axis 4.57 m past the near edge of STOP"),
         "{text}"
     );
     assert!(text.contains("verdict: "), "{text}");

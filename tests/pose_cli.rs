@@ -77,7 +77,7 @@ fn unreachable_pose_exits_2_naming_limit_and_excess() {
         .code(2)
         .stdout("")
         .stderr(
-            predicate::str::contains("extension_m").and(predicate::str::contains("by 0.6417 m")),
+            predicate::str::contains("extension_m").and(predicate::str::contains("by 0.6946 m")),
         );
     basr()
         .args(["pose", "0", "3", "--tilt-deg", "20"])

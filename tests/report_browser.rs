@@ -90,7 +90,7 @@ fn the_job_sheet_renders_in_a_browser() {
         "id=\"overall\"",
         "time on site",
         "Stop 1.",
-        "4.60 m past the near edge of STOP",
+        "4.57 m past the near edge of STOP",
         "id=\"letters\"",
         "<svg",
         "arm accuracy (simulate)",

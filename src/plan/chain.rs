@@ -53,6 +53,11 @@ pub struct Chain {
     pub arcs: Vec<Vec<f64>>,
     /// Seams where the blend was flattened to rest: (run entered, why).
     pub stops: Vec<(usize, StopReason)>,
+    /// Per seam (run i into run i + 1): the points of the rungs a flown
+    /// join leaves and reaches, which the time law may replace by a
+    /// jerk-limited join (its own waypoints between them dropped); None
+    /// for a blend or a stroke carried straight on.
+    pub flown: Vec<Option<(usize, usize)>>,
 }
 
 /// Where a run's knots sit on the chained path.
@@ -119,6 +124,7 @@ pub fn chain(
         spans: vec![],
         arcs: vec![],
         stops: vec![],
+        flown: vec![],
     };
     let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
     // flown[i]: the join from run i's last rung into run i + 1's first.
@@ -169,9 +175,15 @@ pub fn chain(
         if ri > 0 {
             let prev = &runs[ri - 1];
             let from = out.spans[ri - 1].hi;
+            let from_point = out.points.len() - 1;
             let blend = match flown[ri - 1].take() {
-                Some(b) => b,
+                Some(b) => {
+                    let to_point = from_point + 1 + b.inner.len();
+                    out.flown.push(Some((from_point, to_point)));
+                    b
+                }
                 None => {
+                    out.flown.push(None);
                     let (blend, stop) = blend(robot, prev, &out.arcs[ri - 1], from, run, &arcs, lo);
                     if let Some(why) = stop {
                         out.stops.push((ri, why));

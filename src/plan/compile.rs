@@ -117,7 +117,9 @@ pub fn compile_strokes(
                 }
             }
         }
-        if after_stow {
+        if after_stow && pace.fly_in {
+            pace.fly_in = false;
+        } else if after_stow {
             pace.air *= PACE_STEP;
         } else if joins_slowed {
             continue;

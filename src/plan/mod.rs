@@ -7,6 +7,7 @@
 pub mod chain;
 pub mod compile;
 pub mod error;
+pub mod flight;
 pub mod inputs;
 pub mod joints;
 pub mod knots;

@@ -7,6 +7,7 @@ use crate::robot::{AnyRobot, Joints};
 
 use super::chain::{chain, StopReason};
 use super::error::CompileError;
+use super::flight;
 use super::joints::{JointPaths, Run};
 use super::knots::{self, Knot};
 use super::placed::PlacedStrokes;
@@ -127,11 +128,16 @@ const JERK_PER_ACC: f64 = 10.0;
 /// after a long fast move), `path` for the chained path through the strokes.
 /// `joins`: (stroke entered, share) for the flown joins into those
 /// strokes alone (the arm arrived behind at the stroke's first rungs).
+/// `fly_in`: the move out of stow flies into the first stroke's first rung
+/// at painting speed; else it comes to rest at the start of the stroke's
+/// lead and the time law runs up from there (the first thing the
+/// verification gives up where the arm arrives behind).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pace {
     pub air: f64,
     pub path: f64,
     pub joins: Vec<(usize, f64)>,
+    pub fly_in: bool,
 }
 
 impl Pace {
@@ -139,6 +145,7 @@ impl Pace {
         air: 1.0,
         path: 1.0,
         joins: Vec::new(),
+        fly_in: true,
     };
 }
 
@@ -234,6 +241,7 @@ fn time_station(
 ) -> Result<StationTiming, CompileError> {
     let limits = timing_limits(robot, pace.path);
     let air_limits = timing_limits(robot, pace.air);
+    let back_limits = timing_limits(robot, 1.0);
     let options = timing::PathOptions::default();
     let err = |what: String| CompileError::Timing(what);
     let home = *stow;
@@ -257,18 +265,49 @@ fn time_station(
         ));
     }
     let ch = chain(robot, runs, &limits, &pace.joins);
-    let first = ch.points[0].q;
-    let last = ch.points[ch.points.len() - 1].q;
-    let pieces = vec![
-        timing::air_move(home, first, &air_limits, options.margin)
-            .map_err(|e| err(format!("air move to stroke {}: {e}", runs[0].stroke)))?,
-        timing::time_path(&ch.points, &limits, &options)
-            .map_err(|e| err(format!("station path: {e}")))?,
-        timing::air_move(last, home, &air_limits, options.margin)
-            .map_err(|e| err(format!("air move to the stow pose: {e}")))?,
-    ];
-    let path = &pieces[1];
-    let t_path = pieces[0].duration_s();
+    let cut = flight::fly(
+        robot,
+        runs,
+        &ch,
+        &flight::Limits {
+            home,
+            path: &limits,
+            air: &air_limits,
+            back: &back_limits,
+            joins: &pace.joins,
+            fly_in: pace.fly_in,
+        },
+        &options,
+    )?;
+    let pieces = cut.pieces;
+    // starts[p]: station time at which piece p starts.
+    let starts: Vec<f64> = pieces
+        .iter()
+        .scan(0.0, |t, p| {
+            let t0 = *t;
+            *t += p.duration_s();
+            Some(t0)
+        })
+        .collect();
+    // Segment k of the path is piece 1 + 2k; the station time at path
+    // parameter s.
+    let segment_at = |s: f64| {
+        cut.ranges
+            .iter()
+            .rposition(|r| ch.points[r.0].s_m <= s + 1e-12)
+            .unwrap_or(0)
+    };
+    let time_at = |s: f64| {
+        let k = segment_at(s);
+        starts[1 + 2 * k] + pieces[1 + 2 * k].time_at(s)
+    };
+    if std::env::var_os("BASR_JOIN_REPORT").is_some() {
+        eprintln!(
+            "stow out {:.3} s, back {:.3} s",
+            pieces[0].duration_s(),
+            pieces[pieces.len() - 1].duration_s()
+        );
+    }
     let sampled = timing::resample(&pieces, period_s).map_err(|e| err(e.to_string()))?;
     // Gun command windows (station time).
     let windows: Vec<(f64, f64)> = runs
@@ -276,20 +315,18 @@ fn time_station(
         .enumerate()
         .map(|(ri, run)| {
             let s0 = ch.spans[ri].offset;
-            let (on, off) = path.gun_times(
-                s0 + ch.arcs[ri][run.paint_first],
-                s0 + ch.arcs[ri][run.paint_last],
-                gun_lead_s,
-                gun_lag_s,
-            );
-            (t_path + on, t_path + off)
+            (
+                time_at(s0 + ch.arcs[ri][run.paint_first]) - gun_lead_s,
+                time_at(s0 + ch.arcs[ri][run.paint_last]) - gun_lag_s,
+            )
         })
         .collect();
     let mut out = Vec::with_capacity(sampled.len());
     let mut w = 0usize;
     for k in 0..sampled.len() {
         let t = sampled.t_s[k];
-        let (run, s) = if sampled.piece[k] == 1 {
+        let p = sampled.piece[k];
+        let (run, s) = if p >= 1 && p < 2 * cut.ranges.len() && (p - 1) % 2 == 0 {
             ch.run_at(sampled.s[k])
         } else {
             (None, 0.0)
@@ -309,32 +346,35 @@ fn time_station(
         });
     }
     let mut slows = vec![];
-    for sd in &path.slowdowns {
-        let (ri, knot) = ch.knot_of(sd.worst_waypoint);
-        let limit = match sd.binding {
-            timing::Binding::Velocity { joint } => Limit::Speed {
-                joint: robot.joint_names()[joint],
-            },
-            timing::Binding::Acceleration { joint } => Limit::Acceleration {
-                joint: robot.joint_names()[joint],
-            },
-            timing::Binding::Rest => Limit::RunUp,
-        };
-        slows.push(Slow {
-            run: ri,
-            factor: 1.0 / sd.factor.max(1e-9),
-            knot,
-            t_s: t_path + path.time_at(ch.points[sd.worst_waypoint].s_m),
-            limit,
-        });
+    for (k, r) in cut.ranges.iter().enumerate() {
+        for sd in &pieces[1 + 2 * k].slowdowns {
+            let wp = r.0 + sd.worst_waypoint;
+            let (ri, knot) = ch.knot_of(wp);
+            let limit = match sd.binding {
+                timing::Binding::Velocity { joint } => Limit::Speed {
+                    joint: robot.joint_names()[joint],
+                },
+                timing::Binding::Acceleration { joint } => Limit::Acceleration {
+                    joint: robot.joint_names()[joint],
+                },
+                timing::Binding::Rest => Limit::RunUp,
+            };
+            slows.push(Slow {
+                run: ri,
+                factor: 1.0 / sd.factor.max(1e-9),
+                knot,
+                t_s: time_at(ch.points[wp].s_m),
+                limit,
+            });
+        }
     }
     let stops = ch
         .stops
-        .into_iter()
+        .iter()
         .map(|(ri, why)| {
-            let sp = ch.spans[ri];
-            let t = t_path + path.time_at(sp.offset + ch.arcs[ri][sp.lo]);
-            (t, runs[ri].joints[sp.lo], ri, why)
+            let sp = ch.spans[*ri];
+            let t = time_at(sp.offset + ch.arcs[*ri][sp.lo]);
+            (t, runs[*ri].joints[sp.lo], *ri, why.clone())
         })
         .collect();
     Ok((out, slows, stops))

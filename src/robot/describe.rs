@@ -501,12 +501,14 @@ pub(crate) fn validate(r: &Robot) -> Vec<(String, String)> {
             ),
         );
     }
-    let rmax = r.max_extension_by_cylinder_m();
+    let rmax = r.max_planned_extension_m();
     if lim.extension_m.max > rmax + 1e-9 {
         push(
             "limits.extension_m.max",
             format!(
-                "{} is beyond what the cylinder gives: retracted_extension_m + pantograph_ratio·cylinder_stroke_m = {rmax}",
+                "{} is beyond what the cylinder gives short of its end stop: retracted_extension_m + \
+                 pantograph_ratio·(cylinder_stroke_m − cylinder_stroke_margin_m) = {rmax}; lower it \
+                 to that",
                 lim.extension_m.max
             ),
         );
@@ -588,6 +590,40 @@ mod tests {
         t.replacen(find, replace, 1)
     }
 
+    /// A plan into the cylinder's end stop is refused: the extension limit
+    /// at the full stroke, or a margin no extension limit leaves room for,
+    /// is named with the value to use.
+    #[test]
+    fn extension_into_the_stroke_margin_is_refused() {
+        let text = with("max = 5.305416666666667", "max = 5.358333333333333");
+        let p = check_source(&text, "bad.toml");
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert!(p[0].contains("limits.extension_m.max"), "{}", p[0]);
+        assert!(
+            p[0].contains("end stop") && p[0].contains("5.305416666666667"),
+            "{}",
+            p[0]
+        );
+        // Without the margin the full stroke is allowed again.
+        let text = text.replacen(
+            "cylinder_stroke_margin_m = 0.00635",
+            "cylinder_stroke_margin_m = 0",
+            1,
+        );
+        assert!(check_source(&text, "ok.toml").is_empty());
+        let p = check_source(
+            &with(
+                "cylinder_stroke_margin_m = 0.00635",
+                "cylinder_stroke_margin_m = 0.2",
+            ),
+            "bad.toml",
+        );
+        assert!(
+            p.iter().any(|m| m.contains("arm.cylinder_stroke_margin_m")),
+            "{p:?}"
+        );
+    }
+
     #[test]
     fn syntax_error_has_line_and_column() {
         let text = with("a2_m = 0.01", "a2_m = = 0.01");
@@ -613,8 +649,8 @@ mod tests {
     #[test]
     fn all_problems_reported_at_once() {
         let text = with("mass_kg = 35.0", "mass_kg = -35.0").replacen(
-            "min = 1.55\nmax = 5.358333333333333",
-            "min = 5.358333333333333\nmax = 1.55",
+            "min = 1.55\nmax = 5.305416666666667",
+            "min = 5.305416666666667\nmax = 1.55",
             1,
         );
         let p = check_source(&text, "bad.toml");

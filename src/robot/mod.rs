@@ -96,6 +96,11 @@ pub struct Arm {
     pub retracted_extension_m: f64,
     /// Full cylinder stroke.
     pub cylinder_stroke_m: f64,
+    /// Cylinder stroke kept clear of the extended end stop: the planner's
+    /// extension limit (`limits.extension_m.max`) must lie inside the
+    /// stroke by this much. 0 where a description does not give it.
+    #[serde(default)]
+    pub cylinder_stroke_margin_m: f64,
     /// Hydraulic-motor radians per radian of base rotation.
     pub base_motor_ratio: f64,
 }
@@ -363,6 +368,14 @@ impl Robot {
     pub fn max_extension_by_cylinder_m(&self) -> f64 {
         self.arm.retracted_extension_m + self.arm.pantograph_ratio * self.arm.cylinder_stroke_m
     }
+
+    /// Highest extension a plan may use: the cylinder's, less the stroke
+    /// margin (`arm.cylinder_stroke_margin_m`) before the end stop.
+    pub fn max_planned_extension_m(&self) -> f64 {
+        self.arm.retracted_extension_m
+            + self.arm.pantograph_ratio
+                * (self.arm.cylinder_stroke_m - self.arm.cylinder_stroke_margin_m)
+    }
 }
 
 #[cfg(test)]
@@ -376,8 +389,11 @@ mod tests {
         assert_eq!(r.limits.base_rot_rad.min, 0.7854);
         assert_eq!(r.limits.base_rot_rad.max, 2.3562);
         assert_eq!(r.arm.a2_m, 0.01);
-        assert!((r.limits.extension_m.max - 5.358333333333333).abs() < 1e-12);
-        assert!((r.max_extension_by_cylinder_m() - r.limits.extension_m.max).abs() < 1e-12);
+        // Full stroke 5.358 m; the plan stops the ¼ in margin short of it.
+        assert!((r.max_extension_by_cylinder_m() - 5.358333333333333).abs() < 1e-12);
+        assert_eq!(r.arm.cylinder_stroke_margin_m, 0.00635);
+        assert!((r.limits.extension_m.max - 5.305416666666667).abs() < 1e-12);
+        assert!((r.max_planned_extension_m() - r.limits.extension_m.max).abs() < 1e-12);
         assert_eq!(r.encoders.base_counts_per_rev, 88000);
         assert!((r.paint.fan_angle_rad.to_degrees() - 63.5).abs() < 1e-12);
         // 0.4 L/min · 0.9 / 0.38 mm.

@@ -75,6 +75,15 @@ pub(crate) fn problems(r: &Robot) -> Vec<(String, String)> {
             ARM,
         ),
         Range::new("arm.cylinder_stroke_m", a.cylinder_stroke_m, 0.01, 2.0, ARM),
+        // assumed: up to 5 cm of cylinder; the check against the stroke
+        // itself follows below.
+        Range::new(
+            "arm.cylinder_stroke_margin_m",
+            a.cylinder_stroke_margin_m,
+            0.0,
+            0.05,
+            ARM,
+        ),
         Range::new("arm.base_motor_ratio", a.base_motor_ratio, 0.01, 100.0, ARM),
         Range::new("end_effector.mass_kg", e.mass_kg, 1.0, 500.0, ARM),
         Range::new(
@@ -368,6 +377,16 @@ pub(crate) fn problems(r: &Robot) -> Vec<(String, String)> {
         ));
     }
     let mut out = outside(v);
+    if a.cylinder_stroke_margin_m * 4.0 >= a.cylinder_stroke_m {
+        out.push((
+            "arm.cylinder_stroke_margin_m".into(),
+            format!(
+                "{} m leaves too little of the {} m cylinder stroke to plan in; keep it under a \
+                 quarter of the stroke",
+                a.cylinder_stroke_margin_m, a.cylinder_stroke_m
+            ),
+        ));
+    }
     // The pantograph must stay open over the cylinder's stroke: the links
     // rise as √(4d² − x²) (000 app. A eq. 4), so x_min + stroke < 2d.
     let x_end = h.gravity_x_min_m + a.cylinder_stroke_m;

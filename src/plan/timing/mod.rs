@@ -52,6 +52,7 @@
 //! last.
 
 mod air;
+pub mod join;
 mod path;
 mod resample;
 mod spline;
@@ -60,7 +61,8 @@ pub mod sync;
 mod tests;
 
 pub use air::air_move;
-pub use path::time_path;
+pub use join::{join_move, Kinematic};
+pub use path::{time_path, time_path_between};
 pub use resample::{resample, Samples};
 
 use air::DoubleS;
@@ -185,6 +187,8 @@ pub enum TimingError {
         value: f64,
         why: &'static str,
     },
+    #[error("no jerk-limited join between the strokes: {0}")]
+    NoJoin(String),
     #[error(
         "the speed profile stalls between waypoints {index} and {next}: no joint can move there"
     )]
@@ -214,9 +218,12 @@ enum Kind<const N: usize> {
         dq: [f64; N],
         profile: DoubleS,
     },
+    /// A flown join between two paths (`join`).
+    Join(Box<rsruckig::prelude::Trajectory<N>>),
 }
 
-/// A timed motion in continuous time, from rest to rest.
+/// A timed motion in continuous time: from rest to rest, except a path
+/// timed between given speeds and a join between two paths.
 #[derive(Clone, Debug)]
 pub struct Trajectory<const N: usize> {
     kind: Kind<N>,
@@ -234,6 +241,31 @@ impl<const N: usize> Trajectory<N> {
     /// Whether this is an air move (joint-space line) rather than a path.
     pub fn is_air_move(&self) -> bool {
         matches!(self.kind, Kind::Air { .. })
+    }
+
+    /// Whether this is a flown join between two paths.
+    pub fn is_join(&self) -> bool {
+        matches!(self.kind, Kind::Join(_))
+    }
+
+    /// Joint positions, rates and accelerations at the start (`end`:
+    /// false) or the end of a path; None for air moves and joins.
+    pub fn path_end(&self, end: bool) -> Option<Kinematic<N>> {
+        let Kind::Path { spline, grid } = &self.kind else {
+            return None;
+        };
+        let n = grid.len();
+        let (g, sdd) = if end {
+            (grid[n - 1], grid[n - 2].sdd)
+        } else {
+            (grid[0], grid[0].sdd)
+        };
+        let (q, d1, d2) = spline.eval(g.seg, g.s);
+        Some(Kinematic {
+            q,
+            qd: std::array::from_fn(|j| d1[j] * g.sd),
+            qdd: std::array::from_fn(|j| d1[j] * sdd + d2[j] * g.sd * g.sd),
+        })
     }
 
     /// The state at time `t` from this trajectory's start (clamped to [0, duration]).
@@ -280,6 +312,7 @@ impl<const N: usize> Trajectory<N> {
                 }
                 hi
             }
+            Kind::Join(_) => s.clamp(0.0, 1.0) * self.duration_s,
         }
     }
 
@@ -307,13 +340,15 @@ impl<const N: usize> Trajectory<N> {
             Kind::Path { spline, grid } => {
                 let last = grid.len() - 1;
                 if t >= self.duration_s {
-                    // At rest on the last waypoint, exactly.
-                    let (q, _, _) = spline.eval(grid[last].seg, grid[last].s);
+                    // On the last waypoint, exactly (at rest unless the
+                    // path was timed to end at a speed).
+                    let (q, dq, _) = spline.eval(grid[last].seg, grid[last].s);
+                    let sd = grid[last].sd;
                     return State {
                         q,
-                        qd: [0.0; N],
+                        qd: std::array::from_fn(|j| dq[j] * sd),
                         s: grid[last].s,
-                        sd: 0.0,
+                        sd,
                     };
                 }
                 let t = t.max(0.0);
@@ -349,6 +384,16 @@ impl<const N: usize> Trajectory<N> {
                     qd: std::array::from_fn(|j| dq[j] * pd),
                     s: p,
                     sd: pd,
+                }
+            }
+            Kind::Join(traj) => {
+                let (q, qd) = join::eval(traj, t);
+                let d = self.duration_s.max(1e-12);
+                State {
+                    q,
+                    qd,
+                    s: (t / d).clamp(0.0, 1.0),
+                    sd: 1.0 / d,
                 }
             }
         }

@@ -158,7 +158,27 @@ pub fn time_path<const N: usize>(
     limits: &JointLimits<N>,
     options: &PathOptions,
 ) -> Result<Trajectory<N>, TimingError> {
+    time_path_between(points, limits, options, [0.0, 0.0])
+}
+
+/// [`time_path`] from path speed ṡ = `ends[0]` at the first waypoint to at
+/// most `ends[1]` at the last (m/s; a flown join meets the path there).
+/// Each end speed is lowered to what the limits allow there: the
+/// trajectory's own end states say what was reached.
+pub fn time_path_between<const N: usize>(
+    points: &[PathPoint<N>],
+    limits: &JointLimits<N>,
+    options: &PathOptions,
+    ends: [f64; 2],
+) -> Result<Trajectory<N>, TimingError> {
     validate_path(points, limits, options)?;
+    if !ends.iter().all(|v| v.is_finite() && *v >= 0.0) {
+        return Err(TimingError::BadOption {
+            field: "end speed",
+            value: ends[0].min(ends[1]),
+            why: "must be a finite speed ≥ 0",
+        });
+    }
     let keep = 1.0 - options.margin;
     let vel: [f64; N] = std::array::from_fn(|j| limits.vel[j] * keep);
     let acc: [f64; N] = std::array::from_fn(|j| limits.acc[j] * keep);
@@ -230,6 +250,7 @@ pub fn time_path<const N: usize>(
     // admissible move is a full stop, and then stall on the final step
     // (rest to rest takes forever at constant s̈).
     let mut x_max = vec![0.0; n];
+    x_max[n - 1] = (ends[1] * ends[1]).min(x_vel[n - 1]);
     let mut floor = vec![0.0; n];
     let mut cons: Vec<Con> = Vec::with_capacity(8 * N + 2);
     let step = |i: usize, x_next_max: f64, x_next_min: f64, cons: &mut Vec<Con>| {
@@ -259,7 +280,7 @@ pub fn time_path<const N: usize>(
     }
 
     // Forward pass: greatest admissible acceleration at every step.
-    let mut x = 0.0_f64;
+    let mut x = (ends[0] * ends[0]).min(x_max[0]);
     let mut t = 0.0_f64;
     // (ṡ, s̈, t) per grid point, written into the grid after the pass.
     let mut timed = vec![(0.0, 0.0, 0.0); n];

@@ -332,3 +332,52 @@ proptest! {
         prop_assert_eq!(s.q[s.len() - 1], b);
     }
 }
+
+proptest! {
+    /// A join from any state within the limits (moving, accelerating) to
+    /// any other ends where asked, stays in range, and its samples' first,
+    /// second and third differences stay within the speed, acceleration and
+    /// jerk limits.
+    #[test]
+    fn joins_end_where_asked_within_every_limit(
+        q0 in proptest::array::uniform3(-1.0f64..1.0), q1 in proptest::array::uniform3(-1.0f64..1.0),
+        f0 in proptest::array::uniform3(-0.8f64..0.8), f1 in proptest::array::uniform3(-0.8f64..0.8),
+        g0 in proptest::array::uniform3(-0.5f64..0.5), g1 in proptest::array::uniform3(-0.5f64..0.5),
+    ) {
+        let lim = limits3();
+        let state = |q: [f64; 3], f: [f64; 3], g: [f64; 3]| Kinematic {
+            q,
+            qd: std::array::from_fn(|j| f[j] * lim.vel[j]),
+            qdd: std::array::from_fn(|j| g[j] * lim.acc[j]),
+        };
+        let (from, to) = (state(q0, f0, g0), state(q1, f1, g1));
+        let range = [(-2.0, 2.0); 3];
+        let tr = join_move(&from, &to, &lim, &range, DEFAULT_MARGIN).unwrap();
+        let end = tr.state_at(tr.duration_s());
+        for (j, &target) in q1.iter().enumerate() {
+            prop_assert!((end.q[j] - target).abs() < 1e-8, "joint {j}: {} vs {target}", end.q[j]);
+            prop_assert!((end.qd[j] - to.qd[j]).abs() < 1e-8);
+        }
+        let period = 0.005;
+        let n = (tr.duration_s() / period).floor() as usize;
+        let q: Vec<[f64; 3]> = (0..=n).map(|k| tr.state_at(k as f64 * period).q).collect();
+        for k in 0..q.len() {
+            #[allow(clippy::needless_range_loop)] // differences across samples
+            for j in 0..3 {
+                prop_assert!(q[k][j] >= -2.0 - 1e-9 && q[k][j] <= 2.0 + 1e-9);
+                if k >= 3 {
+                    let d3 = (q[k][j] - 3.0 * q[k - 1][j] + 3.0 * q[k - 2][j] - q[k - 3][j]) / period.powi(3);
+                    prop_assert!(d3.abs() <= lim.jerk[j] * (1.0 + 1e-6), "joint {j} sample {k}: jerk {d3}");
+                }
+                if k >= 2 {
+                    let d2 = (q[k][j] - 2.0 * q[k - 1][j] + q[k - 2][j]) / period.powi(2);
+                    prop_assert!(d2.abs() <= lim.acc[j] * (1.0 + 1e-6), "joint {j} sample {k}: acceleration {d2}");
+                }
+                if k >= 1 {
+                    let d1 = (q[k][j] - q[k - 1][j]) / period;
+                    prop_assert!(d1.abs() <= lim.vel[j] * (1.0 + 1e-6), "joint {j} sample {k}: speed {d1}");
+                }
+            }
+        }
+    }
+}
