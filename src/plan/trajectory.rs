@@ -281,14 +281,7 @@ fn time_station(
     )?;
     let pieces = cut.pieces;
     // starts[p]: station time at which piece p starts.
-    let starts: Vec<f64> = pieces
-        .iter()
-        .scan(0.0, |t, p| {
-            let t0 = *t;
-            *t += p.duration_s();
-            Some(t0)
-        })
-        .collect();
+    let starts = timing::start_times(&pieces);
     // Segment k of the path is piece 1 + 2k; the station time at path
     // parameter s.
     let segment_at = |s: f64| {

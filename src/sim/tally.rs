@@ -55,6 +55,12 @@ impl LimitTrack {
             self.first = Some(place.clone());
         }
     }
+    /// Record a job row's `value` outside `[lo, hi]` at `place`, within
+    /// `slack` (float rounding of a row the planner clamped onto a limit).
+    fn outside(&mut self, value: f64, lo: f64, hi: f64, slack: f64, place: &Place) {
+        let limit = if value < lo { lo } else { hi };
+        self.hit((lo - value).max(value - hi) - slack, value, limit, place);
+    }
     pub(super) fn finish(self, period: f64) -> Option<LimitViolation> {
         let first = self.first?;
         let message = format!(
@@ -244,9 +250,7 @@ impl Limits {
         let state = &tick.arm.state;
         let th = state[plant::TH];
         let (tlo, thi) = (model.arm.theta_min_rad, model.arm.theta_max_rad);
-        let side = |v: f64, lo: f64, hi: f64| if v < lo { lo } else { hi };
-        self.window
-            .hit((tlo - th).max(th - thi), th, side(th, tlo, thi), place);
+        self.window.outside(th, tlo, thi, 0.0, place);
         let x = state[plant::X];
         let tol_x = 5e-4;
         let (xlo, xhi) = (model.arm.x_min_m, model.arm.x_max_m());
@@ -265,41 +269,21 @@ impl Limits {
         // 1 µrad (float rounding of a row the planner clamped onto a limit),
         // not on the interpolated reference between them, which may
         // overshoot a row that sits on a limit.
-        let thd = s.base_rot_rad[row];
-        self.set_rot.hit(
-            (tlo - thd).max(thd - thi) - 1e-6,
-            thd,
-            side(thd, tlo, thi),
-            place,
-        );
-        let rd = s.extension_m[row];
         let rlo = model.arm.r_min_m;
-        self.set_ext.hit(
-            (rlo - rd).max(rd - setup.r_max) - 1e-6,
-            rd,
-            side(rd, rlo, setup.r_max),
-            place,
-        );
+        self.set_rot
+            .outside(s.base_rot_rad[row], tlo, thi, 1e-6, place);
+        self.set_ext
+            .outside(s.extension_m[row], rlo, setup.r_max, 1e-6, place);
         let relief = model.hydraulics.relief_pa;
         for p in [plant::PA1, plant::PB1, plant::PA2, plant::PB2] {
             self.relief.hit(state[p] - relief, state[p], relief, place);
         }
         // end-effector travel, judged on the job's own rows within 1 µm
         let (ax, av) = (&model.tilt_nut, &model.vertical);
-        let nut = s.tilt_nut_m[row];
-        self.tilt.hit(
-            (ax.min - nut).max(nut - ax.max) - 1e-6,
-            nut,
-            side(nut, ax.min, ax.max),
-            place,
-        );
-        let vert = s.vertical_m[row];
-        self.vert.hit(
-            (av.min - vert).max(vert - av.max) - 1e-6,
-            vert,
-            side(vert, av.min, av.max),
-            place,
-        );
+        self.tilt
+            .outside(s.tilt_nut_m[row], ax.min, ax.max, 1e-6, place);
+        self.vert
+            .outside(s.vertical_m[row], av.min, av.max, 1e-6, place);
     }
 
     fn finish(self, period: f64) -> Vec<LimitViolation> {

@@ -46,19 +46,6 @@ pub fn join_move<const N: usize>(
     })
 }
 
-/// Duration (s) of [`join_move`], for pricing joins.
-pub fn join_duration<const N: usize>(
-    from: &Kinematic<N>,
-    to: &Kinematic<N>,
-    limits: &JointLimits<N>,
-    range: &Ranges<N>,
-    margin: f64,
-) -> Option<f64> {
-    solve(from, to, limits, range, margin)
-        .ok()
-        .map(|t| t.get_duration())
-}
-
 fn solve<const N: usize>(
     from: &Kinematic<N>,
     to: &Kinematic<N>,

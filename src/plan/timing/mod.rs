@@ -232,6 +232,18 @@ pub struct Trajectory<const N: usize> {
     pub slowdowns: Vec<Slowdown>,
 }
 
+/// The time (s) at which each of `pieces`, played one after another, starts.
+pub fn start_times<const N: usize>(pieces: &[Trajectory<N>]) -> Vec<f64> {
+    pieces
+        .iter()
+        .scan(0.0, |t, p| {
+            let t0 = *t;
+            *t += p.duration_s;
+            Some(t0)
+        })
+        .collect()
+}
+
 impl<const N: usize> Trajectory<N> {
     /// Time from start to rest at the end.
     pub fn duration_s(&self) -> f64 {

@@ -46,14 +46,7 @@ pub fn resample<const N: usize>(
     if pieces.is_empty() {
         return Ok(out);
     }
-    let starts: Vec<f64> = pieces
-        .iter()
-        .scan(0.0, |acc, p| {
-            let s = *acc;
-            *acc += p.duration_s;
-            Some(s)
-        })
-        .collect();
+    let starts = super::start_times(pieces);
     let total: f64 = pieces.iter().map(|p| p.duration_s).sum();
     // A hair of slack so a total that is an exact multiple does not gain a sample from rounding.
     let count = (total / period_s - 1e-9).ceil().max(0.0) as usize + 1;
