@@ -13,7 +13,7 @@
 use kurbo::Point;
 
 use super::region::{signed_area, Region};
-use super::{convex, ring, sweep, ShapeError};
+use super::{convex, lobes, ring, sweep, ShapeError};
 use crate::font::Stroke;
 use crate::geom::{Edge, Segment, JOIN_TOLERANCE};
 
@@ -111,6 +111,9 @@ pub enum Method {
     Ring,
     /// Convex pieces, each swept along its own long axis.
     Convex { pieces: usize },
+    /// Lobes cut off between reflex corners and the core left, each swept
+    /// along its own directions (`lobes`).
+    Lobes { lobes: usize },
 }
 
 impl std::fmt::Display for Method {
@@ -132,6 +135,9 @@ impl std::fmt::Display for Method {
             Method::Ring => write!(f, "ring-following bands"),
             Method::Convex { pieces } => {
                 write!(f, "{pieces} convex pieces, each swept along its long axis")
+            }
+            Method::Lobes { lobes } => {
+                write!(f, "{lobes} lobes and the core, each swept along its own axes")
             }
         }
     }
@@ -352,6 +358,7 @@ fn family(m: &Method) -> u8 {
         Method::Sweep { .. } => 1,
         Method::Ring => 2,
         Method::Convex { .. } => 3,
+        Method::Lobes { .. } => 4,
     }
 }
 
@@ -418,25 +425,59 @@ fn region_plans(r: &Region, area: f64, lim: &Bands, origin: &str) -> Result<Vec<
     }
     let pieces = convex::pieces(r);
     if pieces.len() > 1 {
-        let mut all = Painted::default();
-        for p in &pieces {
-            let mut best: Option<Painted> = None;
-            for angle in sweep_angles(p, lim.min_width_m) {
-                let alt = paint(&convex::bands(p, Some(angle)), lim, origin)?;
-                if best.as_ref().is_none_or(|b| alt.better_than(b, p.area())) {
-                    best = Some(alt);
-                }
-            }
-            all.append(best.unwrap_or_default());
-        }
-        plans.push(all.into_plan(
-            Method::Convex {
-                pieces: pieces.len(),
-            },
-            area,
-        ));
+        let method = Method::Convex {
+            pieces: pieces.len(),
+        };
+        let free: Vec<Piece> = pieces.iter().map(|p| (p, None, false)).collect();
+        plans.push(pieces_plan(method, &free, area, lim, origin)?);
+    }
+    if let Some((pieces, axes)) = lobes::pieces(r, lim.min_width_m) {
+        // Each lobe from its base to its tip (one stroke where it is one
+        // pass wide); the core along a lobe's axis, so its strokes start
+        // squarely on the chords, with short pass pieces merged (a star's
+        // pentagon: two passes end to end, not five short bits).
+        let all: Vec<Piece> = pieces
+            .iter()
+            .enumerate()
+            .map(|(i, p)| match axes.get(i) {
+                Some(a) => (p, Some(vec![*a]), false),
+                None => (p, Some(axes.clone()), true),
+            })
+            .collect();
+        let method = Method::Lobes { lobes: axes.len() };
+        plans.push(pieces_plan(method, &all, area, lim, origin)?);
     }
     Ok(plans)
+}
+
+/// A piece of a region, the directions it may be swept along (`None`: its
+/// own, [`sweep_angles`]; the best predicted is kept) and whether its short
+/// pass pieces are merged ([`merge_short`]).
+type Piece<'a> = (&'a Region, Option<Vec<f64>>, bool);
+
+/// Pieces of a region, each swept along its direction.
+fn pieces_plan(
+    method: Method,
+    pieces: &[Piece],
+    area: f64,
+    lim: &Bands,
+    origin: &str,
+) -> Result<Plan, ShapeError> {
+    let mut all = Painted::default();
+    for (p, fixed, merge) in pieces {
+        let mut best: Option<Painted> = None;
+        let angles = fixed
+            .clone()
+            .unwrap_or_else(|| sweep_angles(p, lim.min_width_m));
+        for angle in angles {
+            let alt = paint_merged(&sweep::bands(p, angle), lim, origin, *merge)?;
+            if best.as_ref().is_none_or(|b| alt.better_than(b, p.area())) {
+                best = Some(alt);
+            }
+        }
+        all.append(best.unwrap_or_default());
+    }
+    Ok(all.into_plan(method, area))
 }
 
 /// What painting some bands takes.
@@ -561,6 +602,16 @@ fn band_region(b: &Band) -> Region {
 }
 
 fn paint(bands: &[Band], lim: &Bands, origin: &str) -> Result<Painted, ShapeError> {
+    paint_merged(bands, lim, origin, false)
+}
+
+/// [`paint`], short pass pieces merged into their neighbours when `merge`.
+fn paint_merged(
+    bands: &[Band],
+    lim: &Bands,
+    origin: &str,
+    merge: bool,
+) -> Result<Painted, ShapeError> {
     let mut out = Painted::default();
     let pass = lim.max_width_m * PASS_MARGIN;
     for band in bands {
@@ -579,7 +630,7 @@ fn paint(bands: &[Band], lim: &Bands, origin: &str) -> Result<Painted, ShapeErro
             .sum::<f64>();
         out.narrow.append(&mut nar);
         for piece in kept {
-            for (p, n) in by_passes(&piece, pass) {
+            for (p, n) in by_passes(&piece, pass, merge.then_some(lim.min_width_m)) {
                 for q in by_lean(&p) {
                     for s in strips(&q, passes_for(&q, n, lim)) {
                         // A sliver between two outline vertices a float's
@@ -752,8 +803,9 @@ fn lerp_mid(r: (Point, Point)) -> Point {
 }
 
 /// Cut where the number of passes the width needs changes; each piece with
-/// its pass count (the most any of its rungs needs).
-fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
+/// its pass count (the most any of its rungs needs); with `merge` (the
+/// fan's narrowest band) short pieces are joined to a neighbour ([`merge_short`]).
+fn by_passes(band: &Band, pass: f64, merge: Option<f64>) -> Vec<(Band, usize)> {
     // A cut rung is exactly `k · pass` wide: round-off must not count it as k + 1.
     let count = |w: f64| ((w / pass - 1e-9).ceil() as usize).max(1);
     let n = band.rungs.len();
@@ -778,7 +830,8 @@ fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
         cur.push(band.rungs[i]);
     }
     out.push((Band { rungs: cur }, k));
-    out.into_iter()
+    let out: Vec<(Band, usize)> = out
+        .into_iter()
         .map(|(mut b, k)| {
             b.rungs
                 .dedup_by(|a, b| (a.0 - b.0).hypot() < 1e-9 && (a.1 - b.1).hypot() < 1e-9);
@@ -789,7 +842,50 @@ fn by_passes(band: &Band, pass: f64) -> Vec<(Band, usize)> {
             (b, k)
         })
         .filter(|(b, _)| b.rungs.len() >= 2)
-        .collect()
+        .collect();
+    match merge {
+        Some(min_width) => merge_short(out, min_width),
+        None => out,
+    }
+}
+
+/// Pieces shorter than [`MIN_PIECE_M`] joined to a neighbour (the one
+/// needing more passes), painted with the larger count: a short piece
+/// between two pass-count changes (a pentagon swept from an edge: one pass
+/// where it starts, two in its middle) would start from rest and end before
+/// the nozzle reaches painting speed, painting heavy film; its strips in
+/// the merged piece are narrower than a pass but as long as the
+/// neighbour's. A piece whose strips would then be narrower than the fan's
+/// narrowest band `min_width` stays (a tip split in two paints the narrow
+/// band twice over its middle).
+fn merge_short(mut pieces: Vec<(Band, usize)>, min_width: f64) -> Vec<(Band, usize)> {
+    let narrowest = |b: &Band| {
+        (0..b.rungs.len())
+            .map(|i| b.width(i))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut i = 0;
+    while i < pieces.len() && pieces.len() > 1 {
+        let j = match (i.checked_sub(1), (i + 1 < pieces.len()).then_some(i + 1)) {
+            (Some(a), Some(b)) if pieces[b].1 > pieces[a].1 => b,
+            (Some(a), _) => a,
+            (None, Some(b)) => b,
+            (None, None) => break,
+        };
+        let k = pieces[i].1.max(pieces[j].1);
+        if mid_len(&pieces[i].0) >= MIN_PIECE_M || narrowest(&pieces[i].0) / (k as f64) < min_width
+        {
+            i += 1;
+            continue;
+        }
+        let (lo, hi) = (i.min(j), i.max(j));
+        let (b, _) = pieces.remove(hi);
+        let a = &mut pieces[lo];
+        a.0.rungs.extend(b.rungs.into_iter().skip(1));
+        a.1 = k;
+        i = 0;
+    }
+    pieces
 }
 
 /// Cumulative arc-length fractions of one side's points.

@@ -16,6 +16,7 @@ mod convex;
 mod decompose;
 mod dxf;
 mod hatch;
+mod lobes;
 mod region;
 mod ring;
 mod svg;
