@@ -18,6 +18,7 @@ use crate::plan::placed::lay_out;
 use crate::plan::warnings::{Note, Owner};
 use crate::plan::{inputs, request};
 use crate::robot::AnyRobot;
+pub use crate::shape::label_of;
 use crate::shape::{self, report_lines, Bands, Imported, Prediction, ShapeError, Size};
 
 /// Film targets a candidate decomposition must meet to be kept on its cv
@@ -250,11 +251,6 @@ fn pick(outcomes: &[Outcome]) -> usize {
         .map_or(0, |(i, _)| i)
 }
 
-/// The shape's name in jobs: its file's stem.
-pub fn label_of(path: &Path) -> String {
-    path.file_stem()
-        .map_or_else(|| "shape".into(), |s| s.to_string_lossy().to_string())
-}
 
 /// Read, size and decompose a shape file for `robot`, keeping the
 /// candidate decomposition ([`shape::candidates`]) whose film is the most
