@@ -368,7 +368,7 @@ fn uneven_note(m: &Measured, d: &shape::Decomposition) -> String {
         Some(w) => format!(
             "; {} places are narrower than the fan's narrowest band ({:.3} m), the longest \
              near ({:.3}, {:.3}) m from the shape's lower-left corner, {:.3} m narrower over \
-             {:.3} m; in all {:.4} m² left bare and {:.4} m² sprayed outside",
+             {:.3} m; in all they leave {:.4} m² bare and spray {:.4} m² outside",
             d.narrow.len(),
             w.width_m + w.shortfall_m,
             w.at.x,

@@ -202,6 +202,40 @@ mod tests {
         assert!(pieces(&sq, 0.1).is_none());
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// Random star-shaped polygons: the lobes and the core are convex
+        /// but the core, and they add up to the region.
+        #[test]
+        fn lobes_and_core_tile_the_region(
+            radii in proptest::collection::vec(0.3f64..1.2, 6..16)
+        ) {
+            let n = radii.len();
+            let outer: Vec<Point> = radii
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    let a = std::f64::consts::TAU * i as f64 / n as f64;
+                    Point::new(r * a.cos(), r * a.sin())
+                })
+                .collect();
+            let r = Region { outer, holes: vec![] };
+            if let Some((pieces, axes)) = pieces(&r, 0.05) {
+                let sum: f64 = pieces.iter().map(Region::area).sum();
+                // A core under 2 % of the region is dropped with its area.
+                let core_dropped = pieces.len() == axes.len();
+                proptest::prop_assert!(
+                    core_dropped || (sum - r.area()).abs() < 1e-9 * r.area(),
+                    "pieces {} vs region {}", sum, r.area()
+                );
+                for p in &pieces[..axes.len()] {
+                    proptest::prop_assert!(convex(&p.outer));
+                    proptest::prop_assert!(p.area() > 0.0);
+                }
+            }
+        }
+    }
+
     #[test]
     fn arms_with_necks_narrower_than_the_fan_stay_on() {
         assert!(pieces(&star(0.4), 1.0).is_none());
