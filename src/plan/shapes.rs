@@ -251,7 +251,6 @@ fn pick(outcomes: &[Outcome]) -> usize {
         .map_or(0, |(i, _)| i)
 }
 
-
 /// Read, size and decompose a shape file for `robot`, keeping the
 /// candidate decomposition ([`shape::candidates`]) whose film is the most
 /// even when it is compiled (with compile's defaults) and previewed: the

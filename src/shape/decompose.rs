@@ -148,7 +148,10 @@ impl std::fmt::Display for Method {
                 write!(f, "{pieces} convex pieces, each swept along its long axis")
             }
             Method::Lobes { lobes } => {
-                write!(f, "{lobes} lobes and the core, each swept along its own axes")
+                write!(
+                    f,
+                    "{lobes} lobes and the core, each swept along its own axes"
+                )
             }
         }
     }
