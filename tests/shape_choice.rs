@@ -29,6 +29,16 @@ fn kept_cv(notes: &[String]) -> f64 {
         .unwrap_or_else(|| panic!("no cv in {line}"))
 }
 
+/// The method kept for each region.
+fn kept_methods(imported: &basr::shape::Imported) -> Vec<String> {
+    imported
+        .decomposition
+        .regions
+        .iter()
+        .map(|r| r.chosen.method.to_string())
+        .collect()
+}
+
 #[test]
 fn each_test_shape_keeps_the_decomposition_measured_best_before() {
     let robot = AnyRobot::load_or_default(None).expect("embedded robot");
@@ -79,11 +89,7 @@ fn each_test_shape_keeps_the_decomposition_measured_best_before() {
     ] {
         let imported = import_measured(&data(name), size, &robot).expect("imports");
         let d = &imported.decomposition;
-        let kept: Vec<String> = d
-            .regions
-            .iter()
-            .map(|r| r.chosen.method.to_string())
-            .collect();
+        let kept = kept_methods(&imported);
         // The star's sweeps at its five symmetric angles are one
         // decomposition turned; any of them is the same choice.
         let same = if name == "star.svg" {
@@ -114,12 +120,7 @@ fn each_test_shape_keeps_the_decomposition_measured_best_before() {
 fn the_star_at_two_metres_keeps_an_even_film() {
     let robot = AnyRobot::load_or_default(None).expect("embedded robot");
     let imported = import_measured(&data("star.svg"), Size::HeightM(2.0), &robot).expect("imports");
-    let kept: Vec<String> = imported
-        .decomposition
-        .regions
-        .iter()
-        .map(|r| r.chosen.method.to_string())
-        .collect();
+    let kept = kept_methods(&imported);
     let cv = kept_cv(&imported.notes);
     assert!(cv <= 0.06, "star 2 m: kept {kept:?} with cv {cv}");
     assert!(
@@ -161,12 +162,7 @@ fn a_star_too_small_to_paint_evenly_says_so() {
 fn the_star_at_1_2_m_paints_its_arms_from_base_to_tip() {
     let robot = AnyRobot::load_or_default(None).expect("embedded robot");
     let imported = import_measured(&data("star.svg"), Size::HeightM(1.2), &robot).expect("imports");
-    let kept: Vec<String> = imported
-        .decomposition
-        .regions
-        .iter()
-        .map(|r| r.chosen.method.to_string())
-        .collect();
+    let kept = kept_methods(&imported);
     let cv = kept_cv(&imported.notes);
     assert!(cv <= 0.06, "star 1.2 m: kept {kept:?} with cv {cv}");
     assert!(kept[0].contains("lobes"), "kept {kept:?}");

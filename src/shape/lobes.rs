@@ -160,20 +160,14 @@ fn winding(c: &[Point], q: Point) -> i32 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::region::from_radii;
     use super::*;
 
     fn star(inner: f64) -> Region {
-        let outer = (0..10)
-            .map(|i| {
-                let a = std::f64::consts::FRAC_PI_2 + std::f64::consts::TAU * i as f64 / 10.0;
-                let r = if i % 2 == 0 { 1.0 } else { inner };
-                Point::new(r * a.cos(), r * a.sin())
-            })
+        let radii: Vec<f64> = (0..10)
+            .map(|i| if i % 2 == 0 { 1.0 } else { inner })
             .collect();
-        Region {
-            outer,
-            holes: vec![],
-        }
+        from_radii(&radii, std::f64::consts::FRAC_PI_2)
     }
 
     #[test]
@@ -210,16 +204,7 @@ mod tests {
         fn lobes_and_core_tile_the_region(
             radii in proptest::collection::vec(0.3f64..1.2, 6..16)
         ) {
-            let n = radii.len();
-            let outer: Vec<Point> = radii
-                .iter()
-                .enumerate()
-                .map(|(i, r)| {
-                    let a = std::f64::consts::TAU * i as f64 / n as f64;
-                    Point::new(r * a.cos(), r * a.sin())
-                })
-                .collect();
-            let r = Region { outer, holes: vec![] };
+            let r = from_radii(&radii, 0.0);
             if let Some((pieces, axes)) = pieces(&r, 0.05) {
                 let sum: f64 = pieces.iter().map(Region::area).sum();
                 // A core under 2 % of the region is dropped with its area.
