@@ -19,7 +19,7 @@ use crate::plan::warnings::{Note, Owner};
 use crate::plan::{inputs, request};
 use crate::robot::AnyRobot;
 pub use crate::shape::label_of;
-use crate::shape::{self, report_lines, Bands, Imported, Prediction, ShapeError, Size};
+use crate::shape::{self, report_lines, Bands, Imported, Method, Prediction, ShapeError, Size};
 
 /// Film targets a candidate decomposition must meet to be kept on its cv
 /// alone: issue 14's acceptance (coverage ≥ 0.97, overspray ≤ 0.04).
@@ -187,17 +187,30 @@ enum Outcome {
 
 /// Measure candidates (ranked by the predictor, best first) until one is
 /// [`Measured::good`]: each round takes the next candidate with every
-/// later one the predictor ties with it (`Prediction::film_tied`),
+/// later one the predictor ties with it (`Prediction::film_tied`) up to a
+/// fallback (a ring in concentric passes),
 /// measures them in parallel, and stands in for copies
 /// (`Prediction::same`) by the first of them.
 fn measure_ranked(all: &[Imported], robot: &AnyRobot, b: &Bands, label: &str) -> Vec<Outcome> {
     use rayon::prelude::*;
     let pred: Vec<Prediction> = all.iter().map(|c| c.decomposition.prediction()).collect();
+    // A ring in concentric passes is the one-pass ring's fallback: it
+    // starts a round of its own, so it is compiled only when nothing
+    // before it paints well (the ring it refines usually ties with it).
+    let fallback: Vec<bool> = all
+        .iter()
+        .map(|c| {
+            c.decomposition
+                .regions
+                .iter()
+                .any(|r| matches!(r.chosen.method, Method::Ring { concentric: true }))
+        })
+        .collect();
     let mut out = vec![Outcome::Skipped; all.len()];
     let mut i = 0;
     while i < all.len() {
         let end = (i..all.len())
-            .take_while(|&j| pred[j].film_tied(&pred[i]))
+            .take_while(|&j| j == i || (pred[j].film_tied(&pred[i]) && !fallback[j]))
             .last()
             .map_or(i + 1, |j| j + 1);
         let mut todo = vec![];
