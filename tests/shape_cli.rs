@@ -273,7 +273,7 @@ fn a_scene_with_a_shape_item_compiles_previews_and_simulates() {
     let dir = tempfile::tempdir().expect("tmp");
     let job = dir.path().join("scene.job.json");
     let v = compile_scene(&scene, &job);
-    assert_eq!(v["message"], "[ring.svg]\n[arrow-through]");
+    assert_eq!(v["message"], "[ring]\n[arrow-through]");
     let chars: Vec<_> = v["layout"]["glyphs"]
         .as_array()
         .expect("glyphs")

@@ -85,7 +85,8 @@ impl Scene {
             .map(|i| match &i.kind {
                 ItemKind::Word { text, .. } => text.clone(),
                 ItemKind::Symbol { name, .. } => format!("[{name}]"),
-                ItemKind::Shape { path, .. } => format!("[{}]", path.display()),
+                // As `compile --shape` names it: the file's stem.
+                ItemKind::Shape { path, .. } => format!("[{}]", crate::shape::label_of(path)),
             })
             .collect::<Vec<_>>()
             .join("\n")
@@ -379,7 +380,7 @@ mod tests {
                 ..
             }
         ));
-        assert_eq!(s.message(), "[stop-line]\nSTOP\n[logo.svg]");
+        assert_eq!(s.message(), "[stop-line]\nSTOP\n[logo]");
     }
 
     #[test]

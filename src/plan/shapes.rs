@@ -18,6 +18,7 @@ use crate::plan::placed::lay_out;
 use crate::plan::warnings::{Note, Owner};
 use crate::plan::{inputs, request};
 use crate::robot::AnyRobot;
+pub use crate::shape::label_of;
 use crate::shape::{self, report_lines, Bands, Imported, Prediction, ShapeError, Size};
 
 /// Film targets a candidate decomposition must meet to be kept on its cv
@@ -250,12 +251,6 @@ fn pick(outcomes: &[Outcome]) -> usize {
         .map_or(0, |(i, _)| i)
 }
 
-/// The shape's name in jobs: its file's stem.
-pub fn label_of(path: &Path) -> String {
-    path.file_stem()
-        .map_or_else(|| "shape".into(), |s| s.to_string_lossy().to_string())
-}
-
 /// Read, size and decompose a shape file for `robot`, keeping the
 /// candidate decomposition ([`shape::candidates`]) whose film is the most
 /// even when it is compiled (with compile's defaults) and previewed: the
@@ -337,17 +332,63 @@ fn measured_notes(all: &[Imported], outcomes: &[Outcome], pick: usize) -> Vec<St
     }
     if let Some(Outcome::Measured(Some(m))) = outcomes.get(pick) {
         if !m.ready() {
-            notes.push(format!(
-                "{UNEVEN}no decomposition of the shape paints it evenly at this size: the best \
-                 measured cv {:.3} (target ≤ {ACCEPT_CV}), coverage {:.3} (≥ {MIN_COVERAGE}), \
-                 overspray {:.3} (≤ {MAX_OVERSPRAY}), {} places where the arm cannot keep the \
-                 painting speed (listed in the job); parts narrower than the fan paints or too \
-                 short for the run-up are the usual cause: give a larger --shape-height-m",
-                m.cv, m.coverage, m.overspray, m.problems
-            ));
+            notes.push(uneven_note(m, &all[pick].decomposition));
         }
     }
     notes
+}
+
+/// The job's problem when no candidate is READY: which targets the kept
+/// film misses, and where the shape is narrower than the fan paints (the
+/// physical limit: a tip narrower than the fan's narrowest band is sprayed
+/// wider than itself or left bare).
+fn uneven_note(m: &Measured, d: &shape::Decomposition) -> String {
+    let mut missed = vec![];
+    if m.cv > ACCEPT_CV {
+        missed.push(format!("cv {:.3} (target ≤ {ACCEPT_CV})", m.cv));
+    }
+    if m.coverage < MIN_COVERAGE {
+        missed.push(format!("coverage {:.3} (≥ {MIN_COVERAGE})", m.coverage));
+    }
+    if m.overspray > MAX_OVERSPRAY {
+        missed.push(format!("overspray {:.3} (≤ {MAX_OVERSPRAY})", m.overspray));
+    }
+    if m.problems > 0 {
+        missed.push(format!(
+            "{} places where the arm cannot keep the painting speed (listed in the job)",
+            m.problems
+        ));
+    }
+    let narrow = match d
+        .narrow
+        .iter()
+        .max_by(|a, b| a.length_m.total_cmp(&b.length_m))
+    {
+        Some(w) => format!(
+            "; {} places are narrower than the fan's narrowest band ({:.3} m), the longest \
+             near ({:.3}, {:.3}) m from the shape's lower-left corner, {:.3} m narrower over \
+             {:.3} m; in all they leave {:.4} m² bare and spray {:.4} m² outside",
+            d.narrow.len(),
+            w.width_m + w.shortfall_m,
+            w.at.x,
+            w.at.y,
+            w.shortfall_m,
+            w.length_m,
+            d.narrow.iter().map(|n| n.unpainted_m2).sum::<f64>(),
+            d.narrow.iter().map(|n| n.overspray_m2).sum::<f64>(),
+        ),
+        None => String::new(),
+    };
+    format!(
+        "{UNEVEN}no decomposition of the shape paints it evenly at this size: the best measured \
+         misses {} (cv {:.3}, coverage {:.3}, overspray {:.3}){narrow}; parts narrower than the \
+         fan paints or too short for the run-up are the usual cause: give a larger \
+         --shape-height-m",
+        missed.join(", "),
+        m.cv,
+        m.coverage,
+        m.overspray,
+    )
 }
 
 /// The robot a request paints with (as `inputs::read` finds it).

@@ -1,14 +1,12 @@
 //! Convex pieces of a region (i_triangle: Delaunay triangulation, triangles
-//! grouped into convex polygons), each swept along its own long axis: a
-//! star becomes its five arms and its centre, each painted along itself,
-//! where one sweep for the whole region cuts the arms across.
+//! grouped into convex polygons), each swept along its own directions
+//! (`decompose::pieces_plan`). The grouping is greedy: a star's arms may
+//! come out merged with parts of its centre (`lobes` cuts them off whole).
 
 use i_triangle::float::triangulatable::Triangulatable;
 use kurbo::Point;
 
-use super::decompose::Band;
 use super::region::{signed_area, Region};
-use super::sweep;
 
 /// The convex pieces of `r` as regions without holes, counter-clockwise.
 pub fn pieces(r: &Region) -> Vec<Region> {
@@ -32,13 +30,4 @@ pub fn pieces(r: &Region) -> Vec<Region> {
             }
         })
         .collect()
-}
-
-/// One piece's bands swept along `angle`, or along its own long axis when
-/// `angle` is `None` (a convex piece is one cell in any direction).
-pub fn bands(piece: &Region, angle: Option<f64>) -> Vec<Band> {
-    sweep::bands(
-        piece,
-        angle.unwrap_or_else(|| sweep::principal_angle(piece)),
-    )
 }

@@ -16,6 +16,7 @@ mod convex;
 mod decompose;
 mod dxf;
 mod hatch;
+mod lobes;
 mod region;
 mod ring;
 mod svg;
@@ -147,6 +148,12 @@ pub fn scale_for(outline: &Outline, size: Size) -> Result<f64, ShapeError> {
         ));
     }
     Ok(scale)
+}
+
+/// The shape's name in jobs and messages (`[star]`): its file's stem.
+pub fn label_of(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(|| "shape".into(), |s| s.to_string_lossy().to_string())
 }
 
 /// Bounding box of every element.

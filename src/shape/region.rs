@@ -35,6 +35,25 @@ impl Region {
     }
 }
 
+/// A star-shaped polygon about the origin with one vertex per radius,
+/// evenly spaced in angle from the +x axis (tests' random shapes).
+#[cfg(test)]
+pub fn from_radii(radii: &[f64], start_rad: f64) -> Region {
+    let n = radii.len();
+    let outer = radii
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let a = start_rad + std::f64::consts::TAU * i as f64 / n as f64;
+            Point::new(r * a.cos(), r * a.sin())
+        })
+        .collect();
+    Region {
+        outer,
+        holes: vec![],
+    }
+}
+
 /// Shoelace area, positive counter-clockwise.
 pub fn signed_area(p: &[Point]) -> f64 {
     let n = p.len();
