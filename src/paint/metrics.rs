@@ -9,7 +9,9 @@
 //! - interior: cells wholly inside whose 8 neighbours are wholly inside; the
 //!   mean film and the coefficient of variation are taken there, so that the
 //!   raster's one-cell blur at the outline does not count as unevenness;
-//! - coverage: share of the letter area whose film is ≥ 50 % of target;
+//! - coverage: share of the letter area whose film is ≥ 50 % of target; a
+//!   cell the outline cuts is judged by its lattice points inside the
+//!   outline, at the film interpolated between cell centres;
 //! - overspray: share of the volume on the road lying outside the outlines;
 //! - edge width: along true letter edges (film-free road just outside), the
 //!   distance over which the film falls from 90 % to 10 % of the film just
@@ -99,8 +101,27 @@ fn signed_area(poly: &[[f64; 2]]) -> f64 {
         / 2.0
 }
 
-/// Fraction of each grid cell inside a glyph (sparse: cell index, fraction).
-pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<(usize, f64)> {
+/// One grid cell a glyph's outlines reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaskCell {
+    /// Cell index (`j * nx + i`).
+    pub k: usize,
+    /// Fraction of the cell inside the outlines.
+    pub f: f64,
+    /// Which points of the cell's `SUB_ROWS` × `SUB_ROWS` lattice lie
+    /// inside (bit `row * SUB_ROWS + column`, row 0 at the cell's low y):
+    /// the points at which [`edge_cell_share`] judges a cell the outline
+    /// cuts.
+    pub inside: u64,
+}
+
+/// Lattice points per cell side: one per sub-row, so the lattice's rows
+/// are the sub-rows' centres and `inside` fits a `u64`.
+const _: () = assert!(SUB_ROWS * SUB_ROWS <= 64);
+
+/// The grid cells inside a glyph (sparse), with the fraction of each and
+/// its inside lattice points.
+pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<MaskCell> {
     let h = grid.cell_m;
     let sh = h / SUB_ROWS as f64;
     let b = glyph.bounds();
@@ -117,6 +138,7 @@ pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<(usize, f64)> {
     let i1 = (((b.max[0] - grid.x0) / h).ceil().max(0.0) as usize).min(grid.nx);
     let (wx, rows) = (i1.saturating_sub(i0), s1 - s0);
     let mut local = vec![0.0f64; wx * rows.div_ceil(SUB_ROWS) + wx];
+    let mut bits = vec![0u64; local.len()];
     let row_j0 = s0 / SUB_ROWS;
     // Per sub-row, per stroke: crossings.
     let mut crossings: Vec<Vec<f64>> = vec![Vec::new(); rows];
@@ -152,6 +174,7 @@ pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<(usize, f64)> {
         }
         iv.sort_by(|a, b| a.0.total_cmp(&b.0));
         let jl = (s0 + r) / SUB_ROWS - row_j0;
+        let row_bit = ((s0 + r) % SUB_ROWS) * SUB_ROWS;
         let mut merged: Vec<(f64, f64)> = Vec::new();
         for &(a, b) in iv.iter() {
             match merged.last_mut() {
@@ -173,6 +196,15 @@ pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<(usize, f64)> {
                 if hi > lo {
                     local[jl * wx + (i - i0)] += (hi - lo) / SUB_ROWS as f64;
                 }
+                // This sub-row's lattice points in [fa, fb): columns at
+                // (a + ½) / SUB_ROWS of the cell.
+                let per = SUB_ROWS as f64;
+                let col = |u: f64| ((u - i as f64) * per - 0.5).ceil().clamp(0.0, per) as u32;
+                let (a0, a1) = (col(fa), col(fb));
+                if a1 > a0 {
+                    let row = ((1u64 << a1) - 1) & !((1u64 << a0) - 1);
+                    bits[jl * wx + (i - i0)] |= row << row_bit;
+                }
             }
         }
     }
@@ -182,11 +214,69 @@ pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<(usize, f64)> {
             let (jl, il) = (k / wx, k % wx);
             let j = row_j0 + jl;
             if j < grid.ny {
-                out.push((j * grid.nx + i0 + il, f.min(1.0)));
+                out.push(MaskCell {
+                    k: j * grid.nx + i0 + il,
+                    f: f.min(1.0),
+                    inside: bits[k],
+                });
             }
         }
     }
     out
+}
+
+/// Share of the area of `cells` whose film reaches `level`: a cell wholly
+/// inside is judged by its own film, a cell the outline cuts by its inside
+/// lattice points ([`edge_cell_share`]).
+fn coverage_share(grid: &Grid, cells: impl Iterator<Item = MaskCell>, level: f64) -> Option<f64> {
+    let (mut a, mut c) = (0.0, 0.0);
+    for m in cells {
+        a += m.f;
+        let whole = || f64::from(u8::from(grid.data[m.k] >= level));
+        let share = if m.f >= INSIDE {
+            whole()
+        } else {
+            edge_cell_share(grid, m.k, m.inside, level).unwrap_or_else(whole)
+        };
+        c += m.f * share;
+    }
+    (a > 0.0).then(|| c / a)
+}
+
+/// Covered share of a cell that an outline cuts: of the cell's lattice
+/// points inside the outlines (`inside`, as in [`MaskCell`]), the share
+/// whose film, interpolated bilinearly between cell centres, reaches
+/// `level`. `None` when no lattice point lies inside (a sliver; the caller
+/// judges the cell by its own film).
+///
+/// A cell's film is the average over the whole cell, road outside the
+/// outline included, so a cell half inside an edge that the fan paints
+/// exactly carries about half the film and the cell average alone would
+/// call its inside part bare. Judging the inside points makes coverage
+/// independent of where the outline falls within a cell (docs/preview.md,
+/// "Coverage at the outline").
+fn edge_cell_share(grid: &Grid, k: usize, inside: u64, level: f64) -> Option<f64> {
+    if inside == 0 {
+        return None;
+    }
+    let (i, j) = (k % grid.nx, k / grid.nx);
+    let step = grid.cell_m / SUB_ROWS as f64;
+    let (x0, y0) = (
+        grid.x0 + i as f64 * grid.cell_m,
+        grid.y0 + j as f64 * grid.cell_m,
+    );
+    let ok = (0..SUB_ROWS * SUB_ROWS)
+        .filter(|&bit| inside >> bit & 1 == 1)
+        .filter(|&bit| {
+            let (row, col) = (bit / SUB_ROWS, bit % SUB_ROWS);
+            let p = [
+                x0 + (col as f64 + 0.5) * step,
+                y0 + (row as f64 + 0.5) * step,
+            ];
+            grid.sample(p) >= level
+        })
+        .count();
+    Some(ok as f64 / f64::from(inside.count_ones()))
 }
 
 /// Min and max of U over a set of tiles.
@@ -284,11 +374,14 @@ pub fn measure(
     let g = &film.grid;
     let n = g.nx * g.ny;
     let area = g.cell_m * g.cell_m;
-    let masks: Vec<Vec<(usize, f64)>> = glyphs.iter().map(|gl| coverage_mask(g, gl)).collect();
+    let masks: Vec<Vec<MaskCell>> = glyphs.iter().map(|gl| coverage_mask(g, gl)).collect();
     let mut frac = vec![0.0f64; n];
-    for m in &masks {
-        for &(k, f) in m {
-            frac[k] = (frac[k] + f).min(1.0);
+    // Inside lattice points of the cells an outline cuts, over all glyphs.
+    let mut edge_bits: std::collections::HashMap<usize, u64> = Default::default();
+    for m in masks.iter().flatten() {
+        frac[m.k] = (frac[m.k] + m.f).min(1.0);
+        if m.f < INSIDE {
+            *edge_bits.entry(m.k).or_default() |= m.inside;
         }
     }
     let interior = |k: usize| -> bool {
@@ -300,23 +393,22 @@ pub fn measure(
     };
     let letter_area: f64 = frac.iter().sum::<f64>() * area;
     let volume: f64 = g.volume();
-    let covered = |cells: &mut dyn Iterator<Item = (usize, f64)>| -> Option<f64> {
-        let (mut a, mut c) = (0.0, 0.0);
-        for (k, f) in cells {
-            a += f;
-            if g.data[k] >= COVERAGE_SHARE * target_film_m {
-                c += f;
-            }
-        }
-        (a > 0.0).then(|| c / a)
-    };
+    let level = COVERAGE_SHARE * target_film_m;
 
     let (mean, cv) = mean_cv(
         (0..n)
             .filter(|&k| frac[k] >= INSIDE && interior(k))
             .map(|k| (g.data[k], 1.0)),
     );
-    let coverage = covered(&mut (0..n).filter(|&k| frac[k] > 0.0).map(|k| (k, frac[k])));
+    let coverage = coverage_share(
+        g,
+        (0..n).filter(|&k| frac[k] > 0.0).map(|k| MaskCell {
+            k,
+            f: frac[k],
+            inside: edge_bits.get(&k).copied().unwrap_or(u64::MAX),
+        }),
+        level,
+    );
     let outside: f64 = (0..n).map(|k| g.data[k] * (1.0 - frac[k])).sum::<f64>() * area;
     let overspray = (volume > 0.0).then(|| outside / volume);
 
@@ -345,17 +437,17 @@ pub fn measure(
             let m = &masks[gi];
             let (gm, gcv) = mean_cv(
                 m.iter()
-                    .filter(|&&(k, f)| f >= INSIDE && interior(k))
-                    .map(|&(k, _)| (g.data[k], 1.0)),
+                    .filter(|c| c.f >= INSIDE && interior(c.k))
+                    .map(|c| (g.data[c.k], 1.0)),
             );
             let u = merge_u(strokes.iter().filter(|s| s.glyph == Some(gi)).map(|s| s.u));
             GlyphMetrics {
                 char: gl.label.clone(),
                 line: gl.line,
-                area_m2: m.iter().map(|c| c.1).sum::<f64>() * area,
+                area_m2: m.iter().map(|c| c.f).sum::<f64>() * area,
                 mean_film_m: gm,
                 cv: gcv,
-                coverage: covered(&mut m.iter().copied()),
+                coverage: coverage_share(g, m.iter().copied(), level),
                 overspray: (owner_vol[gi].0 > 0.0).then(|| owner_vol[gi].1 / owner_vol[gi].0),
                 u_min: u.map(|u| u.u_min),
                 u_max: u.map(|u| u.u_max),
@@ -608,7 +700,7 @@ mod tests {
         )
         .unwrap();
         let sq = square(-0.123, 0.0, 0.5);
-        let a: f64 = coverage_mask(&grid, &sq).iter().map(|c| c.1).sum::<f64>() * 1e-4;
+        let a: f64 = coverage_mask(&grid, &sq).iter().map(|c| c.f).sum::<f64>() * 1e-4;
         assert!((a - 0.25).abs() < 0.25 * 2e-3, "{a}");
         let tri = GlyphOutline {
             label: "t".into(),
@@ -616,9 +708,31 @@ mod tests {
             strokes: vec![vec![[0.0, 0.0], [0.7, 0.1], [0.2, 0.6]]],
         };
         let want = signed_area(&tri.strokes[0]).abs();
-        let a: f64 = coverage_mask(&grid, &tri).iter().map(|c| c.1).sum::<f64>() * 1e-4;
+        let a: f64 = coverage_mask(&grid, &tri).iter().map(|c| c.f).sum::<f64>() * 1e-4;
         assert!((a / want - 1.0).abs() < 0.01, "{a} vs {want}");
         assert!(tri.contains([0.3, 0.2]) && !tri.contains([0.6, 0.5]));
+        // The inside lattice points are the points the even-odd test puts
+        // inside (vertices off the lattice, so no point lies on an edge).
+        let odd = GlyphOutline {
+            label: "t".into(),
+            line: 0,
+            strokes: vec![vec![[0.0013, 0.0007], [0.7031, 0.1017], [0.2027, 0.6011]]],
+        };
+        let step = grid.cell_m / SUB_ROWS as f64;
+        for m in coverage_mask(&grid, &odd) {
+            let (i, j) = (m.k % grid.nx, m.k / grid.nx);
+            for bit in 0..SUB_ROWS * SUB_ROWS {
+                let p = [
+                    grid.x0 + i as f64 * grid.cell_m + (bit % SUB_ROWS) as f64 * step + step / 2.0,
+                    grid.y0 + j as f64 * grid.cell_m + (bit / SUB_ROWS) as f64 * step + step / 2.0,
+                ];
+                assert_eq!(
+                    m.inside >> bit & 1 == 1,
+                    odd.contains(p),
+                    "cell {i},{j} bit {bit}"
+                );
+            }
+        }
     }
 
     #[test]
@@ -633,8 +747,64 @@ mod tests {
         .unwrap();
         let mut g = square(0.1, 0.1, 0.4);
         g.strokes.push(square(0.3, 0.1, 0.4).strokes.remove(0));
-        let a: f64 = coverage_mask(&grid, &g).iter().map(|c| c.1).sum::<f64>() * 4e-4;
+        let a: f64 = coverage_mask(&grid, &g).iter().map(|c| c.f).sum::<f64>() * 4e-4;
         assert!((a - 0.24).abs() < 1e-3, "{a}");
+    }
+
+    /// A stripe painted with soft edges (film falling linearly from target
+    /// to bare over 7 mm, half of it outside: film is half the target on the
+    /// outline, as the preview measures at letter edges): coverage must not
+    /// depend on where the outline falls within a cell. Judged by the cell
+    /// averages alone, the cells half inside each long edge fell under the
+    /// 50 % threshold at some offsets and the stripe read ≈ 0.975.
+    #[test]
+    fn coverage_does_not_depend_on_where_the_outline_falls_in_a_cell() {
+        let cell = 0.005;
+        let ramp = |d: f64| (0.5 - d / 0.007).clamp(0.0, 1.0); // d: distance outside
+        let mut seen = Vec::new();
+        for o in 0..10 {
+            let x0 = 0.1 + o as f64 * cell / 10.0;
+            let stripe = GlyphOutline {
+                label: "|".into(),
+                line: 0,
+                strokes: vec![vec![[x0, 0.1], [x0 + 0.2, 0.1], [x0 + 0.2, 0.9], [x0, 0.9]]],
+            };
+            let mut grid = Grid::covering(
+                Bounds {
+                    min: [0.0, 0.0],
+                    max: [0.5, 1.0],
+                },
+                cell,
+            )
+            .unwrap();
+            let film = |p: [f64; 2]| {
+                let dx = (x0 - p[0]).max(p[0] - x0 - 0.2);
+                let dy = (0.1 - p[1]).max(p[1] - 0.9);
+                ramp(dx) * ramp(dy)
+            };
+            for j in 0..grid.ny {
+                for i in 0..grid.nx {
+                    let c = grid.centre(i, j);
+                    let mut sum = 0.0;
+                    for b in 0..16 {
+                        for a in 0..16 {
+                            let q = (a as f64 + 0.5) / 16.0 - 0.5;
+                            let r = (b as f64 + 0.5) / 16.0 - 0.5;
+                            sum += film([c[0] + q * cell, c[1] + r * cell]);
+                        }
+                    }
+                    grid.data[j * grid.nx + i] = sum / 256.0;
+                }
+            }
+            let mask = coverage_mask(&grid, &stripe);
+            let cov = coverage_share(&grid, mask.into_iter(), 0.5).unwrap();
+            seen.push(cov);
+        }
+        let (lo, hi) = seen
+            .iter()
+            .fold((1.0f64, 0.0f64), |(l, h), &c| (l.min(c), h.max(c)));
+        assert!(lo >= 0.99, "coverage by offset {seen:?}");
+        assert!(hi - lo <= 0.005, "coverage by offset {seen:?}");
     }
 
     #[test]
