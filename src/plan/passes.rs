@@ -96,7 +96,10 @@ pub fn passes(
                 Some(b) => lift_for_tilt(b, &law, &mut kp.knots),
                 None => vec![],
             };
-            if !raised.is_empty() {
+            // The height, too, within what the vertical joint follows.
+            let lifted = rate::height_follow(robot)
+                .is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
+            if !raised.is_empty() || lifted {
                 // Wider footprints sweep more road: re-pace the pass.
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
             }

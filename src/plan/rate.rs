@@ -39,16 +39,23 @@ const MAX_SWEEPS: usize = 20_000;
 
 /// Keep `values` (at times whose steps are `tau`, s) within `max_rate` per
 /// s between neighbours and `max_acc` per s² between neighbouring steps'
-/// rates. Returns false, leaving them alone, when they already are.
+/// rates, and (with `floor`) never below `floor[i]`. Returns false, leaving
+/// them alone, when they already are.
 ///
 /// Alternating projections onto each constraint (all convex, and a constant
 /// meets every one): a step too steep moves its two values towards each
 /// other by half the excess; a rate change too sharp moves the
 /// three values by the least change (along the gradient of the change in
 /// rate) that brings it to the bound, which smooths the corner a rate limit
-/// leaves. Sweeps alternate in direction and stop when nothing exceeds by
-/// more than 1e-9 of its bound.
-pub fn smooth(values: &mut [f64], tau: &[f64], max_rate: f64, max_acc: f64) -> bool {
+/// leaves; a value under its floor is raised to it after every sweep.
+/// Sweeps alternate in direction and stop when nothing exceeds by more than
+/// 1e-9 of its bound.
+pub fn smooth(
+    values: &mut [f64],
+    tau: &[f64],
+    [max_rate, max_acc]: [f64; 2],
+    floor: Option<&[f64]>,
+) -> bool {
     let n = values.len();
     let rate = |v: &[f64], i: usize| (v[i + 1] - v[i]) / tau[i];
     let too_fast = |v: &[f64]| {
@@ -92,6 +99,11 @@ pub fn smooth(values: &mut [f64], tau: &[f64], max_rate: f64, max_acc: f64) -> b
                     }
                     worst = worst.max(excess / bound);
                 }
+            }
+        }
+        if let Some(floor) = floor {
+            for (v, &f) in values.iter_mut().zip(floor) {
+                *v = v.max(f);
             }
         }
         if worst < 1e-9 {
@@ -161,12 +173,64 @@ pub fn limit_tilt_rate(
         return false;
     }
     let mut beta: Vec<f64> = ks.iter().map(|k| k.tilt_rad).collect();
-    if !smooth(&mut beta, &step_times(ks), max_rate_rps, max_acc_rps2) {
+    if !smooth(
+        &mut beta,
+        &step_times(ks),
+        [max_rate_rps, max_acc_rps2],
+        None,
+    ) {
         return false;
     }
     for (k, b) in ks.iter_mut().zip(beta) {
         if b != k.tilt_rad {
             retilt(k, law, b);
+        }
+    }
+    true
+}
+
+/// Share of the vertical joint's speed and acceleration limits the nozzle
+/// height may take while painting. assumed: as the tilt's (`TILT_SHARE`,
+/// `TILT_ACC_SHARE`), for the same spline.
+pub const HEIGHT_SHARE: [f64; 2] = [TILT_SHARE, TILT_ACC_SHARE];
+
+/// The vertical joint's speed (m/s) and acceleration (m/s²) the nozzle
+/// height may take while painting (`HEIGHT_SHARE` of its limits); None for
+/// a kind without a vertical joint.
+pub fn height_follow(robot: &AnyRobot) -> Option<[f64; 2]> {
+    let j = robot
+        .joint_names()
+        .iter()
+        .position(|n| *n == "vertical_m")?;
+    let l = robot.limits()[j];
+    Some([l.max_vel * HEIGHT_SHARE[0], l.max_acc * HEIGHT_SHARE[1]])
+}
+
+/// Keep the nozzle height's change between knots within `follow` (speed,
+/// acceleration) at each knot's painting speed, only ever raising a knot
+/// (a lower nozzle would leave the rung's ends bare): where a stroke
+/// narrows faster than the vertical joint can lower the nozzle (a cell cut
+/// by a slanted edge, the arrow's head at 3 m: film 2.1×), the fan stays
+/// wider than the rung for a while and its speed follows the width it
+/// covers, so the film stays on target and the extra lands outside (the
+/// knots' `fan_width_m`, counted as outside paint). Returns whether any
+/// knot changed (the caller then re-paces the pass).
+pub fn limit_height_rate(ks: &mut [Knot], law: &PaintLaw, follow: [f64; 2]) -> bool {
+    if !follow.iter().all(|v| v.is_finite() && *v > 0.0) {
+        return false;
+    }
+    let floor: Vec<f64> = ks.iter().map(|k| k.z_m).collect();
+    let mut z = floor.clone();
+    if !smooth(&mut z, &step_times(ks), follow, Some(&floor)) {
+        return false;
+    }
+    for (k, z) in ks.iter_mut().zip(z) {
+        let z = z.min(law.max_height_m);
+        if z > k.z_m {
+            let factor = tilt::height_factor(k.tilt_rad, law.fan_angle_rad);
+            k.z_m = z;
+            k.fan_width_m = law.width_at_height(z / factor).max(k.width_m);
+            k.speed_mps = law.k_m2ps / k.fan_width_m; // 001 eq. 2.6; re-paced by the caller
         }
     }
     true
@@ -271,7 +335,7 @@ mod tests {
             .map(|i| if i < 15 { 0.0 } else { 0.02 * (i - 15) as f64 })
             .collect();
         let (rate, acc) = (0.3, 1.0);
-        assert!(smooth(&mut v, &tau, rate, acc));
+        assert!(smooth(&mut v, &tau, [rate, acc], None));
         for i in 0..30 {
             let r = (v[i + 1] - v[i]) / tau[i];
             assert!(r.abs() <= rate * (1.0 + 1e-6), "{i}: {r}");
@@ -282,7 +346,40 @@ mod tests {
         }
         // Already smooth: left alone.
         let before = v.clone();
-        assert!(!smooth(&mut v, &tau, rate, acc));
+        assert!(!smooth(&mut v, &tau, [rate, acc], None));
         assert_eq!(v, before);
+    }
+
+    #[test]
+    fn a_stroke_that_narrows_fast_keeps_the_nozzle_up_and_never_lowers_it() {
+        let law = law();
+        // A 0.3 m band narrowing to 0.1 m within one 20 mm step.
+        let mut ks: Vec<Knot> = (0..30)
+            .map(|i| {
+                let mut k = knot(0.02 * i as f64, 0.0);
+                k.width_m = if i < 15 { 0.3 } else { 0.1 };
+                retilt(&mut k, &law, 0.0);
+                k
+            })
+            .collect();
+        let before = ks.clone();
+        let taus = step_times(&ks);
+        let follow = [0.5, 5.0];
+        assert!(limit_height_rate(&mut ks, &law, follow));
+        for (i, (k, b)) in ks.iter().zip(&before).enumerate() {
+            assert!(k.z_m >= b.z_m - 1e-12, "{i}: lowered");
+            // The fan covers what its height paints, and is paced for it.
+            assert!(k.fan_width_m >= k.width_m);
+            assert!((k.speed_mps * k.fan_width_m - law.k_m2ps).abs() < 1e-12);
+        }
+        for (i, w) in ks.windows(2).enumerate() {
+            assert!(
+                (w[1].z_m - w[0].z_m).abs() <= follow[0] * taus[i] * (1.0 + 1e-6),
+                "{i}"
+            );
+        }
+        // The wide part keeps its height; the narrow end comes down to its own.
+        assert_eq!(ks[0].z_m, before[0].z_m);
+        assert!((ks[29].z_m - before[29].z_m).abs() < 1e-9);
     }
 }
