@@ -68,14 +68,18 @@ fn each_test_shape_keeps_the_decomposition_measured_best_before() {
             6,
             0.004,
         ),
-        // Since its lobes are cut off (the head's barbs), the arrow keeps
-        // them: the same 8 strokes and cv as the 90° sweep kept before.
+        // The arrow's cells at 0° were slowed at the head (the nozzle
+        // height could not come down as fast as the cells narrow) and so
+        // passed over; with the height kept within the vertical joint's
+        // rate (`plan::rate`) they paint without a problem, and the search
+        // stops at them, the first candidate within cv 0.04 (0.038; the
+        // lobes and the cells at 90° measured 0.016).
         (
             "arrow.dxf",
             Size::FileUnits,
-            "2 lobes and the core, each swept along its own axes",
-            8,
-            0.016,
+            "boustrophedon cells swept at 0.0°, each cell along its own axes",
+            6,
+            0.038,
         ),
         // The shield's ring in concentric passes since they exist (cv
         // 0.036 → 0.027, the inner side no longer heavy).
@@ -152,20 +156,30 @@ fn a_star_too_small_to_paint_evenly_says_so() {
 /// The size sweep's decomposition misses (`SIZES="0.8 1.2 1.6 2 2.4 3"
 /// scripts/shape-table.sh`), held at the sizes where they were worst.
 ///
-/// The star 1.2 m tall: every sweep and the triangulation's convex pieces
-/// paint an arm across or merge it with half the centre (cv 0.147 kept);
-/// its lobes, each arm from base to tip and the pentagon in two passes end
-/// to end, paint cv about 0.05. Its tips stay narrower than the fan's
+/// The star 1.2 m tall: before the lobes and the rate limits every sweep
+/// and the triangulation's convex pieces painted an arm across or merged it
+/// with half the centre (cv 0.147 kept); now the lobes (each arm from base
+/// to tip) and a sweep at 179.9° both paint within cv 0.06. Its tips stay narrower than the fan's
 /// narrowest band over their last 0.14 m at any size, which the planner
 /// reports as paint outside the stroke: the job says so, with the place.
 #[test]
-fn the_star_at_1_2_m_paints_its_arms_from_base_to_tip() {
+fn the_star_at_1_2_m_paints_evenly() {
     let robot = AnyRobot::load_or_default(None).expect("embedded robot");
     let imported = import_measured(&data("star.svg"), Size::HeightM(1.2), &robot).expect("imports");
     let kept = kept_methods(&imported);
     let cv = kept_cv(&imported.notes);
     assert!(cv <= 0.06, "star 1.2 m: kept {kept:?} with cv {cv}");
-    assert!(kept[0].contains("lobes"), "kept {kept:?}");
+    // The lobes are measured (cv 0.038 with the tilt and height rate
+    // limits of `plan::rate`, but their tips carry paint-outside problems);
+    // a sweep at 179.9° with no problem and cv 0.060 is kept over them.
+    assert!(
+        imported
+            .notes
+            .iter()
+            .any(|l| l.contains("lobes and the core")),
+        "the lobes were not a candidate: {:#?}",
+        imported.notes
+    );
     if let Some(uneven) = imported
         .notes
         .iter()
@@ -180,14 +194,18 @@ fn the_star_at_1_2_m_paints_its_arms_from_base_to_tip() {
 }
 
 /// The shield 1.2 m tall: its ring around the hole in one pass paints the
-/// inner side heavy (cv 0.071); in concentric passes cv about 0.057.
+/// inner side heavy (cv 0.071); concentric passes and the 90° cells paint
+/// within cv 0.06.
 #[test]
-fn the_shield_at_1_2_m_paints_its_ring_in_concentric_passes() {
+fn the_shield_at_1_2_m_paints_evenly() {
     let robot = AnyRobot::load_or_default(None).expect("embedded robot");
     let imported =
         import_measured(&data("shield.dxf"), Size::HeightM(1.2), &robot).expect("imports");
     let cv = kept_cv(&imported.notes);
     let kept = imported.decomposition.regions[0].chosen.method.to_string();
     assert!(cv <= 0.06, "shield 1.2 m: kept {kept} with cv {cv}");
-    assert_eq!(kept, "ring-following bands in concentric passes");
+    // With the tilt and height rate limits (`plan::rate`) the 90° cells
+    // paint without a slowed spot and more evenly (cv 0.034) than the
+    // concentric passes (0.054); either beats the one-pass ring.
+    assert_ne!(kept, "ring-following bands", "cv {cv}");
 }

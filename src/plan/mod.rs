@@ -15,6 +15,7 @@ pub mod leads;
 pub mod order;
 pub mod passes;
 pub mod placed;
+pub mod rate;
 pub mod request;
 pub mod rungs;
 pub mod samples;

@@ -9,6 +9,7 @@ use crate::robot::{AnyRobot, Robot};
 
 use super::error::CompileError;
 use super::placed::PlacedStrokes;
+use super::rate;
 use super::rungs::StrokeRungs;
 use super::warnings::Note;
 
@@ -80,8 +81,13 @@ pub fn passes(
             // A turned fan sweeps other road: re-pace, and check the turn
             // again at the new speeds.
             let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE;
+            // The tilt, likewise, within what its joint follows (`rate`).
+            let tilt_follow = rate::tilt_follow(robot);
             for _ in 0..TURN_TRIES {
-                if !super::turn::limit_turn_rate(&mut kp.knots, max_turn) {
+                let turned = super::turn::limit_turn_rate(&mut kp.knots, max_turn);
+                let tilted = tilt_follow
+                    .is_some_and(|[v, a]| rate::limit_tilt_rate(&mut kp.knots, &law, v, a));
+                if !(turned || tilted) {
                     break;
                 }
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
@@ -90,7 +96,10 @@ pub fn passes(
                 Some(b) => lift_for_tilt(b, &law, &mut kp.knots),
                 None => vec![],
             };
-            if !raised.is_empty() {
+            // The height, too, within what the vertical joint follows.
+            let lifted = rate::height_follow(robot)
+                .is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
+            if !raised.is_empty() || lifted {
                 // Wider footprints sweep more road: re-pace the pass.
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
             }

@@ -169,29 +169,12 @@ pub(super) fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<
         acc[j] = l.max_acc * pace;
     }
     if let Some(b) = robot.basr() {
-        vel[4] = vel[4].min(nut_limited_tilt_rate(b));
+        vel[4] = vel[4].min(super::rate::nut_limited_tilt_rate(b));
     }
     timing::JointLimits {
         vel,
         acc,
         jerk: std::array::from_fn(|j| acc[j] * JERK_PER_ACC),
-    }
-}
-
-/// BASR's tilt-rate limit from its ball nut's (infinite when the four-bar
-/// gives no nut rate).
-fn nut_limited_tilt_rate(robot: &crate::robot::Robot) -> f64 {
-    let t = &robot.limits.tilt_rad;
-    let fb = &robot.end_effector.fourbar;
-    let steepest = (0..=60)
-        .filter_map(|k| fb.nut_rate_m_per_rad(t.min + (t.max - t.min) * k as f64 / 60.0))
-        .map(f64::abs)
-        .fold(0.0, f64::max);
-    if steepest > 0.0 {
-        // 1 % below, for the nut rate between the sampled tilts.
-        robot.end_effector.tilt_nut_max_speed_mps / (steepest * 1.01)
-    } else {
-        f64::INFINITY
     }
 }
 

@@ -418,7 +418,10 @@ fn find_slowdowns<const N: usize>(
     out
 }
 
-/// Which limit is active at grid point g.
+/// Which limit holds the speed down at grid point g: the one active
+/// there, else the one active where the profile falls to its nearest low
+/// point (a slow-down ahead is braked for, one behind is accelerated
+/// out of); `Rest` only where that low point is a path end.
 fn binding_at<const N: usize>(
     spline: &Spline<N>,
     grid: &[GridPoint],
@@ -426,29 +429,71 @@ fn binding_at<const N: usize>(
     vel: &[f64; N],
     acc: &[f64; N],
 ) -> Binding {
-    let gp = grid[g];
-    let (_, d1, d2) = spline.eval(gp.seg, gp.s);
-    // Velocity: the joint nearest its limit, if within 0.1 %.
-    let (vj, vr) = (0..N)
-        .map(|j| (j, d1[j].abs() * gp.sd / vel[j]))
-        .fold((0, 0.0), |b, c| if c.1 > b.1 { c } else { b });
-    if vr > 0.999 {
-        return Binding::Velocity { joint: vj };
+    let n = grid.len();
+    // Braking after g: the cause lies ahead; else behind.
+    let ahead = g + 1 < n && grid[g].sdd < 0.0;
+    let mut i = g;
+    loop {
+        if let Some(b) = active_at(spline, grid, i, vel, acc) {
+            return b;
+        }
+        let next = if ahead { i + 1 } else { i.wrapping_sub(1) };
+        if next >= n || grid[next].sd > grid[i].sd + 1e-12 {
+            return Binding::Rest;
+        }
+        i = next;
     }
-    // Acceleration, with the s̈ of the steps on either side.
+}
+
+/// The limit active at grid point g as the time law imposed it: a joint's
+/// speed bound over the steps on either side, or an acceleration bound of
+/// either step (its Bernstein bounds, `step_constraints`).
+fn active_at<const N: usize>(
+    spline: &Spline<N>,
+    grid: &[GridPoint],
+    g: usize,
+    vel: &[f64; N],
+    acc: &[f64; N],
+) -> Option<Binding> {
+    let gp = grid[g];
+    let n = grid.len();
+    let steps: Vec<usize> = [g.checked_sub(1), (g + 1 < n).then_some(g)]
+        .into_iter()
+        .flatten()
+        .collect();
+    // Velocity: the joint nearest its limit, if within 0.1 %.
     let mut best = (0, 0.0);
-    let x = gp.sd * gp.sd;
-    let sdds = [Some(gp.sdd), g.checked_sub(1).map(|h| grid[h].sdd)];
-    for sdd in sdds.into_iter().flatten() {
+    for &h in &steps {
+        let slope = spline.max_slope(grid[h].seg, grid[h].s, grid[h + 1].s);
         for j in 0..N {
-            let r = (d1[j] * sdd + d2[j] * x).abs() / acc[j];
+            let r = slope[j] * gp.sd / vel[j];
             if r > best.1 {
                 best = (j, r);
             }
         }
     }
-    if best.1 > 0.98 && gp.sd > 0.0 {
-        return Binding::Acceleration { joint: best.0 };
+    if best.1 > 0.999 {
+        return Some(Binding::Velocity { joint: best.0 });
     }
-    Binding::Rest
+    if gp.sd <= 0.0 {
+        return None;
+    }
+    // Acceleration: the step's constraint rows (8 per joint) at its own
+    // (ṡ², s̈).
+    let mut best = (0, 0.0);
+    let mut cons = Vec::with_capacity(8 * N);
+    for &h in &steps {
+        let (a, b) = (grid[h], grid[h + 1]);
+        cons.clear();
+        step_constraints(spline, a.seg, a.s, b.s, acc, &mut cons);
+        // The rows are in (s̈, ṡ² at the step's start).
+        let x = a.sd * a.sd;
+        for (row, &(cu, cx, lim)) in cons.iter().enumerate() {
+            let r = (cu * a.sdd + cx * x) / lim;
+            if r > best.1 {
+                best = (row / 8, r);
+            }
+        }
+    }
+    (best.1 > 0.98).then_some(Binding::Acceleration { joint: best.0 })
 }
