@@ -17,6 +17,7 @@ mod decompose;
 mod dxf;
 mod hatch;
 mod lobes;
+mod passes;
 mod region;
 mod ring;
 mod svg;
