@@ -204,24 +204,17 @@ fn resample(stroke: &Stroke, path: &[(f64, f64)], spacing_m: f64) -> Vec<(Point,
         let (a, b) = (path[seg], path[seg + 1]);
         at.push((a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1)));
     }
-    let mut out = Vec::with_capacity(n + 1);
-    for (m, &(sl, sr)) in at.iter().enumerate() {
-        let left = if m == 0 {
-            stroke.left.start()
-        } else if m == n {
-            stroke.left.end()
-        } else {
-            stroke.left.point_at_length(sl)
-        };
-        let right = if m == 0 {
-            stroke.right.start()
-        } else if m == n {
-            stroke.right.end()
-        } else {
-            stroke.right.point_at_length(sr)
-        };
-        out.push((left, right));
-    }
+    // The caps exactly as the font gives them; between, points by length.
+    let point = |e: &crate::geom::Edge, m: usize, s: f64| match m {
+        0 => e.start(),
+        m if m == n => e.end(),
+        _ => e.point_at_length(s),
+    };
+    let out: Vec<(Point, Point)> = at
+        .iter()
+        .enumerate()
+        .map(|(m, &(sl, sr))| (point(&stroke.left, m, sl), point(&stroke.right, m, sr)))
+        .collect();
     out
 }
 
