@@ -30,7 +30,11 @@ pub fn compile_strokes(
     robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
-    let rungs = rungs::rungs(strokes, req.rung_spacing_m);
+    let rungs = rungs::rungs(
+        strokes,
+        req.rung_spacing_m,
+        Some(&passes::turn_budget(&robot)),
+    );
     let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
     let passes = passes::passes(strokes, &rungs, &robot, tilt.method())?;
     let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)?;

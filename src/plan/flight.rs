@@ -209,7 +209,11 @@ mod tests {
         let req = CompileRequest::message("STOP");
         let inputs::Inputs { robot, font } = inputs::read(&req).unwrap();
         let (marking, strokes) = lay_out(&req, &font).unwrap();
-        let rungs = rungs::rungs(&strokes, req.rung_spacing_m);
+        let rungs = rungs::rungs(
+            &strokes,
+            req.rung_spacing_m,
+            Some(&passes::turn_budget(&robot)),
+        );
         let (tilt, _) = request::tilt_for(req.tilt, &robot);
         let passes = passes::passes(&strokes, &rungs, &robot, tilt.method()).unwrap();
         let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)

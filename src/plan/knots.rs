@@ -213,6 +213,22 @@ pub fn knots(
     method: TiltMethod,
     max_tilt_rad: f64,
 ) -> Result<KnotPlan, PlanError> {
+    knots_within(rungs, law, method, max_tilt_rad, f64::INFINITY)
+}
+
+/// [`knots`] with the tilt's change along the pass kept within
+/// `max_tilt_rate_rps` at eq. 2.6's painting speed: where the rungs ask
+/// the tilt to change faster (a bowl's curve running into a straight run,
+/// where the quadrilateral balance falls from its limit to zero within a
+/// few rungs), the change is spread evenly to both sides (`turn::spread_steps`),
+/// so the time law need not slow the nozzle for the tilt joint.
+pub fn knots_within(
+    rungs: &[Rung],
+    law: &PaintLaw,
+    method: TiltMethod,
+    max_tilt_rad: f64,
+    max_tilt_rate_rps: f64,
+) -> Result<KnotPlan, PlanError> {
     law.validate()?;
     if !(max_tilt_rad.is_finite() && max_tilt_rad >= 0.0) {
         return Err(PlanError::BadLaw {
@@ -246,7 +262,19 @@ pub fn knots(
         }
     }
 
-    let betas = tilt::tilts(rungs, method, fan, max_tilt_rad);
+    let mut betas = tilt::tilts(rungs, method, fan, max_tilt_rad);
+    if max_tilt_rate_rps.is_finite() && max_tilt_rate_rps > 0.0 && rungs.len() > 2 {
+        let min_width = law.width_at_height(law.min_height_m);
+        let step: Vec<f64> = rungs
+            .windows(2)
+            .map(|r| {
+                let ds = (r[1].mid() - r[0].mid()).hypot().max(MIN_TIP_STEP_M);
+                let w = 0.5 * (r[0].width() + r[1].width());
+                max_tilt_rate_rps * ds * w.max(min_width) / law.k_m2ps
+            })
+            .collect();
+        super::turn::spread_smooth_steps(&mut betas, &step, TILT_SMOOTHING);
+    }
     let u_before = tilt::u_range(&tilt::u_ratios(rungs, &[], fan));
     let u_after = tilt::u_range(&tilt::u_ratios(rungs, &betas, fan));
 
@@ -295,6 +323,10 @@ pub fn knots(
         clamped,
     })
 }
+
+/// Rounds of smoothing of the tilt's spread change (`turn::spread_smooth_steps`).
+/// assumed: 4 rounds round the corners over ≈ 3 knots either side.
+const TILT_SMOOTHING: usize = 4;
 
 /// Smallest tip step (m) the time law parameterises by; `plan::compile`
 /// floors each step of the arc length the same way, so a rung turning in

@@ -13,6 +13,7 @@ pub mod joints;
 pub mod knots;
 pub mod leads;
 pub mod order;
+pub mod pairing;
 pub mod passes;
 pub mod placed;
 pub mod rate;

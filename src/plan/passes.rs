@@ -53,6 +53,9 @@ pub fn passes(
     let max_tilt = robot
         .tilt_limit()
         .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0));
+    let max_tilt_rate = robot
+        .tilt_limit()
+        .map_or(f64::INFINITY, |tl| tl.max_vel * super::turn::TURN_SHARE);
     let mut out = Passes::default();
     let mut painted_m2 = 0.0;
     let mut outside = vec![];
@@ -69,7 +72,8 @@ pub fn passes(
         let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
         let mut u_tilted = u_untilted;
         for pass in &split {
-            let mut kp = knots::knots(pass, &law, method, max_tilt).map_err(what)?;
+            let mut kp =
+                knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate).map_err(what)?;
             u_untilted = [
                 u_untilted[0].min(kp.u_before.0 / 100.0),
                 u_untilted[1].max(kp.u_before.1 / 100.0),
@@ -203,6 +207,18 @@ pub fn outside_area(ks: &[Knot]) -> (f64, f64) {
         painted += k.fan_width_m.max(k.width_m) * ds;
     }
     (outside, painted)
+}
+
+/// What the robot's fan may turn while painting, for choosing rungs: the
+/// share of the fan joint's speed limit the turn limit allows
+/// (`turn::TURN_SHARE`) at the film law's speeds.
+pub fn turn_budget(robot: &AnyRobot) -> super::pairing::TurnBudget {
+    let law = paint_law(robot);
+    super::pairing::TurnBudget {
+        k_m2ps: law.k_m2ps,
+        min_width_m: law.width_at_height(law.min_height_m),
+        max_rate_rps: robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE,
+    }
 }
 
 /// The paint law of the robot's nozzle and its painting heights: BASR's

@@ -4,6 +4,7 @@
 
 use kurbo::Point;
 
+use super::pairing::{self, TurnBudget};
 use super::placed::PlacedStrokes;
 
 /// One rung: a segment across the stroke joining opposing edge points (road frame, m).
@@ -37,8 +38,10 @@ pub struct StrokeRungs {
 }
 
 /// Subdivide every stroke so consecutive rungs are at most `spacing_m` apart
-/// along its longer edge (at least one step).
-pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64) -> StrokeRungs {
+/// along its longer edge (at least one step). With a `budget`, a stroke
+/// whose equal arc-length rungs would turn the fan faster than it can at
+/// painting speed gets matched rungs instead (`pairing`).
+pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget>) -> StrokeRungs {
     StrokeRungs {
         rungs: strokes
             .strokes
@@ -47,7 +50,15 @@ pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64) -> StrokeRungs {
                 let st = &ps.stroke;
                 let len = st.left.length().max(st.right.length());
                 let n = ((len / spacing_m).ceil() as usize).max(1);
-                st.rungs(n)
+                let mut pairs = st.rungs(n);
+                if let Some(b) = budget {
+                    if pairing::worst_rate(&pairs, b) > b.max_rate_rps {
+                        if let Some(m) = pairing::matched_rungs(st, spacing_m, b) {
+                            pairs = m;
+                        }
+                    }
+                }
+                pairs
                     .into_iter()
                     .map(|(left, right)| Rung { left, right })
                     .collect()

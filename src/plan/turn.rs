@@ -58,33 +58,8 @@ pub fn limit_turn_rate(ks: &mut [Knot], max_rate_rps: f64) -> bool {
     if (1..n).all(|i| (want[i] - want[i - 1]).abs() <= step[i - 1]) {
         return false;
     }
-    // Each step too steep moves both its knots towards each other by half
-    // the excess, sweep after sweep (projections onto every step's
-    // constraint): the turn spreads evenly to both sides of where the rungs
-    // ask for it and stays on the rungs elsewhere. A last forward clamp
-    // removes what the sweeps leave.
     let mut yaw = want;
-    for sweep in 0..MAX_SWEEPS {
-        let mut worst = 0.0f64;
-        // Alternate directions so neither side is favoured.
-        for k in 1..n {
-            let i = if sweep % 2 == 0 { k } else { n - k };
-            let d = yaw[i] - yaw[i - 1];
-            let excess = d.abs() - step[i - 1];
-            if excess > 0.0 {
-                let half = 0.5 * excess * d.signum();
-                yaw[i] -= half;
-                yaw[i - 1] += half;
-                worst = worst.max(excess);
-            }
-        }
-        if worst < 1e-9 {
-            break;
-        }
-    }
-    for i in 1..n {
-        yaw[i] = yaw[i].clamp(yaw[i - 1] - step[i - 1], yaw[i - 1] + step[i - 1]);
-    }
+    spread_steps(&mut yaw, &step);
     for (k, &yaw) in ks.iter_mut().zip(&yaw) {
         let (old, new) = (
             kurbo::Vec2::from_angle(k.yaw_rad),
@@ -96,6 +71,61 @@ pub fn limit_turn_rate(ks: &mut [Knot], max_rate_rps: f64) -> bool {
         k.yaw_rad = wrap_pi(yaw);
     }
     true
+}
+
+/// Keep every step `values[i] − values[i − 1]` within ±`step[i − 1]`,
+/// moving the values as little as it takes and evenly to both sides of a
+/// step that is too steep. Each such step moves both its values towards each
+/// other by half the excess, sweep after sweep (projections onto every
+/// step's constraint), so the change spreads to both sides of where it was
+/// asked and the values stay put elsewhere; a last forward clamp removes
+/// what the sweeps leave. The values stay within their first range.
+pub fn spread_steps(values: &mut [f64], step: &[f64]) {
+    let n = values.len();
+    for sweep in 0..MAX_SWEEPS {
+        let mut worst = 0.0f64;
+        // Alternate directions so neither side is favoured.
+        for k in 1..n {
+            let i = if sweep % 2 == 0 { k } else { n - k };
+            let d = values[i] - values[i - 1];
+            let excess = d.abs() - step[i - 1];
+            if excess > 0.0 {
+                let half = 0.5 * excess * d.signum();
+                values[i] -= half;
+                values[i - 1] += half;
+                worst = worst.max(excess);
+            }
+        }
+        if worst < 1e-9 {
+            break;
+        }
+    }
+    for i in 1..n {
+        values[i] = values[i].clamp(values[i - 1] - step[i - 1], values[i - 1] + step[i - 1]);
+    }
+}
+
+/// [`spread_steps`] with the corners of the change rounded: around every
+/// value it moved (and `passes` knots either side) the values are smoothed
+/// by `passes` rounds of a (¼, ½, ¼) filter, ends kept, so the rate starts
+/// and stops over a few knots instead of at one (the joint's acceleration).
+/// Smoothing averages neighbouring steps, so each stays within the bounds
+/// of its neighbourhood.
+pub fn spread_smooth_steps(values: &mut [f64], step: &[f64], passes: usize) {
+    let asked = values.to_vec();
+    spread_steps(values, step);
+    let n = values.len();
+    let moved: Vec<usize> = (0..n)
+        .filter(|&i| (values[i] - asked[i]).abs() > 1e-9)
+        .collect();
+    let near = |i: usize| moved.iter().any(|&m| m.abs_diff(i) <= passes);
+    let mask: Vec<bool> = (0..n).map(|i| i > 0 && i + 1 < n && near(i)).collect();
+    for _ in 0..passes {
+        let prev = values.to_vec();
+        for i in (0..n).filter(|&i| mask[i]) {
+            values[i] = 0.25 * prev[i - 1] + 0.5 * prev[i] + 0.25 * prev[i + 1];
+        }
+    }
 }
 
 #[cfg(test)]
