@@ -143,12 +143,24 @@ pub fn scale_for(outline: &Outline, size: Size) -> Result<f64, ShapeError> {
             format!(
                 "the shape would be {} m tall and {} m wide; shapes are sized like letters, \
                  {MIN_SIZE_M}–{MAX_SIZE_M} m tall: give --shape-height-m H within those bounds",
-                crate::io::show_num(height),
-                crate::io::show_num(w * scale)
+                metres(height),
+                metres(w * scale)
             ),
         ));
     }
     Ok(scale)
+}
+
+/// A size for a message: to the millimetre, without trailing zeros (one of
+/// height and width is computed from the other, so it is no number the
+/// user typed).
+fn metres(v: f64) -> String {
+    if v.is_finite() {
+        let t = format!("{v:.3}");
+        t.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        crate::io::show_num(v)
+    }
 }
 
 /// The shape's name in jobs and messages (`[star]`): its file's stem.
