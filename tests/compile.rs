@@ -393,7 +393,8 @@ fn outputs_that_name_one_file_or_an_input_are_refused() {
 
 /// The U range per stroke before and after tilt is in the job (issue 4):
 /// on B's full bowls (primitive 1) untilted is the seed's ~42–58 and the
-/// quadrilateral method is inside the seed's trapezoid result (47–52).
+/// quadrilateral method is within 0.03 of even (the seed's trapezoid gave
+/// 47–52 with a tilt no joint limit held back).
 #[test]
 fn job_reports_u_per_stroke_and_quadrilateral_beats_the_seed_on_b() {
     let range = |tilt: &str| -> Vec<([f64; 2], [f64; 2])> {
@@ -420,8 +421,12 @@ fn job_reports_u_per_stroke_and_quadrilateral_beats_the_seed_on_b() {
             u_trap[0] > u0[0] && u_trap[1] < u0[1],
             "trapezoid {u_trap:?}"
         );
+        // Within 0.5 ± 0.03: the tilt is kept within what its joint
+        // follows at painting speed (`plan::rate`, `knots::knots_within`),
+        // which leaves B's bowls at 0.474–0.526 where the unlimited tilt
+        // balanced them to the seed's trapezoid result (47–52).
         assert!(
-            u_quad[0] > 0.47 && u_quad[1] < 0.52,
+            u_quad[0] > 0.47 && u_quad[1] < 0.53,
             "quadrilateral {u_quad:?}"
         );
         assert!(u_quad[1] - u_quad[0] < u_trap[1] - u_trap[0]);
