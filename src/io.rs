@@ -496,6 +496,23 @@ pub fn same_file_pair<'a>(paths: &[NamedPath<'a>]) -> Option<(NamedPath<'a>, Nam
     None
 }
 
+/// `v` with `decimals` decimals, trailing zeros (and a bare point)
+/// dropped, and no negative zero: `fixed(2.50, 3)` is `2.5`, `fixed(-0.0001,
+/// 2)` is `0`.
+pub fn fixed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
 /// A number for a message: as written for everyday magnitudes (`-2`,
 /// `2.44`), in scientific notation when plain digits would run long
 /// (`1e300`, not three hundred digits; `1e-12`, not `0.000000000001`).

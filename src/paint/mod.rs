@@ -40,10 +40,5 @@ pub fn mm_text(m: f64) -> String {
         return format!("{mm}");
     }
     let decimals = (3 - mm.log10().floor() as i64).clamp(0, 12) as usize;
-    let s = format!("{mm:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
+    crate::io::fixed(mm, decimals)
 }

@@ -16,17 +16,7 @@ const DECIMALS: usize = 2;
 
 /// A number for an SVG attribute: fixed decimals, trailing zeros dropped.
 pub fn num(v: f64) -> String {
-    let s = format!("{v:.DECIMALS$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s
-    }
+    crate::io::fixed(v, DECIMALS)
 }
 
 /// Maps road-frame metres to page pixels: x to the right, road +y up the

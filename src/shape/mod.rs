@@ -156,8 +156,7 @@ pub fn scale_for(outline: &Outline, size: Size) -> Result<f64, ShapeError> {
 /// user typed).
 fn metres(v: f64) -> String {
     if v.is_finite() {
-        let t = format!("{v:.3}");
-        t.trim_end_matches('0').trim_end_matches('.').to_string()
+        crate::io::fixed(v, 3)
     } else {
         crate::io::show_num(v)
     }
