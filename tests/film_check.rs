@@ -83,7 +83,14 @@ fn assert_film_agrees(args: &[&str]) -> (Value, Value) {
     let written: Value = serde_json::from_slice(&std::fs::read(&job).unwrap()).unwrap();
     assert_eq!(&written["summary"]["film"], film);
     let (pcode, p) = preview(&job);
-    for key in ["cv", "coverage", "overspray", "mean_film_m", "target_film_m", "resolution_m"] {
+    for key in [
+        "cv",
+        "coverage",
+        "overspray",
+        "mean_film_m",
+        "target_film_m",
+        "resolution_m",
+    ] {
         assert_eq!(film[key], p[key], "{args:?}: summary.film.{key} vs preview");
         assert!(film[key].is_number(), "{args:?}: {key} not measured");
     }
@@ -95,13 +102,24 @@ fn assert_film_agrees(args: &[&str]) -> (Value, Value) {
         .map(|f| f.as_str().unwrap())
         .collect();
     let metrics = preview_failed(&p);
-    assert_eq!(failed.len(), metrics.len(), "{args:?}: {failed:?} vs {metrics:?}");
+    assert_eq!(
+        failed.len(),
+        metrics.len(),
+        "{args:?}: {failed:?} vs {metrics:?}"
+    );
     for (f, m) in failed.iter().zip(&metrics) {
-        assert!(f.starts_with(&format!("{m} ")), "{f} is not the preview's {m}");
+        assert!(
+            f.starts_with(&format!("{m} ")),
+            "{f} is not the preview's {m}"
+        );
     }
     assert_eq!(pcode, Some(if failed.is_empty() { 0 } else { 1 }));
     let notes = film_warnings(&c);
-    assert_eq!(notes.len(), failed.len(), "{args:?}: one note per failed bound");
+    assert_eq!(
+        notes.len(),
+        failed.len(),
+        "{args:?}: one note per failed bound"
+    );
     for (w, f) in notes.iter().zip(&failed) {
         assert_eq!(w["severity"], "problem", "{w}");
         let m = w["message"].as_str().unwrap();
@@ -126,7 +144,10 @@ fn assert_film_agrees(args: &[&str]) -> (Value, Value) {
     }
     let film_line = stderr
         .lines()
-        .find(|l| l.trim_start().starts_with("film (as `basr preview` measures it):"))
+        .find(|l| {
+            l.trim_start()
+                .starts_with("film (as `basr preview` measures it):")
+        })
         .unwrap_or_else(|| panic!("no film line: {stderr}"));
     assert!(
         film_line.contains(&format!("cv {:.3}", film["cv"].as_f64().unwrap())),

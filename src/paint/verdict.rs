@@ -196,7 +196,7 @@ mod tests {
         let cv = judge(&metrics(Some(0.0501), Some(0.99), Some(0.01)), &t);
         assert!(!cv.pass());
         assert!(
-            cv.reasons().starts_with("cv 0.050 over"),
+            cv.reasons().starts_with("cv 0.0501 over the 0.050 limit"),
             "{}",
             cv.reasons()
         );
