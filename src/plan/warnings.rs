@@ -223,8 +223,8 @@ impl Note {
             }
             (Note::Film { .. }, _) => {
                 "Do not paint it as it is: `basr preview` of the job shows where; tell the \
-                 engineer who planned it (larger letters, --letter-height, often paint more \
-                 evenly)."
+                 engineer who planned it (a larger --letter-height or --shape-height-m often \
+                 paints more evenly)."
             }
             (Note::Slowed { .. }, Severity::Notice) => {
                 "It dries a little slower there; check it before opening the lane."
