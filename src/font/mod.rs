@@ -271,7 +271,11 @@ mod tests {
     #[test]
     fn repartitioned_glyphs_keep_the_seed_outline() {
         let f = Font::embedded();
-        for (ch, seed) in [('6', 61.712_685_03), ('8', 64.925_870_93), ('9', 61.712_685_03)] {
+        for (ch, seed) in [
+            ('6', 61.712_685_03),
+            ('8', 64.925_870_93),
+            ('9', 61.712_685_03),
+        ] {
             let now = glyph_area(f, ch, 8000);
             assert!(
                 ((now - seed) / seed).abs() < 1e-6,
