@@ -224,9 +224,11 @@ fn tilt_for_turned_fan(
     let fans = super::turn::fan_rungs(&turned);
     let mut re = knots::knots_within(&fans, law, method, max_tilt, max_tilt_rate)?;
     knots::pace(pass, &mut re.knots, law.k_m2ps);
+    // U (001 eq. 2.7–2.8) of the stroke's own cells at the tilts now used.
+    let betas: Vec<f64> = re.knots.iter().map(|k| k.tilt_rad).collect();
+    kp.u_after = super::tilt::u_range(&super::tilt::u_ratios(pass, &betas, law.fan_angle_rad));
     kp.knots = re.knots;
     kp.clamped = re.clamped;
-    kp.u_after = re.u_after;
     Ok(())
 }
 
