@@ -82,6 +82,16 @@ pub enum StopWhy {
     },
 }
 
+/// The heaviest film on an item: where, how heavy, and the stroke painted
+/// nearest it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HotSpot {
+    pub at_m: [f64; 2],
+    /// Film there / target film.
+    pub film_ratio: f64,
+    pub stroke: Option<usize>,
+}
+
 /// One note of the planner.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Note {
@@ -122,6 +132,22 @@ pub enum Note {
         t_s: f64,
         /// Film there / target film.
         film_ratio: f64,
+    },
+
+    /// The film the job lays misses one of the preview's bounds
+    /// (`plan::film`, measured with `paint::film` at preview's defaults).
+    Film {
+        /// The bound as the preview words it (`cv 0.051 over the 0.050
+        /// limit`, `paint::verdict::Check::text`).
+        failed: String,
+        /// The metric's name (`cv`, `coverage`, `overspray`).
+        metric: &'static str,
+        /// The job's figure over its limit (value / limit).
+        factor: Option<f64>,
+        /// The item the bound fails worst on, with its own figure.
+        worst: Option<(Owner, f64)>,
+        /// For cv: the heaviest film on that item.
+        hot: Option<HotSpot>,
     },
 
     /// The arm comes to rest.
@@ -184,6 +210,9 @@ impl Note {
                 s => s,
             },
             Note::Slowed { film_ratio, .. } => graded(*film_ratio, FILM_BAND, FILM_HEAVY),
+            // The preview fails this job's film (exit 1): the crew's
+            // verdict must not say READY (docs/planner.md "Film").
+            Note::Film { .. } => Severity::Problem,
         }
     }
 
@@ -203,6 +232,11 @@ impl Note {
             }
             (Note::HeightClamped { .. }, _) => {
                 "Expect paint outside the letter there; larger letters (--letter-height) avoid it."
+            }
+            (Note::Film { .. }, _) => {
+                "Do not paint it as it is: `basr preview` of the job shows where; tell the \
+                 engineer who planned it (a larger --letter-height or --shape-height-m often \
+                 paints more evenly)."
             }
             (Note::Slowed { .. }, Severity::Notice) => {
                 "It dries a little slower there; check it before opening the lane."
@@ -302,6 +336,32 @@ impl Note {
                     at_m[0], at_m[1]
                 ),
             },
+            Note::Film {
+                failed,
+                metric,
+                factor,
+                worst,
+                hot,
+            } => Warning {
+                kind: "film".into(),
+                severity,
+                stroke: hot.as_ref().and_then(|h| h.stroke).map_or(-1, |s| s as i64),
+                t_s: None,
+                factor: *factor,
+                message: format!(
+                    "the film fails the preview's check: {failed}{}{}. {todo}",
+                    worst.as_ref().map_or(String::new(), |(owner, v)| format!(
+                        ", worst on {owner} ({metric} {v:.3})"
+                    )),
+                    hot.as_ref().map_or(String::new(), |h| format!(
+                        "; its heaviest film is {:.2}× the target near ({:.2}, {:.2}) m{}",
+                        h.film_ratio,
+                        h.at_m[0],
+                        h.at_m[1],
+                        h.stroke.map_or(String::new(), |s| format!(", stroke {s}"))
+                    ))
+                ),
+            },
             Note::Stop {
                 station,
                 t_s,
@@ -398,6 +458,34 @@ mod tests {
         };
         assert_eq!(passes.render().factor, Some(3.0));
         assert_eq!(passes.severity().name(), "info");
+    }
+
+    #[test]
+    fn a_failed_film_bound_is_a_problem_naming_bound_value_and_where() {
+        let film = Note::Film {
+            failed: "cv 0.051 over the 0.050 limit".into(),
+            metric: "cv",
+            factor: Some(1.02),
+            worst: Some((owner(), 0.063)),
+            hot: Some(HotSpot {
+                at_m: [0.123, -1.5],
+                film_ratio: 1.625,
+                stroke: Some(7),
+            }),
+        };
+        assert_eq!(film.severity(), Severity::Problem);
+        let w = film.render();
+        assert_eq!((w.kind.as_str(), w.severity.as_str()), ("film", "problem"));
+        assert_eq!(w.stroke, 7);
+        assert!(
+            w.message.starts_with(
+                "the film fails the preview's check: cv 0.051 over the 0.050 limit, worst on \
+                 letter S of line 1 (cv 0.063); its heaviest film is 1.62× the target near \
+                 (0.12, -1.50) m, stroke 7. Do not paint it"
+            ),
+            "{}",
+            w.message
+        );
     }
 
     #[test]
