@@ -3,7 +3,8 @@
 //! letters; the throughput is in letters, so "elem/s" reads as letters per
 //! second and the per-letter times can be compared (benches/README.md).
 //! Each compile includes the closed-loop verification and its re-timing
-//! (`CompileRequest::message` leaves `verify` on), as `basr compile` does.
+//! and the film check (`CompileRequest::message` leaves `verify` and
+//! `film` on), as `basr compile` does.
 
 use std::time::Duration;
 
@@ -34,8 +35,8 @@ fn bench(c: &mut Criterion) {
     ] {
         let req = CompileRequest::message(msg);
         assert!(
-            req.verify,
-            "the figure is for compile with its verification"
+            req.verify && req.film,
+            "the figure is for compile with its verification and film check"
         );
         // Ten samples of the 100-letter job take ~20 s on a loaded 2-core
         // machine; a longer window only repeats them.

@@ -119,8 +119,13 @@ fn compile_says_what_where_how_long_and_whether_to_go() {
         text.contains("stop 1: arm axis 4.57 m past the near edge of STOP"),
         "{text}"
     );
-    assert!(text.contains("verdict: "), "{text}");
-    for l in &lines[3..] {
+    // The film as `basr preview` measures it, then the verdict.
+    assert!(
+        lines[2].starts_with("  film (as `basr preview` measures it): cv "),
+        "{text}"
+    );
+    assert!(lines[3].starts_with("  verdict: "), "{text}");
+    for l in &lines[4..] {
         assert!(l.starts_with("  problem: ") || l.starts_with("  … "), "{l}");
     }
 

@@ -6,6 +6,9 @@
 //! below the film law's speed) and a bound read from the job's own samples
 //! (`sample_film_bound`), so a slow spot the notes missed still counts.
 //!
+//! Compile's own film check (`summary.film`, a `film` problem per failed
+//! bound) must agree with the preview for every glyph.
+//!
 //! Glyphs that still miss a bound are listed in `MISSES` with the figures
 //! measured when they were listed: they must not get worse (10 % slack on
 //! the excess), and the test fails once one meets every bound, so the list
@@ -41,6 +44,10 @@ struct Film {
     worst_film: f64,
     /// Compile grades a too-narrow stroke a problem (NOT READY).
     clamp_problem: bool,
+    /// Compile's `summary.film` says what the preview says (figures and
+    /// verdict), and it carries a `film` problem exactly when the preview
+    /// fails the glyph (compile's check, docs/planner.md "Film").
+    film_agrees: bool,
 }
 
 impl Film {
@@ -102,12 +109,23 @@ fn film_of(glyph: char) -> Film {
         .find(|c| c["metric"] == "overspray")
         .and_then(|c| c["value"].as_f64())
         .expect("overspray");
+    let film = &summary["summary"]["film"];
+    let film_problem = summary["summary"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w["kind"] == "film" && w["severity"] == "problem");
+    let film_agrees = ["cv", "coverage", "overspray", "mean_film_m", "verdict"]
+        .iter()
+        .all(|k| film[k] == p[k])
+        && film_problem == (p["verdict"] == "fail");
     Film {
         cv: p["cv"].as_f64().unwrap(),
         coverage: p["coverage"].as_f64().unwrap(),
         overspray,
         worst_film,
         clamp_problem,
+        film_agrees,
     }
 }
 
@@ -157,6 +175,11 @@ fn every_glyph_alone_meets_the_film_bounds() {
                 f.overspray
             ));
         }
+        if !f.film_agrees {
+            failures.push(format!(
+                "{g}: compile's summary.film or its film problem disagrees with preview: {f:?}"
+            ));
+        }
         match MISSES.iter().find(|m| m.0 == g) {
             None if !f.meets_all() => failures.push(format!("{g}: {f:?} misses a bound")),
             Some(&(_, cv, coverage, overspray, worst_film)) => {
@@ -166,6 +189,7 @@ fn every_glyph_alone_meets_the_film_bounds() {
                     overspray,
                     worst_film,
                     clamp_problem: false,
+                    film_agrees: true,
                 };
                 if f.meets_all() {
                     failures.push(format!("{g}: now meets every bound: drop it from MISSES"));

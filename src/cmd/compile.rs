@@ -454,6 +454,9 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     if let Some(sig) = &job.signature {
         lines.push(format!("  signed by key {}", sig.key_id));
     }
+    if let Some(f) = &s.film {
+        lines.push(film_line(f));
+    }
     let count = |sev: &str| s.warnings.iter().filter(|w| w.severity == sev).count();
     let (problems, notices, infos) = (count("problem"), count("notice"), count("info"));
     let severities: Vec<&str> = s.warnings.iter().map(|w| w.severity.as_str()).collect();
@@ -504,4 +507,26 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         lines.extend(groups);
     }
     lines
+}
+
+/// The job's film as `basr preview` measures it, in one line:
+/// `film: cv 0.027, coverage 0.997, overspray 0.024, mean 379 µm (target
+/// 380 µm): pass`, or `…: FAIL (cv 0.051 over the 0.050 limit)`.
+fn film_line(f: &basr::job::FilmSummary) -> String {
+    let n = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.3}"));
+    let verdict = if f.failed.is_empty() {
+        f.verdict.clone()
+    } else {
+        format!("{} ({})", f.verdict.to_uppercase(), f.failed.join("; "))
+    };
+    format!(
+        "  film (as `basr preview` measures it): cv {}, coverage {}, overspray {}, mean {} \
+         (target {:.0} µm): {verdict}",
+        n(f.cv),
+        n(f.coverage),
+        n(f.overspray),
+        f.mean_film_m
+            .map_or("–".to_string(), |m| format!("{:.0} µm", m * 1e6)),
+        f.target_film_m * 1e6,
+    )
 }

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use basr::job::Job;
+use basr::paint::film::{self, FilmOptions, JobFilm};
 use basr::paint::preview::{self, JsonReport, Options, Panel, Preview};
 use basr::paint::verdict::{self, Thresholds, Verdict};
 use basr::paint::{Depth, Profile};
@@ -231,7 +232,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "painting"
         },
     );
-    let previews: Vec<Preview> = jobs
+    // The film stage compile records in the job's summary (`paint::film`):
+    // at the defaults both report the same figures.
+    let how = FilmOptions {
+        preview: opts.clone(),
+        thresholds,
+    };
+    let films: Vec<JobFilm> = jobs
         .iter()
         .map(|(j, _)| {
             let progress = |done: usize, total: usize| {
@@ -239,18 +246,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 bar.set_position(done as u64);
             };
             if args.from_sim {
-                preview_simulated(j, &opts, &progress)
+                preview_simulated(j, &opts, &progress).map(|p| film::judged(p, &thresholds))
             } else {
-                preview::preview_job_with_progress(j, &opts, &progress).map_err(Into::into)
+                film::film(j, &how, &progress).map_err(Into::into)
             }
             .with_context(|| format!("{origin}: preview"))
         })
         .collect::<anyhow::Result<_>>()?;
     bar.finish_and_clear();
-    let verdicts: Vec<Verdict> = previews
-        .iter()
-        .map(|p| verdict::judge(&p.metrics, &thresholds))
-        .collect();
+    let (previews, verdicts): (Vec<Preview>, Vec<Verdict>) =
+        films.into_iter().map(|f| (f.preview, f.verdict)).unzip();
     let panels: Vec<Panel> = jobs
         .iter()
         .zip(&previews)

@@ -193,6 +193,8 @@ fn first_difference(job: &[PlacedGlyph], laid: &[PlacedGlyph]) -> Option<String>
 pub fn replan(job: &Job, tilt: Tilt, r: &Replan) -> anyhow::Result<Job> {
     let mut req = r.req.clone();
     req.tilt = tilt;
+    // preview measures the re-planned job's film itself.
+    req.film = false;
     compile_job(&req).with_context(|| {
         format!(
             "--compare: re-planning {:?} with tilt {}",

@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use basr::paint::preview::{self, Options, Panel};
-use basr::paint::verdict::{self, Thresholds};
+use basr::paint::film::{FilmOptions, JobFilm};
+use basr::paint::preview::{self, Panel};
 use basr::report::{self, tally::Tally, SimVerdict};
 
 use super::{Global, Outcome};
@@ -126,19 +126,18 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         None => None,
     };
 
-    let opts = Options {
-        fit_cells: Some(basr::paint::raster::FIT_CELLS),
-        ..Options::default()
-    };
+    // The film stage at preview's defaults: what compile recorded in
+    // `summary.film` and what `basr preview JOB` prints.
     let bar = super::progress_bar(!global.quiet, "painting");
-    let film = preview::preview_job_with_progress(&job, &opts, &|done, total| {
+    let JobFilm {
+        preview: film,
+        verdict: film_verdict,
+    } = basr::paint::film::film(&job, &FilmOptions::preview_defaults(), &|done, total| {
         bar.set_length(total as u64);
         bar.set_position(done as u64);
     })
     .with_context(|| format!("{origin}: preview"))?;
     bar.finish_and_clear();
-    let thresholds = Thresholds::default();
-    let film_verdict = verdict::judge(&film.metrics, &thresholds);
     let panel = Panel {
         job: &job,
         preview: &film,

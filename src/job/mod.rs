@@ -160,6 +160,34 @@ pub struct Summary {
     /// first from where the job starts), m.
     #[serde(default)]
     pub truck_moves_m: Vec<f64>,
+    /// The film the job lays, measured by compile with the preview's model
+    /// and bounds (`paint::film`, docs/preview.md); what `basr preview` of
+    /// the job reports at its defaults. `None` in jobs written before it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub film: Option<FilmSummary>,
+}
+
+/// The film figures of a job as `basr preview JOB` gives them at its
+/// defaults (docs/preview.md: metrics and verdict).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FilmSummary {
+    /// Coefficient of variation of the film inside the letters.
+    pub cv: Option<f64>,
+    /// Share of letter area with at least half the target film.
+    pub coverage: Option<f64>,
+    /// Share of the paint on the road outside the letters.
+    pub overspray: Option<f64>,
+    /// Mean film inside the letters (m).
+    pub mean_film_m: Option<f64>,
+    /// The paint's target film (m).
+    pub target_film_m: f64,
+    /// Raster cell the film was measured on (m).
+    pub resolution_m: f64,
+    /// `"pass"` or `"fail"` against the preview's default bounds.
+    pub verdict: String,
+    /// Each failed bound in words (`cv 0.051 over the 0.050 limit`); empty
+    /// on a pass.
+    pub failed: Vec<String>,
 }
 
 /// Range of the seed's tile area ratio U of one stroke (001 eq. 2.7–2.8:
@@ -595,6 +623,7 @@ mod tests {
                 bound_ratio: 0.0,
                 verified_max_error_m: None,
                 truck_moves_m: vec![],
+                film: None,
             },
             outputs: BTreeMap::new(),
             sha256: String::new(),

@@ -3,9 +3,12 @@
 //! `spray` says where a nozzle pose lays paint; `raster` integrates it along
 //! timed poses into a film-thickness grid; `metrics` measures the film against
 //! the letters' true outlines, `verdict` judges those figures against
-//! documented thresholds; `preview` ties them to a job and draws the SVG.
+//! documented thresholds, `film` is the stage that does all three for a job
+//! (preview and compile both call it); `preview` ties them to a job and
+//! draws the SVG.
 //! The simulator reuses `deposit` on its own trace (same pose columns).
 
+pub mod film;
 pub mod metrics;
 pub mod preview;
 pub mod raster;

@@ -65,9 +65,16 @@ impl Check {
 
     /// `cv 0.070 over the 0.050 limit`, `coverage 0.989 (≥ 0.980)`.
     pub fn text(&self) -> String {
-        let v = self
-            .value
-            .map_or("not measured".into(), |v| format!("{v:.3}"));
+        // Three decimals, or four where three would read as the limit
+        // itself ("coverage 0.980 under the 0.980 minimum").
+        let v = self.value.map_or("not measured".into(), |v| {
+            let short = format!("{v:.3}");
+            if short == format!("{:.3}", self.limit) && v != self.limit {
+                format!("{v:.4}")
+            } else {
+                short
+            }
+        });
         match (self.pass, self.bound) {
             (true, "max") => format!("{} {v} (≤ {:.3})", self.metric, self.limit),
             (true, _) => format!("{} {v} (≥ {:.3})", self.metric, self.limit),
@@ -189,11 +196,14 @@ mod tests {
         let cv = judge(&metrics(Some(0.0501), Some(0.99), Some(0.01)), &t);
         assert!(!cv.pass());
         assert!(
-            cv.reasons().starts_with("cv 0.050 over"),
+            cv.reasons().starts_with("cv 0.0501 over the 0.050 limit"),
             "{}",
             cv.reasons()
         );
         assert!(!judge(&metrics(Some(0.01), Some(0.979), Some(0.01)), &t).pass());
+        // A miss that rounds to the limit shows the digit that misses.
+        let close = judge(&metrics(Some(0.01), Some(0.9797), Some(0.01)), &t);
+        assert_eq!(close.reasons(), "coverage 0.9797 under the 0.980 minimum");
         assert!(!judge(&metrics(Some(0.01), Some(0.99), Some(0.031)), &t).pass());
     }
 

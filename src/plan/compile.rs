@@ -1,6 +1,6 @@
 //! The compile pipeline, stage by stage: inputs → layout → placed strokes →
 //! rungs → knots and passes → stations → tours → joint paths → timed
-//! trajectory → samples → sealed job. Each stage is one function in a
+//! trajectory → samples → sealed job → verified → its film checked. Each stage is one function in a
 //! module named for the value it returns.
 
 use crate::job::Job;
@@ -8,7 +8,9 @@ use crate::layout;
 
 use super::placed::{lay_out, PlacedStrokes};
 use super::seal::{seal, Planned};
-use super::{inputs, joints, passes, request, rungs, samples, stations, tours, trajectory, verify};
+use super::{
+    film, inputs, joints, passes, request, rungs, samples, stations, tours, trajectory, verify,
+};
 
 pub use super::error::CompileError;
 pub use super::request::{CompileRequest, Source, Tilt, DEFAULT_PERIOD_S, DEFAULT_RUNG_SPACING_M};
@@ -72,13 +74,12 @@ pub fn compile_strokes(
             notes,
         });
         if !req.verify {
-            return Ok(job);
+            return with_film(req, job, strokes);
         }
         let verdict = verify::verify(&job)?;
         if verdict.ok {
             job.summary.verified_max_error_m = Some(verdict.max_error_m);
-            job.seal();
-            return Ok(job);
+            return with_film(req, job, strokes);
         }
         // Slow where the arm fell behind: the move out of stow when the
         // worst error is on a station's first stroke; else the joins into
@@ -136,6 +137,25 @@ pub fn compile_strokes(
             });
         }
     }
+}
+
+/// The job with its film measured (`plan::film`, when `req.film`): the
+/// figures in `summary.film` and a problem per failed bound, resealed.
+fn with_film(
+    req: &CompileRequest,
+    mut job: Job,
+    strokes: &PlacedStrokes,
+) -> Result<Job, CompileError> {
+    if req.film {
+        let owners: Vec<_> = strokes.items.iter().map(|it| it.owner.clone()).collect();
+        let checked = film::check(&job, &owners)?;
+        job.summary
+            .warnings
+            .extend(super::warnings::render_all(&checked.notes));
+        job.summary.film = Some(checked.summary);
+    }
+    job.seal();
+    Ok(job)
 }
 
 /// Job time at which stroke `stroke` starts painting.

@@ -28,6 +28,8 @@ pub enum CompileError {
     Timing(String),
     #[error("verification: {0}")]
     Verify(String),
+    #[error("film check: {0}")]
+    Film(String),
     #[error(
         "the arm cannot follow this job closely enough even at {pace:.0} % of its joint \
          limits: {why}; use a smaller --letter-height, a shorter --period-s or check the \

@@ -1,12 +1,14 @@
 //! Planning: the compile pipeline (`compile`) and its stages, a module per
 //! value: `inputs` → `placed` strokes → `rungs` → `passes` (knots, 001
 //! §2.4, tilt §2.5) → `stations` → `tours` (`order`) → `joints` (with
-//! `leads`) → `trajectory` (the `timing` time law) → `samples` → `seal`.
+//! `leads`) → `trajectory` (the `timing` time law) → `samples` → `seal` → `verify`
+//! (the closed-loop simulator) → `film` (the preview's film check).
 //! `warnings` holds every note a stage makes and renders it.
 
 pub mod chain;
 pub mod compile;
 pub mod error;
+pub mod film;
 pub mod flight;
 pub mod inputs;
 pub mod joints;

@@ -107,6 +107,10 @@ pub struct CompileRequest {
     /// follows it (`plan::verify`); off only where a job is re-planned for
     /// comparison and never written.
     pub verify: bool,
+    /// Measure the written job's film as `basr preview` does and grade a
+    /// failed bound (`plan::film`); off where a job is only compiled to be
+    /// measured by its caller (shape candidates, re-planned comparisons).
+    pub film: bool,
 }
 
 impl CompileRequest {
@@ -125,6 +129,7 @@ impl CompileRequest {
             gun_lag_s: 0.0,
             reach_margin_m: stations::DEFAULT_MARGIN_M,
             verify: true,
+            film: true,
         }
     }
 }

@@ -60,6 +60,8 @@ pub fn seal(p: Planned<'_>) -> Job {
                 Some(d)
             })
             .collect(),
+        // Measured on the sealed job by `plan::film` (compile_strokes).
+        film: None,
     };
     let mut job = Job {
         format: job::FORMAT.into(),

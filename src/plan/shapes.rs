@@ -154,6 +154,9 @@ fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Opt
     let mut req = CompileRequest::message(shape::GLYPH.encode_utf8(&mut [0; 4]));
     req.source = Source::Message(shape::GLYPH.to_string());
     req.robot_description = Some(robot.clone());
+    // Measured below on a raster of its own; its film bounds are counted
+    // by `shortfall`, not as problems.
+    req.film = false;
     let job = compile_shape(&req, imported, b, label).ok()?;
     let opts = Options {
         fit_cells: Some(MEASURE_CELLS),

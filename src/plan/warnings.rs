@@ -124,6 +124,20 @@ pub enum Note {
         film_ratio: f64,
     },
 
+    /// The film the job lays misses one of the preview's bounds
+    /// (`plan::film`, measured with `paint::film` at preview's defaults).
+    Film {
+        /// The bound as the preview words it (`cv 0.051 over the 0.050
+        /// limit`, `paint::verdict::Check::text`).
+        failed: String,
+        /// The metric's name (`cv`, `coverage`, `overspray`).
+        metric: &'static str,
+        /// The job's figure over its limit (value / limit).
+        factor: Option<f64>,
+        /// The item the bound fails worst on, with its own figure.
+        worst: Option<(Owner, f64)>,
+    },
+
     /// The arm comes to rest.
     Stop {
         station: usize,
@@ -184,6 +198,9 @@ impl Note {
                 s => s,
             },
             Note::Slowed { film_ratio, .. } => graded(*film_ratio, FILM_BAND, FILM_HEAVY),
+            // The preview fails this job's film (exit 1): the crew's
+            // verdict must not say READY (docs/planner.md "Film").
+            Note::Film { .. } => Severity::Problem,
         }
     }
 
@@ -203,6 +220,11 @@ impl Note {
             }
             (Note::HeightClamped { .. }, _) => {
                 "Expect paint outside the letter there; larger letters (--letter-height) avoid it."
+            }
+            (Note::Film { .. }, _) => {
+                "Do not paint it as it is: `basr preview` of the job shows where; tell the \
+                 engineer who planned it (larger letters, --letter-height, often paint more \
+                 evenly)."
             }
             (Note::Slowed { .. }, Severity::Notice) => {
                 "It dries a little slower there; check it before opening the lane."
@@ -302,6 +324,24 @@ impl Note {
                     at_m[0], at_m[1]
                 ),
             },
+            Note::Film {
+                failed,
+                metric,
+                factor,
+                worst,
+            } => Warning {
+                kind: "film".into(),
+                severity,
+                stroke: -1,
+                t_s: None,
+                factor: *factor,
+                message: format!(
+                    "the film fails the preview's check: {failed}{}. {todo}",
+                    worst.as_ref().map_or(String::new(), |(owner, v)| format!(
+                        ", worst on {owner} ({metric} {v:.3})"
+                    ))
+                ),
+            },
             Note::Stop {
                 station,
                 t_s,
@@ -398,6 +438,28 @@ mod tests {
         };
         assert_eq!(passes.render().factor, Some(3.0));
         assert_eq!(passes.severity().name(), "info");
+    }
+
+    #[test]
+    fn a_failed_film_bound_is_a_problem_naming_bound_value_and_where() {
+        let film = Note::Film {
+            failed: "cv 0.051 over the 0.050 limit".into(),
+            metric: "cv",
+            factor: Some(1.02),
+            worst: Some((owner(), 0.063)),
+        };
+        assert_eq!(film.severity(), Severity::Problem);
+        let w = film.render();
+        assert_eq!((w.kind.as_str(), w.severity.as_str()), ("film", "problem"));
+        assert_eq!(w.stroke, -1);
+        assert!(
+            w.message.starts_with(
+                "the film fails the preview's check: cv 0.051 over the 0.050 limit, worst on \
+                 letter S of line 1 (cv 0.063). Do not paint it"
+            ),
+            "{}",
+            w.message
+        );
     }
 
     #[test]

@@ -285,6 +285,7 @@ fn sealed(
             bound_ratio: 0.0,
             verified_max_error_m: None,
             truck_moves_m: vec![],
+            film: None,
         },
         outputs: Default::default(),
         sha256: String::new(),

@@ -199,6 +199,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             bound_ratio: 0.0,
             verified_max_error_m: None,
             truck_moves_m: vec![],
+            film: None,
         },
         outputs: Default::default(),
         sha256: String::new(),
