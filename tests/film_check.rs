@@ -181,6 +181,28 @@ fn a_film_that_fails_the_preview_makes_the_job_not_ready() {
     assert_eq!(c["summary"]["film"]["verdict"], "fail");
     let notes = film_warnings(&c);
     assert!(!notes.is_empty());
+    // The cv note says where the heaviest film is and on which stroke.
+    let cv = notes
+        .iter()
+        .find(|w| w["message"].as_str().unwrap().contains(": cv "))
+        .expect("cv fails at 0.5 m");
+    let strokes = c["summary"]["strokes"].as_i64().unwrap();
+    let stroke = cv["stroke"].as_i64().unwrap();
+    assert!((0..strokes).contains(&stroke), "{cv}");
+    assert!(
+        cv["message"]
+            .as_str()
+            .unwrap()
+            .contains("× the target near ("),
+        "{cv}"
+    );
+    assert!(
+        cv["message"]
+            .as_str()
+            .unwrap()
+            .contains(&format!(", stroke {stroke}.")),
+        "{cv}"
+    );
     // The note's factor is the figure over its limit.
     let over = notes
         .iter()

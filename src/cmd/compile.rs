@@ -27,6 +27,11 @@ pub enum TiltArg {
 /// the stations where the truck stops, and one setpoint per control period
 /// for every actuator. Without -o it is written as <MESSAGE>.job.json
 /// (spaces → _) in the current folder. Same input, same bytes.
+///
+/// Every job is verified in the closed-loop simulator and its film measured
+/// as `basr preview` measures it (summary.film): a film that fails the
+/// preview's bounds (cv <= 0.05, coverage >= 0.98, overspray <= 0.03) is a
+/// problem and the verdict reads NOT READY.
 #[derive(clap::Args)]
 #[command(after_help = "\
 Examples:

@@ -71,6 +71,16 @@ pub fn passes(
         for pass in &split {
             let mut kp =
                 knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate).map_err(what)?;
+            let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE;
+            tilt_for_turned_fan(
+                pass,
+                &mut kp,
+                &law,
+                method,
+                [max_tilt, max_tilt_rate],
+                max_turn,
+            )
+            .map_err(what)?;
             u_untilted = [
                 u_untilted[0].min(kp.u_before.0 / 100.0),
                 u_untilted[1].max(kp.u_before.1 / 100.0),
@@ -81,7 +91,6 @@ pub fn passes(
             ];
             // A turned fan sweeps other road: re-pace, and check the turn
             // again at the new speeds.
-            let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE;
             // The tilt, likewise, within what its joint follows (`rate`).
             let tilt_follow = rate::tilt_follow(robot);
             for _ in 0..TURN_TRIES {
@@ -177,6 +186,47 @@ pub fn passes(
         *j = share(job);
     }
     Ok(out)
+}
+
+/// Where the turn limit holds the fan off its rungs (`turn`), choose the
+/// tilt for the tiles the fan sweeps, not for the rungs: the knots again
+/// from the fan's own segments (each knot's width along its limited
+/// direction, about the rung's middle), then paced over the stroke's rungs.
+///
+/// The quadrilateral tilt (001 §2.5) balances the paint of a tile whose
+/// rung pivots (one end advancing faster than the other). A loop's short
+/// side (the 8's, 6's and 9's, between two 45° seams) has rungs that turn a
+/// quarter turn within ≈ 0.25 m, so the tilt was at its limit all along
+/// it, while the turn-limited fan turned less than half of that and hardly
+/// pivots. The needless tilt lifted the nozzle (the tilt four-bar's rise
+/// over the vertical joint's lowest height), so the fan painted 29 % wider
+/// than the stroke there, and it laid the film unevenly across the fan.
+fn tilt_for_turned_fan(
+    pass: &[Rung],
+    kp: &mut knots::KnotPlan,
+    law: &PaintLaw,
+    method: TiltMethod,
+    [max_tilt, max_tilt_rate]: [f64; 2],
+    max_turn_rps: f64,
+) -> Result<(), PlanError> {
+    // Only where the fan already paints wider than some rung (a narrow
+    // stroke), where a needless tilt costs paint outside the stroke.
+    if kp.clamped.is_empty() {
+        return Ok(());
+    }
+    let mut turned = kp.knots.clone();
+    if !super::turn::limit_turn_rate(&mut turned, max_turn_rps) {
+        return Ok(());
+    }
+    let fans = super::turn::fan_rungs(&turned);
+    let mut re = knots::knots_within(&fans, law, method, max_tilt, max_tilt_rate)?;
+    knots::pace(pass, &mut re.knots, law.k_m2ps);
+    // U (001 eq. 2.7–2.8) of the stroke's own cells at the tilts now used.
+    let betas: Vec<f64> = re.knots.iter().map(|k| k.tilt_rad).collect();
+    kp.u_after = super::tilt::u_range(&super::tilt::u_ratios(pass, &betas, law.fan_angle_rad));
+    kp.knots = re.knots;
+    kp.clamped = re.clamped;
+    Ok(())
 }
 
 /// Road area (m²) a pass's fan lays paint on outside its stroke, where the
@@ -396,6 +446,71 @@ mod tests {
     use super::*;
     use kurbo::{Point, Vec2};
     use proptest::prelude::*;
+
+    #[test]
+    fn a_loop_side_is_tilted_for_the_fan_that_turns_not_for_its_rungs() {
+        // The 8's lower loop side at 8 ft: a band 97.6 mm wide between two
+        // 45° seams, its outer edge 0.341 m long and its inner 0.147 m, in
+        // 18 equal arc-length rungs. They turn a quarter turn; the fan, held
+        // to the yaw joint's rate, turns less than half of that.
+        let robot = AnyRobot::load_or_default(None).unwrap();
+        let law = paint_law(&robot);
+        let tl = robot.tilt_limit().unwrap();
+        let limits = [
+            tl.max.min(-tl.min) - TILT_INSET_RAD,
+            tl.max_vel * super::super::turn::TURN_SHARE,
+        ];
+        let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::super::turn::TURN_SHARE;
+        let n = 18;
+        let rungs: Vec<Rung> = (0..=n)
+            .map(|k| {
+                let f = k as f64 / n as f64;
+                Rung {
+                    left: Point::new(0.1952, 0.927 - 0.341 * f),
+                    right: Point::new(0.0976, 0.830 - 0.147 * f),
+                }
+            })
+            .collect();
+        let method = TiltMethod::Quadrilateral;
+        let before = knots::knots_within(&rungs, &law, method, limits[0], limits[1]).unwrap();
+        let mut after = before.clone();
+        tilt_for_turned_fan(&rungs, &mut after, &law, method, limits, max_turn).unwrap();
+        let tilt = |kp: &knots::KnotPlan| {
+            kp.knots.iter().map(|k| k.tilt_rad.abs()).sum::<f64>() / kp.knots.len() as f64
+        };
+        let wide = |kp: &knots::KnotPlan| {
+            kp.knots
+                .iter()
+                .map(|k| k.fan_width_m / k.width_m)
+                .fold(0.0, f64::max)
+        };
+        // Measured: mean |β| 0.257 → 0.130 rad; the widest fan over its
+        // rung 1.086 → 1.008 (before the tilt four-bar's lift, which grows
+        // with |β|).
+        assert!(
+            tilt(&after) < 0.6 * tilt(&before),
+            "{} {}",
+            tilt(&after),
+            tilt(&before)
+        );
+        assert!(
+            wide(&before) > 1.05 && wide(&after) < 1.03,
+            "{} {}",
+            wide(&before),
+            wide(&after)
+        );
+        // Rungs the fan follows keep their knots.
+        let straight: Vec<Rung> = (0..=n)
+            .map(|k| Rung {
+                left: Point::new(0.2, 0.02 * k as f64),
+                right: Point::new(0.1, 0.02 * k as f64),
+            })
+            .collect();
+        let plain = knots::knots_within(&straight, &law, method, limits[0], limits[1]).unwrap();
+        let mut same = plain.clone();
+        tilt_for_turned_fan(&straight, &mut same, &law, method, limits, max_turn).unwrap();
+        assert_eq!(same, plain);
+    }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(128))]

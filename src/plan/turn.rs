@@ -15,6 +15,7 @@
 use crate::robot::kinematics::wrap_pi;
 
 use super::knots::{Knot, MIN_TIP_STEP_M};
+use super::rungs::Rung;
 
 /// Share of the yaw joint's speed limit the fan's turn may take while
 /// painting. assumed: the base joint also turns the fan in the road frame
@@ -71,6 +72,22 @@ pub fn limit_turn_rate(ks: &mut [Knot], max_rate_rps: f64) -> bool {
         k.yaw_rad = wrap_pi(yaw);
     }
     true
+}
+
+/// The segments the fans of `ks` paint across: each knot's rung width
+/// along its fan direction, about the rung's middle (its left end towards
+/// −ψ, as a rung's). Where the turn limit left the fan off its rung, these
+/// are the tiles the fan really sweeps.
+pub fn fan_rungs(ks: &[Knot]) -> Vec<Rung> {
+    ks.iter()
+        .map(|k| {
+            let half = 0.5 * k.width_m * kurbo::Vec2::from_angle(k.yaw_rad);
+            Rung {
+                left: k.mid - half,
+                right: k.mid + half,
+            }
+        })
+        .collect()
 }
 
 /// Keep every step `values[i] − values[i − 1]` within ±`step[i − 1]`,

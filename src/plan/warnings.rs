@@ -82,6 +82,16 @@ pub enum StopWhy {
     },
 }
 
+/// The heaviest film on an item: where, how heavy, and the stroke painted
+/// nearest it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HotSpot {
+    pub at_m: [f64; 2],
+    /// Film there / target film.
+    pub film_ratio: f64,
+    pub stroke: Option<usize>,
+}
+
 /// One note of the planner.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Note {
@@ -136,6 +146,8 @@ pub enum Note {
         factor: Option<f64>,
         /// The item the bound fails worst on, with its own figure.
         worst: Option<(Owner, f64)>,
+        /// For cv: the heaviest film on that item.
+        hot: Option<HotSpot>,
     },
 
     /// The arm comes to rest.
@@ -223,8 +235,8 @@ impl Note {
             }
             (Note::Film { .. }, _) => {
                 "Do not paint it as it is: `basr preview` of the job shows where; tell the \
-                 engineer who planned it (larger letters, --letter-height, often paint more \
-                 evenly)."
+                 engineer who planned it (a larger --letter-height or --shape-height-m often \
+                 paints more evenly)."
             }
             (Note::Slowed { .. }, Severity::Notice) => {
                 "It dries a little slower there; check it before opening the lane."
@@ -329,16 +341,24 @@ impl Note {
                 metric,
                 factor,
                 worst,
+                hot,
             } => Warning {
                 kind: "film".into(),
                 severity,
-                stroke: -1,
+                stroke: hot.as_ref().and_then(|h| h.stroke).map_or(-1, |s| s as i64),
                 t_s: None,
                 factor: *factor,
                 message: format!(
-                    "the film fails the preview's check: {failed}{}. {todo}",
+                    "the film fails the preview's check: {failed}{}{}. {todo}",
                     worst.as_ref().map_or(String::new(), |(owner, v)| format!(
                         ", worst on {owner} ({metric} {v:.3})"
+                    )),
+                    hot.as_ref().map_or(String::new(), |h| format!(
+                        "; its heaviest film is {:.2}× the target near ({:.2}, {:.2}) m{}",
+                        h.film_ratio,
+                        h.at_m[0],
+                        h.at_m[1],
+                        h.stroke.map_or(String::new(), |s| format!(", stroke {s}"))
                     ))
                 ),
             },
@@ -447,15 +467,21 @@ mod tests {
             metric: "cv",
             factor: Some(1.02),
             worst: Some((owner(), 0.063)),
+            hot: Some(HotSpot {
+                at_m: [0.123, -1.5],
+                film_ratio: 1.625,
+                stroke: Some(7),
+            }),
         };
         assert_eq!(film.severity(), Severity::Problem);
         let w = film.render();
         assert_eq!((w.kind.as_str(), w.severity.as_str()), ("film", "problem"));
-        assert_eq!(w.stroke, -1);
+        assert_eq!(w.stroke, 7);
         assert!(
             w.message.starts_with(
                 "the film fails the preview's check: cv 0.051 over the 0.050 limit, worst on \
-                 letter S of line 1 (cv 0.063). Do not paint it"
+                 letter S of line 1 (cv 0.063); its heaviest film is 1.62× the target near \
+                 (0.12, -1.50) m, stroke 7. Do not paint it"
             ),
             "{}",
             w.message
