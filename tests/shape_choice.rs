@@ -68,15 +68,18 @@ fn each_test_shape_keeps_the_decomposition_measured_best_before() {
             6,
             0.004,
         ),
-        // Since its lobes are cut off (the head's barbs), the arrow keeps
-        // them: 8 strokes, cv 0.016 (with the bowls' matched rungs the
-        // search reaches them before the 0° cells, cv 0.038).
+        // The arrow's 0° cells along their own axes paint within the
+        // search's cv 0.04 (0.038, no problem), so the search stops there.
+        // With matched rungs on its barbs' tips they slowed (the tilt asked
+        // for outran its joint) and the search went on to the lobes (cv
+        // 0.016); those barbs now keep equal arc-length rungs
+        // (`pairing::MAX_FOLLOW`), as before the bowls' matched rungs.
         (
             "arrow.dxf",
             Size::FileUnits,
-            "2 lobes and the core, each swept along its own axes",
-            8,
-            0.016,
+            "boustrophedon cells swept at 0.0°, each cell along its own axes",
+            6,
+            0.038,
         ),
         // The shield's ring in one pass paints within cv 0.04 (0.036), so
         // the concentric passes (0.027) are not measured: they get a round
@@ -206,4 +209,32 @@ fn the_shield_at_1_2_m_paints_evenly() {
     // paint without a slowed spot and more evenly (cv 0.034) than the
     // concentric passes (0.054); either beats the one-pass ring.
     assert_ne!(kept, "ring-following bands", "cv {cv}");
+}
+
+/// The arrow 3 m tall: matched rungs (`plan::pairing`) on its barbs' tips
+/// asked the tilt to swing 5× faster than its joint follows and slowed the
+/// nozzle to 2.7–3.2× film, so the cells along their own axes carried two
+/// problems and a 90° sweep with a slowed point (1.84×) was kept, NOT
+/// READY. Those barbs now keep equal arc-length rungs
+/// (`pairing::MAX_FOLLOW`), and a decomposition with no problem is kept.
+#[test]
+fn the_arrow_at_3_m_keeps_a_decomposition_with_no_problem() {
+    let robot = AnyRobot::load_or_default(None).expect("embedded robot");
+    let imported =
+        import_measured(&data("arrow.dxf"), Size::HeightM(3.0), &robot).expect("imports");
+    let kept = imported
+        .notes
+        .iter()
+        .find(|l| l.trim_start().starts_with("kept:"))
+        .expect("a kept line");
+    assert!(kept.ends_with(" 0 problems"), "{kept}");
+    assert!(kept_cv(&imported.notes) <= 0.06, "{kept}");
+    assert!(
+        !imported
+            .notes
+            .iter()
+            .any(|l| l.starts_with(basr::plan::shapes::UNEVEN)),
+        "{:#?}",
+        imported.notes
+    );
 }

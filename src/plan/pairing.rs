@@ -22,6 +22,10 @@ use kurbo::{Point, Vec2};
 use crate::font::Stroke;
 use crate::robot::kinematics::wrap_pi;
 
+use super::knots::TiltMethod;
+use super::rungs::Rung;
+use super::tilt;
+
 /// What the fan can turn while painting, for choosing rungs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TurnBudget {
@@ -32,7 +36,42 @@ pub struct TurnBudget {
     /// Turn rate the fan may take while painting (rad/s, `turn::TURN_SHARE`
     /// of the yaw joint's limit).
     pub max_rate_rps: f64,
+    /// The nozzle height's follow; None for a kind without a vertical joint.
+    pub height: Option<HeightFollow>,
+    /// The tilt's follow; None for a kind that paints untilted.
+    pub tilt: Option<TiltFollow>,
 }
+
+/// How fast the nozzle height may change while painting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightFollow {
+    /// Nozzle height per metre of fan width: the height law's slope (001
+    /// eq. 2.5 for the geometric law, c1 for a calibrated one).
+    pub dz_dw: f64,
+    /// Speed (m/s) the height may take (`rate::height_follow`).
+    pub max_speed_mps: f64,
+}
+
+/// How fast the quadrilateral tilt may change while painting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TiltFollow {
+    /// Full fan angle α (001 eq. 2.17).
+    pub fan_angle_rad: f64,
+    /// Largest tilt either way.
+    pub max_tilt_rad: f64,
+    /// Speed (rad/s) the tilt may take (`rate::tilt_follow`).
+    pub max_speed_rps: f64,
+}
+
+/// Matched rungs are kept unless they ask the nozzle height or the tilt
+/// to change faster than this many times what its joint follows at film
+/// speed, and faster than equal arc-length rungs would. assumed, measured:
+/// the rate limits (`knots::knots_within`, `rate`) spread what a bowl's
+/// quarter asks (B, P, R, 3, D, 5 at 8 ft: 1.8–2.2 × the tilt's follow)
+/// with the film within 1.01×; the arrow's barb tips at 3 m asked 5.1×
+/// and slowed to 2.7–3.2× film (base rotation and tilt acceleration), the
+/// arrow's point 5.1 × the height's follow (equal arc-length: 3.8×).
+pub const MAX_FOLLOW: f64 = 3.0;
 
 impl TurnBudget {
     /// Fan turn rate (rad/s) of a step that turns `dpsi` over `ds` of
@@ -84,6 +123,47 @@ pub fn worst_rate(rungs: &[(Point, Point)], budget: &TurnBudget) -> f64 {
             budget.rate(dpsi, ds, wid)
         })
         .fold(0.0, f64::max)
+}
+
+/// How many times what its joint follows the nozzle height and the
+/// quadrilateral tilt (001 eq. 2.13–2.20) must change, the larger of the
+/// two, along `rungs` painted at the film law's speed (001 eq. 2.6); 0
+/// where neither is limited. A width under the fan's narrowest band counts
+/// as that band (the nozzle stays at its lowest there).
+pub fn follow_demand(rungs: &[(Point, Point)], budget: &TurnBudget) -> f64 {
+    let width = |r: &(Point, Point)| (r.1 - r.0).hypot().max(budget.min_width_m);
+    let step_s: Vec<f64> = rungs
+        .windows(2)
+        .map(|w| {
+            let ds = (w[1].0.midpoint(w[1].1) - w[0].0.midpoint(w[0].1)).hypot();
+            (ds * 0.5 * (width(&w[0]) + width(&w[1])) / budget.k_m2ps).max(1e-9)
+        })
+        .collect();
+    let share = |values: &[f64], limit: f64| {
+        values
+            .windows(2)
+            .zip(&step_s)
+            .map(|(v, dt)| (v[1] - v[0]).abs() / dt / limit)
+            .fold(0.0, f64::max)
+    };
+    let height = budget.height.map_or(0.0, |h| {
+        let z: Vec<f64> = rungs.iter().map(|r| h.dz_dw * width(r)).collect();
+        share(&z, h.max_speed_mps)
+    });
+    let tilt = budget.tilt.map_or(0.0, |t| {
+        let rs: Vec<Rung> = rungs
+            .iter()
+            .map(|&(left, right)| Rung { left, right })
+            .collect();
+        let beta = tilt::tilts(
+            &rs,
+            TiltMethod::Quadrilateral,
+            t.fan_angle_rad,
+            t.max_tilt_rad,
+        );
+        share(&beta, t.max_speed_rps)
+    });
+    height.max(tilt)
 }
 
 /// Rungs of `stroke` at most `spacing_m` apart along either edge, chosen by
@@ -229,6 +309,8 @@ mod tests {
         k_m2ps: 0.4e-3 / 60.0 * 0.9 / 0.38e-3,
         min_width_m: 0.097,
         max_rate_rps: 0.85 * 0.5235987755982988,
+        height: None,
+        tilt: None,
     };
 
     /// P's upper bowl quarter at 8 ft (a grid unit of 2.4384 m / 25).
@@ -266,6 +348,41 @@ mod tests {
         assert!(before > 0.15 && now < 0.8 * before, "{now} {before}");
         // And the fan is asked to turn less fast than before.
         assert!(worst_rate(&m, &BUDGET) < worst_rate(&equal, &BUDGET));
+    }
+
+    /// BASR's budget with the height's and the tilt's follow (SPEC §4:
+    /// 15°/s tilt joint under its 0.11 m/s ball nut, × 0.8; the vertical
+    /// joint's speed × 0.8).
+    fn followed() -> TurnBudget {
+        let robot = crate::robot::AnyRobot::load_or_default(None).unwrap();
+        crate::plan::passes::turn_budget(&robot)
+    }
+
+    #[test]
+    fn a_bowl_quarter_keeps_its_matched_rungs_within_the_follow() {
+        let b = followed();
+        assert!(b.height.is_some() && b.tilt.is_some());
+        let st = p_quarter();
+        let m = matched_rungs(&st, 0.02, &b).unwrap();
+        let ask = follow_demand(&m, &b);
+        // Over the follow, but within what the rate limits spread.
+        assert!(ask > 1.0 && ask <= MAX_FOLLOW, "{ask}");
+    }
+
+    #[test]
+    fn the_demand_grows_with_a_faster_tilt_and_is_zero_unlimited() {
+        let b = followed();
+        let st = p_quarter();
+        let m = matched_rungs(&st, 0.02, &b).unwrap();
+        let slow = TurnBudget {
+            tilt: b.tilt.map(|t| TiltFollow {
+                max_speed_rps: 0.5 * t.max_speed_rps,
+                ..t
+            }),
+            ..b
+        };
+        assert!(follow_demand(&m, &slow) > 1.9 * follow_demand(&m, &b) - 1e-9);
+        assert_eq!(follow_demand(&m, &BUDGET), 0.0);
     }
 
     #[test]

@@ -49,10 +49,7 @@ pub fn passes(
     method: TiltMethod,
 ) -> Result<Passes, CompileError> {
     let law = paint_law(robot);
-    // A kind that cannot lean the fan (the articulated arm) paints untilted.
-    let max_tilt = robot
-        .tilt_limit()
-        .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0));
+    let max_tilt = max_tilt_rad(robot);
     let max_tilt_rate = robot
         .tilt_limit()
         .map_or(f64::INFINITY, |tl| tl.max_vel * super::turn::TURN_SHARE);
@@ -259,15 +256,43 @@ pub fn outside_area(ks: &[Knot]) -> (f64, f64) {
     (outside, painted)
 }
 
+/// The largest tilt either way the knots may take: the tilt joint's range
+/// less `TILT_INSET_RAD`; 0 for a kind that cannot lean the fan (the
+/// articulated arm paints untilted).
+fn max_tilt_rad(robot: &AnyRobot) -> f64 {
+    robot
+        .tilt_limit()
+        .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0))
+}
+
 /// What the robot's fan may turn while painting, for choosing rungs: the
 /// share of the fan joint's speed limit the turn limit allows
-/// (`turn::TURN_SHARE`) at the film law's speeds.
+/// (`turn::TURN_SHARE`) at the film law's speeds, and what the height and
+/// the tilt may take (`rate`), the tilt's judged for the quadrilateral
+/// method (the default; the others tilt no more).
 pub fn turn_budget(robot: &AnyRobot) -> super::pairing::TurnBudget {
+    use super::pairing::{HeightFollow, TiltFollow, TurnBudget};
     let law = paint_law(robot);
-    super::pairing::TurnBudget {
+    let dz_dw = match law.height {
+        HeightLaw::Geometric => law.height_for_width(1.0),
+        HeightLaw::Linear { c1, .. } => c1,
+    };
+    let max_tilt_rad = max_tilt_rad(robot);
+    TurnBudget {
         k_m2ps: law.k_m2ps,
         min_width_m: law.width_at_height(law.min_height_m),
         max_rate_rps: robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE,
+        height: rate::height_follow(robot).map(|[v, _]| HeightFollow {
+            dz_dw,
+            max_speed_mps: v,
+        }),
+        tilt: rate::tilt_follow(robot)
+            .filter(|_| max_tilt_rad > 0.0)
+            .map(|[v, _]| TiltFollow {
+                fan_angle_rad: law.fan_angle_rad,
+                max_tilt_rad,
+                max_speed_rps: v,
+            }),
     }
 }
 

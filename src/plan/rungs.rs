@@ -40,7 +40,9 @@ pub struct StrokeRungs {
 /// Subdivide every stroke so consecutive rungs are at most `spacing_m` apart
 /// along its longer edge (at least one step). With a `budget`, a stroke
 /// whose equal arc-length rungs would turn the fan faster than it can at
-/// painting speed gets matched rungs instead (`pairing`).
+/// painting speed gets matched rungs instead (`pairing`), unless those ask
+/// the height or the tilt to change faster than their joints follow
+/// (`pairing::MAX_FOLLOW`).
 pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget>) -> StrokeRungs {
     StrokeRungs {
         rungs: strokes
@@ -54,7 +56,14 @@ pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget
                 if let Some(b) = budget {
                     if pairing::worst_rate(&pairs, b) > b.max_rate_rps {
                         if let Some(m) = pairing::matched_rungs(st, spacing_m, b) {
-                            pairs = m;
+                            // Kept unless the height or the tilt they ask
+                            // for outruns its joint (the arrow's tips at 3 m).
+                            let ask = pairing::follow_demand(&m, b);
+                            if ask <= pairing::MAX_FOLLOW
+                                || ask <= pairing::follow_demand(&pairs, b)
+                            {
+                                pairs = m;
+                            }
                         }
                     }
                 }
