@@ -264,8 +264,8 @@ mod tests {
             .sum()
     }
 
-    /// 6, 8 and 9 moved their loops' seams (flat-capped corners share the
-    /// straight sides, fonts/basr.toml): the outline must stay the seed's.
+    /// 6, 8 and 9 moved their loops' seams (square-capped corners and
+    /// rectangular sides, fonts/basr.toml): the outline must stay the seed's.
     /// The seed's areas (main 15f6282, 32 000 points per edge, extrapolated
     /// to the curve) are the figures to keep; any moved edge changes them.
     #[test]
