@@ -246,4 +246,41 @@ mod tests {
         assert_eq!(f.name, EMBEDDED_NAME);
         assert_eq!(f.sha256.len(), 64);
     }
+
+    /// A glyph's painted area (grid units²): its strokes never overlap, so it
+    /// is the sum of their outlines' shoelace areas, `k` points per edge.
+    fn glyph_area(f: &Font, ch: char, k: usize) -> f64 {
+        let shoelace = |p: &[Point]| {
+            let n = p.len();
+            0.5 * (0..n)
+                .map(|i| p[i].to_vec2().cross(p[(i + 1) % n].to_vec2()))
+                .sum::<f64>()
+        };
+        f.glyph(ch)
+            .unwrap()
+            .strokes
+            .iter()
+            .map(|s| shoelace(&s.outline(k)).abs())
+            .sum()
+    }
+
+    /// 6, 8 and 9 moved their loops' seams (square-capped corners and
+    /// rectangular sides, fonts/basr.toml): the outline must stay the seed's.
+    /// The seed's areas (main 15f6282, 32 000 points per edge, extrapolated
+    /// to the curve) are the figures to keep; any moved edge changes them.
+    #[test]
+    fn repartitioned_glyphs_keep_the_seed_outline() {
+        let f = Font::embedded();
+        for (ch, seed) in [
+            ('6', 61.712_685_03),
+            ('8', 64.925_870_93),
+            ('9', 61.712_685_03),
+        ] {
+            let now = glyph_area(f, ch, 8000);
+            assert!(
+                ((now - seed) / seed).abs() < 1e-6,
+                "{ch}: area {now} differs from the seed's {seed}"
+            );
+        }
+    }
 }
