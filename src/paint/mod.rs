@@ -5,9 +5,11 @@
 //! the grid, `metrics` measures the film against them, `verdict` judges those figures against
 //! documented thresholds, `film` is the stage that does all three for a job
 //! (preview and compile both call it); `preview` ties them to a job and
-//! draws the SVG.
+//! `drawing` draws its SVG.
 //! The simulator reuses `deposit` on its own trace (same pose columns).
 
+pub mod captions;
+pub mod drawing;
 pub mod film;
 pub mod mask;
 pub mod metrics;
