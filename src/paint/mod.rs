@@ -1,14 +1,17 @@
 //! Paint: the spray deposition model, the film raster and its metrics.
 //!
 //! `spray` says where a nozzle pose lays paint; `raster` integrates it along
-//! timed poses into a film-thickness grid; `metrics` measures the film against
-//! the letters' true outlines, `verdict` judges those figures against
+//! timed poses into a film-thickness grid; `mask` lays the letters' true outlines on
+//! the grid, `metrics` measures the film against them, `verdict` judges those figures against
 //! documented thresholds, `film` is the stage that does all three for a job
 //! (preview and compile both call it); `preview` ties them to a job and
-//! draws the SVG.
+//! `drawing` draws its SVG.
 //! The simulator reuses `deposit` on its own trace (same pose columns).
 
+pub mod captions;
+pub mod drawing;
 pub mod film;
+pub mod mask;
 pub mod metrics;
 pub mod preview;
 pub mod raster;
