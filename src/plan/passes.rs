@@ -53,6 +53,10 @@ pub fn passes(
     let max_tilt_rate = robot
         .tilt_limit()
         .map_or(f64::INFINITY, |tl| tl.max_vel * super::turn::TURN_SHARE);
+    let max_turn = max_turn_rps(robot);
+    // The tilt and the height within what their joints follow (`rate`).
+    let tilt_follow = rate::tilt_follow(robot);
+    let height_follow = rate::height_follow(robot);
     let mut out = Passes::default();
     let mut painted_m2 = 0.0;
     let mut outside = vec![];
@@ -71,7 +75,6 @@ pub fn passes(
         for pass in &split {
             let mut kp =
                 knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate).map_err(what)?;
-            let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE;
             tilt_for_turned_fan(
                 pass,
                 &mut kp,
@@ -91,8 +94,7 @@ pub fn passes(
             ];
             // A turned fan sweeps other road: re-pace, and check the turn
             // again at the new speeds.
-            // The tilt, likewise, within what its joint follows (`rate`).
-            let tilt_follow = rate::tilt_follow(robot);
+            // The tilt, likewise, within what its joint follows.
             for _ in 0..TURN_TRIES {
                 let turned = super::turn::limit_turn_rate(&mut kp.knots, max_turn);
                 let tilted = tilt_follow
@@ -107,8 +109,8 @@ pub fn passes(
                 None => vec![],
             };
             // The height, too, within what the vertical joint follows.
-            let lifted = rate::height_follow(robot)
-                .is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
+            let lifted =
+                height_follow.is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
             if !raised.is_empty() || lifted {
                 // Wider footprints sweep more road: re-pace the pass.
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
@@ -265,6 +267,12 @@ fn max_tilt_rad(robot: &AnyRobot) -> f64 {
         .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0))
 }
 
+/// Turn rate (rad/s) the fan may take while painting: `turn::TURN_SHARE`
+/// of the fan joint's speed limit.
+fn max_turn_rps(robot: &AnyRobot) -> f64 {
+    robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE
+}
+
 /// What the robot's fan may turn while painting, for choosing rungs: the
 /// share of the fan joint's speed limit the turn limit allows
 /// (`turn::TURN_SHARE`) at the film law's speeds, and what the height and
@@ -281,7 +289,7 @@ pub fn turn_budget(robot: &AnyRobot) -> super::pairing::TurnBudget {
     TurnBudget {
         k_m2ps: law.k_m2ps,
         min_width_m: law.width_at_height(law.min_height_m),
-        max_rate_rps: robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE,
+        max_rate_rps: max_turn_rps(robot),
         height: rate::height_follow(robot).map(|[v, _]| HeightFollow {
             dz_dw,
             max_speed_mps: v,
@@ -457,10 +465,10 @@ mod tests {
         let law = paint_law(&robot);
         let tl = robot.tilt_limit().unwrap();
         let limits = [
-            tl.max.min(-tl.min) - TILT_INSET_RAD,
+            max_tilt_rad(&robot),
             tl.max_vel * super::super::turn::TURN_SHARE,
         ];
-        let max_turn = robot.limits()[robot.fan_joint()].max_vel * super::super::turn::TURN_SHARE;
+        let max_turn = max_turn_rps(&robot);
         let n = 18;
         let rungs: Vec<Rung> = (0..=n)
             .map(|k| {
