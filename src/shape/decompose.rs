@@ -501,8 +501,12 @@ mod tests {
     /// Strokes tile the region: their areas plus what the tips leave bare
     /// add up to the region, no rung is wider than a pass, none overlap.
     fn assert_tiles(regions: &[Region]) {
+        let d = decompose(regions, &bands(), "test").expect("decomposes");
+        assert_decomposition_tiles(regions, &d);
+    }
+
+    fn assert_decomposition_tiles(regions: &[Region], d: &Decomposition) {
         let lim = bands();
-        let d = decompose(regions, &lim, "test").expect("decomposes");
         let area: f64 = regions.iter().map(Region::area).sum();
         let strokes: f64 = d.strokes.iter().map(|s| signed_area(&s.outline(400))).sum();
         let bare: f64 = d.narrow.iter().map(|n| n.unpainted_m2).sum::<f64>()
@@ -589,6 +593,46 @@ mod tests {
         let d = decompose(&[r], &bands(), "test").expect("decomposes");
         assert!(matches!(d.regions[0].chosen.method, Method::Ring { .. }));
         assert_eq!(d.strokes.len(), 4);
+    }
+
+    /// A figure eight: two loops pinched at a waist, a counter in each.
+    /// The outline's two reflex corners bound the loops, which once made
+    /// them "lobes" cut off without their counters: that candidate painted
+    /// both counters over (and the preview, measuring against the strokes,
+    /// called it even). Every candidate must keep them.
+    #[test]
+    fn every_candidate_of_a_figure_eight_keeps_its_counters() {
+        let p = |x: f64, y: f64| Point::new(0.25 * x, 0.25 * y);
+        let outer: Vec<Point> = [
+            (0.5, 0.0),
+            (1.5, 0.0),
+            (2.0, 0.5),
+            (2.0, 1.5),
+            (1.8, 2.0),
+            (2.0, 2.5),
+            (2.0, 3.5),
+            (1.5, 4.0),
+            (0.5, 4.0),
+            (0.0, 3.5),
+            (0.0, 2.5),
+            (0.2, 2.0),
+            (0.0, 1.5),
+            (0.0, 0.5),
+        ]
+        .iter()
+        .map(|&(x, y)| p(x, y))
+        .collect();
+        // Clockwise counters 0.2 m square, 0.15 m of band around them.
+        let counter = |y0: f64| vec![p(0.6, y0), p(0.6, y0 + 0.8), p(1.4, y0 + 0.8), p(1.4, y0)];
+        let r = Region {
+            outer,
+            holes: vec![counter(0.6), counter(2.6)],
+        };
+        let all = candidates(std::slice::from_ref(&r), &bands(), "test").expect("decomposes");
+        assert!(all.len() > 1);
+        for d in &all {
+            assert_decomposition_tiles(std::slice::from_ref(&r), d);
+        }
     }
 
     proptest! {

@@ -20,7 +20,8 @@ const STRAIGHT_SIN: f64 = 0.01;
 const MIN_LOBE_FRACTION: f64 = 0.02;
 
 /// The lobes and the core of `r` (lobes first, core last; all without
-/// holes but the core, counter-clockwise) and each lobe's direction from
+/// holes but the core, counter-clockwise; a run around a hole is not a
+/// lobe, so every hole stays in the core) and each lobe's direction from
 /// its chord to its tip (rad, square to the chord), or `None` when fewer than two
 /// lobes are cut off (the region is then better cut by the other methods).
 /// A lobe is the outline's run from one reflex corner to the next with
@@ -58,6 +59,7 @@ pub fn pieces(r: &Region, min_chord: f64) -> Option<(Vec<Region>, Vec<f64>)> {
             || signed_area(&lobe) < MIN_LOBE_FRACTION * area
             || !convex(&lobe)
             || !inside(r, chord, (a, b))
+            || holds_a_hole(r, &lobe)
         {
             continue;
         }
@@ -142,6 +144,16 @@ fn inside(r: &Region, chord: (Point, Point), ends: (usize, usize)) -> bool {
     r.contours().map(|c| winding(c, mid)).sum::<i32>() != 0
 }
 
+/// A hole of `r` lies inside `lobe`. The chord crosses no hole's edge
+/// (`inside`), so a hole is wholly in the lobe or wholly out of it: one
+/// vertex tells. Cutting such a lobe off as a solid piece would paint its
+/// hole over (an 8's two loops are two lobes with a counter each).
+fn holds_a_hole(r: &Region, lobe: &[Point]) -> bool {
+    r.holes
+        .iter()
+        .any(|h| h.first().is_some_and(|&q| winding(lobe, q) != 0))
+}
+
 /// Winding number of the closed polygon `c` about `q`.
 fn winding(c: &[Point], q: Point) -> i32 {
     let m = c.len();
@@ -179,6 +191,62 @@ mod tests {
         assert_eq!(pieces[5].outer.len(), 5);
         let sum: f64 = pieces.iter().map(Region::area).sum();
         assert!((sum - r.area()).abs() < 1e-9 * r.area());
+    }
+
+    /// An 8: two rings joined at a waist. The outline's two reflex corners
+    /// bound two convex runs (the loops), but each holds a counter, so
+    /// neither is a lobe, and no counter is painted over.
+    #[test]
+    fn loops_around_holes_are_not_lobes() {
+        let square = |x0: f64, y0: f64, s: f64| {
+            vec![
+                Point::new(x0, y0),
+                Point::new(x0 + s, y0),
+                Point::new(x0 + s, y0 + s),
+                Point::new(x0, y0 + s),
+            ]
+        };
+        let hole = |x0: f64, y0: f64, s: f64| {
+            let mut h = square(x0, y0, s);
+            h.reverse();
+            h
+        };
+        // Octagon-ish loops: a lower loop 0..2 and an upper 0..2 above it,
+        // pinched to 1.6 wide at the waist y = 2.
+        let outer = vec![
+            Point::new(0.5, 0.0),
+            Point::new(1.5, 0.0),
+            Point::new(2.0, 0.5),
+            Point::new(2.0, 1.5),
+            Point::new(1.8, 2.0),
+            Point::new(2.0, 2.5),
+            Point::new(2.0, 3.5),
+            Point::new(1.5, 4.0),
+            Point::new(0.5, 4.0),
+            Point::new(0.0, 3.5),
+            Point::new(0.0, 2.5),
+            Point::new(0.2, 2.0),
+            Point::new(0.0, 1.5),
+            Point::new(0.0, 0.5),
+        ];
+        let solid = Region {
+            outer: outer.clone(),
+            holes: vec![],
+        };
+        // Without counters the loops are lobes (the test means something).
+        assert!(pieces(&solid, 0.1).is_some());
+        let eight = Region {
+            outer,
+            holes: vec![hole(0.6, 0.6, 0.8), hole(0.6, 2.6, 0.8)],
+        };
+        assert!(pieces(&eight, 0.1).is_none());
+        // One counter: the loop that holds it is not cut off, so with a
+        // single lobe left none are.
+        let six = Region {
+            outer: eight.outer.clone(),
+            holes: vec![hole(0.6, 0.6, 0.8)],
+        };
+        assert!(pieces(&six, 0.1).is_none());
     }
 
     #[test]
