@@ -99,9 +99,10 @@ fn listing_counts_and_ranges() {
         "{err}"
     );
     // No glyph is thinner than the font's 1-unit weight (the 8 was 0.67),
-    // but where the 8's domes end, 0.046 units below their apexes, on a
-    // 0.52-unit chord (fonts/basr.toml); `the_eights_thin_rungs_are_its_apexes`
-    // checks that those are its only thin rungs.
+    // but where the 6's, 8's and 9's domes end, 0.046 units below their
+    // apexes, on a 0.52-unit chord (fonts/basr.toml);
+    // `the_loops_thin_rungs_are_their_apexes` checks that those are their
+    // only thin rungs.
     for line in err.lines().skip(1) {
         let thinnest: f64 = line
             .split("rungs ")
@@ -109,60 +110,68 @@ fn listing_counts_and_ranges() {
             .and_then(|r| r.split(['–', ' ']).next())
             .and_then(|v| v.parse().ok())
             .unwrap_or_else(|| panic!("no rung length in {line:?}"));
-        let weight = if line.starts_with("8 ") { 0.52 } else { 1.0 };
+        let domed = ["6 ", "8 ", "9 "].iter().any(|g| line.starts_with(g));
+        let weight = if domed { 0.52 } else { 1.0 };
         assert!(thinnest >= weight - 5e-3, "{line}");
     }
 }
 
-/// The 8's rungs under the font's 1-unit weight are its domes' last ones,
-/// within 0.2 units of its lowest or highest point (the apex the domes
-/// trim); its waist and its sides are at least 1 unit wide.
-#[test]
-fn the_eights_thin_rungs_are_its_apexes() {
-    let out = basr()
+/// `basr glyphs --json` of the embedded font, run to success.
+fn glyphs_json() -> std::process::Output {
+    basr()
         .args(["glyphs", "--json"])
         .assert()
         .success()
         .get_output()
-        .stdout
-        .clone();
-    let v: serde_json::Value = serde_json::from_slice(&out).expect("json");
-    let eight = v["glyphs"]
-        .as_array()
-        .expect("glyphs")
-        .iter()
-        .find(|g| g["char"] == "8")
-        .expect("an 8");
+        .clone()
+}
+
+/// The rungs of 6, 8 and 9 under the font's 1-unit weight are their domes'
+/// last ones, within 0.2 units of the glyph's lowest or highest point (the
+/// apexes the domes trim); their waists, stems and sides are at least 1
+/// unit wide.
+#[test]
+fn the_loops_thin_rungs_are_their_apexes() {
+    let out = glyphs_json();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
     let point = |p: &serde_json::Value| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap());
-    let mut rungs = vec![];
-    for s in eight["strokes"].as_array().expect("strokes") {
-        let (l, r) = (
-            s["left"].as_array().unwrap(),
-            s["right"].as_array().unwrap(),
-        );
-        assert_eq!(l.len(), r.len());
-        rungs.extend(l.iter().zip(r).map(|(a, b)| (point(a), point(b))));
-    }
-    let ys = rungs.iter().flat_map(|(a, b)| [a.1, b.1]);
-    let (low, high) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
-        (lo.min(y), hi.max(y))
-    });
-    let mut thin = 0;
-    for (a, b) in &rungs {
-        let w = (b.0 - a.0).hypot(b.1 - a.1);
-        if w < 1.0 - 1e-9 {
-            thin += 1;
-            let y = 0.5 * (a.1 + b.1);
-            assert!(
-                y - low < 0.2 || high - y < 0.2,
-                "a rung {w:.3} units wide at y = {y:.3}, away from the apexes ({low:.3}, {high:.3})"
+    for ch in ["6", "8", "9"] {
+        let glyph = v["glyphs"]
+            .as_array()
+            .expect("glyphs")
+            .iter()
+            .find(|g| g["char"] == ch)
+            .expect("the glyph");
+        let mut rungs = vec![];
+        for s in glyph["strokes"].as_array().expect("strokes") {
+            let (l, r) = (
+                s["left"].as_array().unwrap(),
+                s["right"].as_array().unwrap(),
             );
+            assert_eq!(l.len(), r.len());
+            rungs.extend(l.iter().zip(r).map(|(a, b)| (point(a), point(b))));
         }
+        let ys = rungs.iter().flat_map(|(a, b)| [a.1, b.1]);
+        let (low, high) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
+            (lo.min(y), hi.max(y))
+        });
+        let mut thin = 0;
+        for (a, b) in &rungs {
+            let w = (b.0 - a.0).hypot(b.1 - a.1);
+            if w < 1.0 - 1e-9 {
+                thin += 1;
+                let y = 0.5 * (a.1 + b.1);
+                assert!(
+                    y - low < 0.2 || high - y < 0.2,
+                    "{ch}: a rung {w:.3} units wide at y = {y:.3}, away from the apexes ({low:.3}, {high:.3})"
+                );
+            }
+        }
+        assert!(
+            thin > 0,
+            "{ch}: the domes' trimmed apexes should show as thin rungs"
+        );
     }
-    assert!(
-        thin > 0,
-        "the domes' trimmed apexes should show as thin rungs"
-    );
 }
 
 #[test]
@@ -373,12 +382,7 @@ fn missing_file_is_exit_2() {
 
 #[test]
 fn embedded_font_has_the_whole_alphabet() {
-    let out = basr()
-        .args(["glyphs", "--json"])
-        .assert()
-        .success()
-        .get_output()
-        .clone();
+    let out = glyphs_json();
     assert!(out.stderr.is_empty(), "--json keeps stderr quiet");
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
     assert_eq!(v["font"]["name"], "basr");
