@@ -37,24 +37,33 @@ pub const TILT_ACC_SHARE: f64 = 0.3;
 /// assumed: far more than a swing over tens of knots needs.
 const MAX_SWEEPS: usize = 20_000;
 
+/// Per-value bounds for [`smooth`]: never below `floor[i]`, and with a
+/// `ceiling`, never above `ceiling[i]`.
+#[derive(Clone, Copy, Debug)]
+pub struct Bounds<'a> {
+    pub floor: &'a [f64],
+    pub ceiling: Option<&'a [f64]>,
+}
+
 /// Keep `values` (at times whose steps are `tau`, s) within `max_rate` per
 /// s between neighbours and `max_acc` per s² between neighbouring steps'
-/// rates, and (with `floor`) never below `floor[i]`. Returns false, leaving
-/// them alone, when they already are.
+/// rates, and (with `bounds`) within their floor and ceiling. Returns
+/// false, leaving them alone, when they already are.
 ///
 /// Alternating projections onto each constraint (all convex, and a constant
 /// meets every one): a step too steep moves its two values towards each
 /// other by half the excess; a rate change too sharp moves the
 /// three values by the least change (along the gradient of the change in
 /// rate) that brings it to the bound, which smooths the corner a rate limit
-/// leaves; a value under its floor is raised to it after every sweep.
+/// leaves; a value outside its bounds is brought back to them after every
+/// sweep.
 /// Sweeps alternate in direction and stop when nothing exceeds by more than
 /// 1e-9 of its bound.
 pub fn smooth(
     values: &mut [f64],
     tau: &[f64],
     [max_rate, max_acc]: [f64; 2],
-    floor: Option<&[f64]>,
+    bounds: Option<Bounds<'_>>,
 ) -> bool {
     let n = values.len();
     let rate = |v: &[f64], i: usize| (v[i + 1] - v[i]) / tau[i];
@@ -101,9 +110,12 @@ pub fn smooth(
                 }
             }
         }
-        if let Some(floor) = floor {
-            for (v, &f) in values.iter_mut().zip(floor) {
+        if let Some(b) = &bounds {
+            for (v, &f) in values.iter_mut().zip(b.floor) {
                 *v = v.max(f);
+            }
+            for (v, &c) in values.iter_mut().zip(b.ceiling.unwrap_or(&[])) {
+                *v = v.min(c);
             }
         }
         if worst < 1e-9 {
@@ -173,11 +185,24 @@ pub fn limit_tilt_rate(
         return false;
     }
     let mut beta: Vec<f64> = ks.iter().map(|k| k.tilt_rad).collect();
+    // Within the tilts the knots already take: smoothing a corner held at
+    // the tilt limit moves its neighbours past it otherwise (the 6's stem
+    // at 5 mm rungs asked 15.06° of the tilt joint's ±15°).
+    let (lo, hi) = beta
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &b| {
+            (lo.min(b), hi.max(b))
+        });
+    let floor = vec![lo; beta.len()];
+    let ceiling = vec![hi; beta.len()];
     if !smooth(
         &mut beta,
         &step_times(ks),
         [max_rate_rps, max_acc_rps2],
-        None,
+        Some(Bounds {
+            floor: &floor,
+            ceiling: Some(&ceiling),
+        }),
     ) {
         return false;
     }
@@ -221,7 +246,11 @@ pub fn limit_height_rate(ks: &mut [Knot], law: &PaintLaw, follow: [f64; 2]) -> b
     }
     let floor: Vec<f64> = ks.iter().map(|k| k.z_m).collect();
     let mut z = floor.clone();
-    if !smooth(&mut z, &step_times(ks), follow, Some(&floor)) {
+    let bounds = Bounds {
+        floor: &floor,
+        ceiling: None,
+    };
+    if !smooth(&mut z, &step_times(ks), follow, Some(bounds)) {
         return false;
     }
     for (k, z) in ks.iter_mut().zip(z) {
@@ -348,6 +377,47 @@ mod tests {
         let before = v.clone();
         assert!(!smooth(&mut v, &tau, [rate, acc], None));
         assert_eq!(v, before);
+    }
+
+    #[test]
+    fn smoothing_a_swing_held_at_a_limit_stays_within_the_bounds() {
+        // A tilt held at +0.25 rad that swings to -0.25 within two steps:
+        // rounding the corners moves the held values past ±0.25 unless the
+        // bounds hold them (the 6's stem asked 15.06° of ±15°).
+        let tau = vec![0.05; 30];
+        let swing: Vec<f64> = (0..31)
+            .map(|i| match i {
+                0..=14 => 0.25,
+                15 => 0.0,
+                _ => -0.25,
+            })
+            .collect();
+        let (rate, acc) = (3.0, 4.0);
+        let mut free = swing.clone();
+        assert!(smooth(&mut free, &tau, [rate, acc], None));
+        let past = free.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(
+            past > 0.25 + 1e-3,
+            "unbounded smoothing stays within: {past}"
+        );
+        let (lo, hi) = (vec![-0.25; 31], vec![0.25; 31]);
+        let mut held = swing;
+        assert!(smooth(
+            &mut held,
+            &tau,
+            [rate, acc],
+            Some(Bounds {
+                floor: &lo,
+                ceiling: Some(&hi),
+            }),
+        ));
+        for (i, v) in held.iter().enumerate() {
+            assert!(v.abs() <= 0.25 + 1e-12, "{i}: {v}");
+        }
+        for i in 0..30 {
+            let r = (held[i + 1] - held[i]) / tau[i];
+            assert!(r.abs() <= rate * (1.0 + 1e-6), "{i}: rate {r}");
+        }
     }
 
     #[test]
