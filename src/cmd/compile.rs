@@ -100,7 +100,11 @@ pub struct Args {
     #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
     pub line_gap: Option<Length>,
     /// Largest distance between rungs along a stroke, 1–100 mm;
-    /// millimetres unless a unit is written (0.75in).
+    /// millimetres unless a unit is written (0.75in). Finer is not better:
+    /// the tilt and the fan's turn then follow every small change between
+    /// rungs and the arm slows to keep up (STOP's slowest place: 1.09× film
+    /// at 15 mm, 1.3× at 10, 1.5× at 8, NOT READY at 1–5 mm with up to
+    /// 4.5×; none at the default); the job's notes say where.
     #[arg(
         allow_negative_numbers = true,
         long,
@@ -398,6 +402,36 @@ const MAX_LINES: usize = 12;
 /// Stops listed one per line before they are summed up in one.
 const MAX_STOP_LINES: usize = 3;
 
+/// What a group of like problems adds to its first one's line: the other
+/// strokes it names, each once and in order ("the same on strokes 5, 6,
+/// 8"), and how many more places the first one's own stroke has.
+fn same_on(g: &[&basr::job::Warning]) -> String {
+    let mut others: Vec<i64> = g[1..]
+        .iter()
+        .map(|w| w.stroke)
+        .filter(|&s| s != g[0].stroke)
+        .collect();
+    let again = g.len() - 1 - others.len();
+    others.sort_unstable();
+    others.dedup();
+    let list: Vec<String> = others.iter().map(i64::to_string).collect();
+    let places = |n: usize| format!("{n} more place{}", if n == 1 { "" } else { "s" });
+    match (list.len(), again) {
+        (0, 0) => String::new(),
+        (0, n) => format!(" (and {} on this stroke)", places(n)),
+        (k, n) => format!(
+            " (the same on stroke{} {}{})",
+            if k == 1 { "" } else { "s" },
+            list.join(", "),
+            if n > 0 {
+                format!(", and {} on this one", places(n))
+            } else {
+                String::new()
+            }
+        ),
+    }
+}
+
 /// The warnings of one kind on one item, worst first: printed as one line.
 fn grouped(warnings: &[basr::job::Warning]) -> Vec<Vec<&basr::job::Warning>> {
     // The owner is the message's text before ", stroke" ("letter P of line 1").
@@ -490,15 +524,7 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     }
     let groups = grouped(&shown.into_iter().cloned().collect::<Vec<_>>())
         .into_iter()
-        .map(|g| {
-            let others: Vec<String> = g[1..].iter().map(|w| w.stroke.to_string()).collect();
-            let also = match others.len() {
-                0 => String::new(),
-                1 => format!(" (the same on stroke {})", others[0]),
-                _ => format!(" (the same on strokes {})", others.join(", ")),
-            };
-            format!("  problem: {}{also}", g[0].message)
-        })
+        .map(|g| format!("  problem: {}{}", g[0].message, same_on(&g)))
         .collect::<Vec<_>>();
     let room = MAX_LINES.saturating_sub(lines.len());
     if groups.len() > room {
@@ -534,4 +560,38 @@ fn film_line(f: &basr::job::FilmSummary) -> String {
             .map_or("–".to_string(), |m| format!("{:.0} µm", m * 1e6)),
         f.target_film_m * 1e6,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::same_on;
+    use basr::job::Warning;
+
+    fn on(stroke: i64) -> Warning {
+        Warning {
+            kind: "slowed".into(),
+            severity: "problem".into(),
+            stroke,
+            t_s: None,
+            factor: None,
+            message: String::new(),
+        }
+    }
+
+    #[test]
+    fn a_group_names_each_other_stroke_once_in_order() {
+        let g = [on(9), on(8), on(6), on(9), on(6), on(8), on(5)];
+        let refs: Vec<&Warning> = g.iter().collect();
+        assert_eq!(
+            same_on(&refs),
+            " (the same on strokes 5, 6, 8, and 1 more place on this one)"
+        );
+        let alone = [on(3), on(3), on(3)];
+        let refs: Vec<&Warning> = alone.iter().collect();
+        assert_eq!(same_on(&refs), " (and 2 more places on this stroke)");
+        assert_eq!(same_on(&[&on(3)]), "");
+        let two = [on(3), on(4)];
+        let refs: Vec<&Warning> = two.iter().collect();
+        assert_eq!(same_on(&refs), " (the same on stroke 4)");
+    }
 }
