@@ -310,11 +310,6 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::check_writable(p)?;
     }
     let hints = feet_hints(&args);
-    if !global.quiet {
-        for h in &hints {
-            note!("hint: {h}");
-        }
-    }
     let scene_file =
         matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
     let compiled = match (&shape, &args.shape) {
@@ -334,6 +329,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             false => anyhow::anyhow!("{e:#}\n  hint: {}", hints.join("\n  hint: ")),
         }
     })?;
+    // A failed compile carries the hints in its error (above); say them
+    // once either way.
+    if !global.quiet {
+        for h in &hints {
+            note!("hint: {h}");
+        }
+    }
     // A shape's job is named after its file, a symbol's after the symbol,
     // a scene's after its file.
     let stem = match (&args.shape, &args.symbol, &args.marking) {
