@@ -25,7 +25,7 @@ const FILM_MAX: f64 = 1.15;
 /// miss a bound, as measured when listed. Empty since 2026-12-03, when the
 /// last three left it: 8 (cv 0.072 → 0.025), 6 (0.051 → 0.039) and 9
 /// (0.052 → 0.041), their loops cut by level lines through the counters
-/// into bands painted with level rungs (fonts/basr.toml; docs/font.md
+/// into bands painted upward (fonts/basr.toml; docs/font.md
 /// "The loops of 6, 8 and 9"). B, P, R, 3 (matched rungs), H, N, U (the
 /// preview's edge cells) and Q (its tail's cut) left it 2026-12-02.
 const MISSES: &[(char, f64, f64, f64, f64)] = &[];

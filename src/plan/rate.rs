@@ -37,33 +37,29 @@ pub const TILT_ACC_SHARE: f64 = 0.3;
 /// assumed: far more than a swing over tens of knots needs.
 const MAX_SWEEPS: usize = 20_000;
 
-/// Per-value bounds for [`smooth`]: never below `floor[i]`, and with a
-/// `ceiling`, never above `ceiling[i]`.
-#[derive(Clone, Copy, Debug)]
-pub struct Bounds<'a> {
-    pub floor: &'a [f64],
-    pub ceiling: Option<&'a [f64]>,
-}
+/// No range for [`smooth`] to keep values within.
+pub const UNBOUNDED: [f64; 2] = [f64::NEG_INFINITY, f64::INFINITY];
 
 /// Keep `values` (at times whose steps are `tau`, s) within `max_rate` per
 /// s between neighbours and `max_acc` per s² between neighbouring steps'
-/// rates, and (with `bounds`) within their floor and ceiling. Returns
-/// false, leaving them alone, when they already are.
+/// rates, (with `floor`) never below `floor[i]`, and within `range`.
+/// Returns false, leaving them alone, when they already are.
 ///
 /// Alternating projections onto each constraint (all convex, and a constant
 /// meets every one): a step too steep moves its two values towards each
 /// other by half the excess; a rate change too sharp moves the
 /// three values by the least change (along the gradient of the change in
 /// rate) that brings it to the bound, which smooths the corner a rate limit
-/// leaves; a value outside its bounds is brought back to them after every
-/// sweep.
+/// leaves; a value under its floor or outside the range is brought back
+/// after every sweep.
 /// Sweeps alternate in direction and stop when nothing exceeds by more than
 /// 1e-9 of its bound.
 pub fn smooth(
     values: &mut [f64],
     tau: &[f64],
     [max_rate, max_acc]: [f64; 2],
-    bounds: Option<Bounds<'_>>,
+    floor: Option<&[f64]>,
+    [lo, hi]: [f64; 2],
 ) -> bool {
     let n = values.len();
     let rate = |v: &[f64], i: usize| (v[i + 1] - v[i]) / tau[i];
@@ -110,13 +106,13 @@ pub fn smooth(
                 }
             }
         }
-        if let Some(b) = &bounds {
-            for (v, &f) in values.iter_mut().zip(b.floor) {
+        if let Some(floor) = floor {
+            for (v, &f) in values.iter_mut().zip(floor) {
                 *v = v.max(f);
             }
-            for (v, &c) in values.iter_mut().zip(b.ceiling.unwrap_or(&[])) {
-                *v = v.min(c);
-            }
+        }
+        for v in values.iter_mut() {
+            *v = v.clamp(lo, hi);
         }
         if worst < 1e-9 {
             break;
@@ -193,16 +189,12 @@ pub fn limit_tilt_rate(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &b| {
             (lo.min(b), hi.max(b))
         });
-    let floor = vec![lo; beta.len()];
-    let ceiling = vec![hi; beta.len()];
     if !smooth(
         &mut beta,
         &step_times(ks),
         [max_rate_rps, max_acc_rps2],
-        Some(Bounds {
-            floor: &floor,
-            ceiling: Some(&ceiling),
-        }),
+        None,
+        [lo, hi],
     ) {
         return false;
     }
@@ -246,11 +238,7 @@ pub fn limit_height_rate(ks: &mut [Knot], law: &PaintLaw, follow: [f64; 2]) -> b
     }
     let floor: Vec<f64> = ks.iter().map(|k| k.z_m).collect();
     let mut z = floor.clone();
-    let bounds = Bounds {
-        floor: &floor,
-        ceiling: None,
-    };
-    if !smooth(&mut z, &step_times(ks), follow, Some(bounds)) {
+    if !smooth(&mut z, &step_times(ks), follow, Some(&floor), UNBOUNDED) {
         return false;
     }
     for (k, z) in ks.iter_mut().zip(z) {
@@ -364,7 +352,7 @@ mod tests {
             .map(|i| if i < 15 { 0.0 } else { 0.02 * (i - 15) as f64 })
             .collect();
         let (rate, acc) = (0.3, 1.0);
-        assert!(smooth(&mut v, &tau, [rate, acc], None));
+        assert!(smooth(&mut v, &tau, [rate, acc], None, UNBOUNDED));
         for i in 0..30 {
             let r = (v[i + 1] - v[i]) / tau[i];
             assert!(r.abs() <= rate * (1.0 + 1e-6), "{i}: {r}");
@@ -375,7 +363,7 @@ mod tests {
         }
         // Already smooth: left alone.
         let before = v.clone();
-        assert!(!smooth(&mut v, &tau, [rate, acc], None));
+        assert!(!smooth(&mut v, &tau, [rate, acc], None, UNBOUNDED));
         assert_eq!(v, before);
     }
 
@@ -394,23 +382,14 @@ mod tests {
             .collect();
         let (rate, acc) = (3.0, 4.0);
         let mut free = swing.clone();
-        assert!(smooth(&mut free, &tau, [rate, acc], None));
+        assert!(smooth(&mut free, &tau, [rate, acc], None, UNBOUNDED));
         let past = free.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         assert!(
             past > 0.25 + 1e-3,
             "unbounded smoothing stays within: {past}"
         );
-        let (lo, hi) = (vec![-0.25; 31], vec![0.25; 31]);
         let mut held = swing;
-        assert!(smooth(
-            &mut held,
-            &tau,
-            [rate, acc],
-            Some(Bounds {
-                floor: &lo,
-                ceiling: Some(&hi),
-            }),
-        ));
+        assert!(smooth(&mut held, &tau, [rate, acc], None, [-0.25, 0.25]));
         for (i, v) in held.iter().enumerate() {
             assert!(v.abs() <= 0.25 + 1e-12, "{i}: {v}");
         }
