@@ -8,7 +8,7 @@
 
 use std::time::Duration;
 
-use basr::plan::compile::{compile_job, CompileRequest};
+use basr::pipeline::compile::{compile_job, CompileRequest};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
 /// Every letter A–Z once, five letters a line (a 26-letter word is wider

@@ -6,7 +6,7 @@
 mod preview_common;
 
 use basr::paint::preview::{preview_job, Options};
-use basr::plan::compile::{compile_job, CompileRequest};
+use basr::pipeline::compile::{compile_job, CompileRequest};
 use criterion::{criterion_group, criterion_main, Criterion};
 
 fn bench(c: &mut Criterion) {

@@ -53,7 +53,7 @@ fn import(c: &mut Criterion) {
         "basr import of an SVG of 1000 cubic segments (2.5 m)",
         |b| {
             b.iter(|| {
-                basr::plan::shapes::import_to_file(
+                basr::pipeline::shapes::import_to_file(
                     black_box(&path),
                     Size::HeightM(2.5),
                     &robot,

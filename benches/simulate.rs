@@ -7,7 +7,7 @@
 //! error stops the bench with its message: a benchmark of a failed run
 //! would time nothing.
 
-use basr::plan::compile::{compile_job, CompileRequest};
+use basr::pipeline::compile::{compile_job, CompileRequest};
 use basr::sim::{self, ControllerKind, SimModel};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 

@@ -317,7 +317,7 @@ fn preview_and_preview_from_sim_draw_every_electric_kinds_job() {
 /// each found.
 #[test]
 fn check_finds_what_is_wrong_with_an_electric_kinds_setpoints() {
-    use basr::plan::compile::{compile_job, CompileRequest};
+    use basr::pipeline::compile::{compile_job, CompileRequest};
     let robot = basr::robot::AnyRobot::load(Path::new(ROBOTS[2])).unwrap();
     let mut req = CompileRequest::message("IT");
     req.robot_description = Some(robot);

@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use basr::plan::shapes::import_measured;
+use basr::pipeline::shapes::import_measured;
 use basr::robot::AnyRobot;
 use basr::shape::Size;
 
@@ -149,7 +149,7 @@ fn a_star_too_small_to_paint_evenly_says_so() {
     let uneven = imported
         .notes
         .iter()
-        .find(|l| l.starts_with(basr::plan::shapes::UNEVEN))
+        .find(|l| l.starts_with(basr::pipeline::shapes::UNEVEN))
         .unwrap_or_else(|| panic!("no uneven note: {:#?}", imported.notes));
     assert!(uneven.contains("--shape-height-m"), "{uneven}");
 }
@@ -184,7 +184,7 @@ fn the_star_at_1_2_m_paints_evenly() {
     if let Some(uneven) = imported
         .notes
         .iter()
-        .find(|l| l.starts_with(basr::plan::shapes::UNEVEN))
+        .find(|l| l.starts_with(basr::pipeline::shapes::UNEVEN))
     {
         assert!(
             uneven.contains("narrower than the fan's narrowest band (0.097 m)")
@@ -233,7 +233,7 @@ fn the_arrow_at_3_m_keeps_a_decomposition_with_no_problem() {
         !imported
             .notes
             .iter()
-            .any(|l| l.starts_with(basr::plan::shapes::UNEVEN)),
+            .any(|l| l.starts_with(basr::pipeline::shapes::UNEVEN)),
         "{:#?}",
         imported.notes
     );

@@ -2,7 +2,7 @@
 //! ranges the command line accepts: every combination is compiled or
 //! refused, never a panic, an overflow or a hang.
 #![no_main]
-use basr::plan::compile::{compile_job, CompileRequest, Tilt};
+use basr::pipeline::compile::{compile_job, CompileRequest, Tilt};
 use libfuzzer_sys::fuzz_target;
 
 /// What a message may hold (SPEC §1), space included.

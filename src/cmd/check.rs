@@ -137,7 +137,7 @@ fn marking_problems(text: &str, origin: &str) -> Vec<String> {
         Err(e) => return vec![e.to_string()],
     };
     let shapes = |p: &std::path::Path, s| {
-        basr::plan::shapes::import_item(&robot, origin, p, s).map(|(strokes, _)| strokes)
+        basr::pipeline::shapes::import_item(&robot, origin, p, s).map(|(strokes, _)| strokes)
     };
     basr::layout::check_marking_source_with(text, origin, &shapes)
 }

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use basr::layout::Overrides;
-use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
+use basr::pipeline::compile::{compile_job, CompileRequest, Source, Tilt};
 use basr::units::Length;
 
 use super::{Global, Outcome};
@@ -114,7 +114,7 @@ pub struct Args {
     )]
     pub rung_spacing_mm: f64,
     /// Setpoint period in seconds, 0.005–0.1 (the controller samples at 0.005 s).
-    #[arg(allow_hyphen_values = true, long, value_name = "S", default_value_t = basr::plan::compile::DEFAULT_PERIOD_S)]
+    #[arg(allow_hyphen_values = true, long, value_name = "S", default_value_t = basr::pipeline::compile::DEFAULT_PERIOD_S)]
     pub period_s: f64,
     /// Switch the gun on this many seconds before a stroke starts (0–1).
     #[arg(
@@ -246,9 +246,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         (None, None) if args.shape.is_some() => {
             let path = args.shape.as_deref().unwrap_or(Path::new(""));
             let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
-            let bands = basr::plan::shapes::bands(&robot);
+            let bands = basr::pipeline::shapes::bands(&robot);
             let imported =
-                basr::plan::shapes::import_measured(path, args.shape_size.size(), &robot)?;
+                basr::pipeline::shapes::import_measured(path, args.shape_size.size(), &robot)?;
             shape = Some((imported, bands));
             Source::Message(basr::shape::GLYPH.to_string())
         }
@@ -318,7 +318,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 .file_stem()
                 .map(|s| s.to_string_lossy().to_string())
                 .unwrap_or_else(|| "shape".into());
-            basr::plan::shapes::compile_shape(&req, imported, bands, &label)
+            basr::pipeline::shapes::compile_shape(&req, imported, bands, &label)
         }
         _ => compile_job(&req),
     };

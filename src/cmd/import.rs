@@ -76,10 +76,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         &[("the shape file", &args.file)],
     )?;
     let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
-    let bands = basr::plan::shapes::bands(&robot);
+    let bands = basr::pipeline::shapes::bands(&robot);
     // The file must load back as it will be used (checked before it is written).
     let imported =
-        basr::plan::shapes::import_to_file(&args.file, args.size.size(), &robot, &args.output)?;
+        basr::pipeline::shapes::import_to_file(&args.file, args.size.size(), &robot, &args.output)?;
     let d = &imported.decomposition;
     if args.json {
         let v = serde_json::json!({

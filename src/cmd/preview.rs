@@ -9,7 +9,7 @@ use basr::paint::film::{self, FilmOptions, JobFilm};
 use basr::paint::preview::{self, JsonReport, Options, Panel, Preview};
 use basr::paint::verdict::{self, Thresholds, Verdict};
 use basr::paint::{Depth, Profile};
-use basr::plan::compile::Tilt;
+use basr::pipeline::compile::Tilt;
 
 use super::replan::{self, NOT_RECORDED, REPLANNED_FROM};
 use super::{Global, Outcome};
@@ -419,7 +419,7 @@ fn servo_track(job: &Job) -> anyhow::Result<Vec<SimTick>> {
         .map(|t| {
             let st = &job.stations[s.station[t.index] as usize];
             let (a, w) = (&t.actual, &t.wanted);
-            let road = basr::plan::stations::base_to_road(st, [a.x_m, a.y_m]);
+            let road = st.base_to_road([a.x_m, a.y_m]);
             // The fan's deviation on its own branch (ψ with β, or ψ + π with −β).
             let d = basr::robot::kinematics::wrap_pi(a.yaw_rad - w.yaw_rad);
             let (dyaw, dtilt) = if d.abs() > std::f64::consts::FRAC_PI_2 {

@@ -14,7 +14,7 @@ use std::path::Path;
 use anyhow::Context;
 use basr::job::{Job, PlacedGlyph};
 use basr::layout::Overrides;
-use basr::plan::compile::{compile_job, CompileRequest, Source, Tilt};
+use basr::pipeline::compile::{compile_job, CompileRequest, Source, Tilt};
 
 /// What `--compare` carries from the job into the re-planned ones.
 pub const REPLANNED_FROM: &str = "the job's message or symbol (a scene: --marking), robot, \
@@ -136,7 +136,7 @@ pub fn recover(
         req.font = font.clone();
         req.period_s = job.control_period_s;
         let inputs = basr::plan::inputs::read(&req).map_err(|e| anyhow::anyhow!("{e}"))?;
-        let (_, strokes) = basr::plan::placed::lay_out(&req, &inputs.font)
+        let (_, strokes) = basr::pipeline::placed::lay_out(&req, &inputs.font)
             .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
         match first_difference(&job.layout.glyphs, &strokes.outlines()) {
             None => return Ok(Replan { req }),

@@ -1,0 +1,199 @@
+//! A job's preview: its samples as poses, the film they lay, the metrics
+//! against the letters' outlines; `drawing` makes the SVG that shows it all.
+
+use serde::Serialize;
+
+pub use super::drawing::{panel_frames, render_svg, Panel};
+use super::metrics::{self, GlyphOutline, Metrics};
+use super::raster::{self, Bounds, Film, Progress};
+use super::spray::{Depth, Pose, Profile, SprayModel};
+use super::verdict::Verdict;
+use super::PaintError;
+use basr_job::{Job, Samples};
+
+/// Default raster cell (issue 5: `--resolution-mm` default 5).
+pub const DEFAULT_RESOLUTION_M: f64 = 0.005;
+
+/// How to run the preview.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    pub resolution_m: f64,
+    pub profile: Profile,
+    pub depth: Depth,
+    /// Coarsen the raster until it holds at most this many cells (the
+    /// command's default when no `--resolution-mm` is given, so a long job
+    /// previews); `None` keeps `resolution_m` and refuses a raster over
+    /// [`raster::MAX_CELLS`].
+    pub fit_cells: Option<usize>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            resolution_m: DEFAULT_RESOLUTION_M,
+            profile: Profile::Uniform,
+            depth: Depth::default(),
+            fit_cells: None,
+        }
+    }
+}
+
+/// A computed preview of one job.
+#[derive(Clone, Debug)]
+pub struct Preview {
+    pub film: Film,
+    pub metrics: Metrics,
+    pub outlines: Vec<GlyphOutline>,
+    pub poses: Vec<Pose>,
+    pub profile: String,
+}
+
+/// The job's setpoints as poses (SPEC §3 columns).
+pub fn poses_from_samples(s: &Samples) -> Vec<Pose> {
+    (0..s.len())
+        .map(|i| Pose {
+            t_s: s.t_s[i],
+            x_m: s.x_m[i],
+            y_m: s.y_m[i],
+            z_m: s.z_m[i],
+            yaw_rad: s.yaw_rad[i],
+            tilt_rad: s.tilt_rad[i],
+            gun: s.paint[i] != 0,
+        })
+        .collect()
+}
+
+fn check_paint(job: &Job) -> Result<(), PaintError> {
+    let p = &job.paint;
+    for (name, v) in [
+        ("paint.fan_angle_rad", p.fan_angle_rad),
+        ("paint.flow_m3ps", p.flow_m3ps),
+        ("paint.transfer_efficiency", p.transfer_efficiency),
+        ("paint.film_m", p.film_m),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(PaintError::Job(format!(
+                "{name} is {v}: it must be a number above zero"
+            )));
+        }
+    }
+    if p.transfer_efficiency > 1.0 {
+        return Err(PaintError::Job(format!(
+            "paint.transfer_efficiency is {}: it must be at most 1",
+            p.transfer_efficiency
+        )));
+    }
+    Ok(())
+}
+
+/// Simulate the film of `job` and measure it.
+pub fn preview_job(job: &Job, opts: &Options) -> Result<Preview, PaintError> {
+    preview_job_with_progress(job, opts, &|_, _| {})
+}
+
+/// [`preview_job`], telling `progress` how far the deposition has got.
+pub fn preview_job_with_progress(
+    job: &Job,
+    opts: &Options,
+    progress: Progress,
+) -> Result<Preview, PaintError> {
+    check_paint(job)?;
+    let poses = poses_from_samples(&job.samples);
+    let outlines: Vec<GlyphOutline> = job
+        .layout
+        .glyphs
+        .iter()
+        .map(GlyphOutline::from_placed)
+        .collect();
+    preview_tiled(
+        &poses,
+        &poses,
+        &job.samples.stroke,
+        &outlines,
+        &job.paint,
+        opts,
+        progress,
+    )
+}
+
+/// Simulate and measure the film of any pose sequence with `stroke_of[i]`
+/// the stroke index of pose i (−1 none); the tiles of U are its consecutive
+/// poses.
+pub fn preview_poses(
+    poses: &[Pose],
+    stroke_of: &[i64],
+    outlines: &[GlyphOutline],
+    paint: &basr_job::Paint,
+    opts: &Options,
+) -> Result<Preview, PaintError> {
+    preview_tiled(poses, poses, stroke_of, outlines, paint, opts, &|_, _| {})
+}
+
+/// The film of `poses`, with U measured on the tiles between consecutive
+/// `tiles` (`stroke_of[i]` the stroke of `tiles[i]`). The simulator's trace
+/// deposits from every 5 ms tick, but its tiles are taken at the job's own
+/// setpoint times: a tile 0.8 mm long is twisted end to end by the servos'
+/// jitter, and its U says nothing about the paint's distribution.
+pub fn preview_tiled(
+    poses: &[Pose],
+    tiles: &[Pose],
+    stroke_of: &[i64],
+    outlines: &[GlyphOutline],
+    paint: &basr_job::Paint,
+    opts: &Options,
+    progress: Progress,
+) -> Result<Preview, PaintError> {
+    let model = SprayModel::new(paint.fan_angle_rad, opts.profile.clone(), opts.depth)?;
+    let letters = outlines
+        .iter()
+        .fold(Bounds::EMPTY, |b, g| b.union(g.bounds()));
+    let cell_m = match opts.fit_cells {
+        Some(budget) => {
+            let painted = raster::painted_bounds(poses, &model)?;
+            let extent = match (painted.is_empty(), letters.is_empty()) {
+                (true, _) => letters,
+                (_, true) => painted,
+                _ => painted.union(letters),
+            };
+            raster::fitted_cell(extent, opts.resolution_m, budget)
+        }
+        None => opts.resolution_m,
+    };
+    let film = raster::deposit_with_progress(
+        poses,
+        &model,
+        paint.flow_m3ps * paint.transfer_efficiency,
+        cell_m,
+        letters,
+        progress,
+    )?;
+    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
+    Ok(Preview {
+        film,
+        metrics,
+        outlines: outlines.to_vec(),
+        poses: poses.to_vec(),
+        profile: opts.profile.name(),
+    })
+}
+
+/// What `--json` prints.
+#[derive(Serialize)]
+pub struct JsonReport<'a> {
+    pub job: &'a str,
+    pub message: &'a str,
+    pub tilt_method: &'a str,
+    pub profile: &'a str,
+    pub svg: Option<&'a str>,
+    /// For a job re-planned by `--compare`: from what, and what the job
+    /// does not record (so compile's defaults were used).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replanned: Option<&'a str>,
+    /// The film is the simulated arm's (`--from-sim`).
+    pub from_sim: bool,
+    /// `verdict` ("pass" / "fail"), `thresholds`, `checks`.
+    #[serde(flatten)]
+    pub verdict: &'a Verdict,
+    #[serde(flatten)]
+    pub metrics: &'a Metrics,
+}

@@ -1,0 +1,469 @@
+//! Joint paths: every knot of every tour solved for the arm's joints (IK on
+//! one fan branch per pass), with the leads that bring the nozzle up to
+//! speed.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::knots::Knot;
+use basr_job::Station;
+use basr_robot::{AnyRobot, NozzlePose, Q};
+
+use super::chain::Side;
+use super::error::CompileError;
+use super::leads::{with_leads, LEAD_M};
+use super::passes::Passes;
+use super::placed::PlacedStrokes;
+use super::stations::StationPlan;
+use super::stow::stow_joints;
+use super::tours::Tours;
+
+/// A pass as the arm runs it: joints at every knot, in painting order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Run {
+    /// Index into the placed strokes.
+    pub stroke: usize,
+    /// Knots including the lead-in and lead-out.
+    pub knots: Vec<Knot>,
+    /// The robot kind's joints (`AnyRobot::joint_names` order) at each knot.
+    pub joints: Vec<Q>,
+    /// Indices of the first and last painting knot in `knots`.
+    pub paint_first: usize,
+    pub paint_last: usize,
+}
+
+/// Every station's runs, in painting order.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct JointPaths {
+    pub stations: Vec<Vec<Run>>,
+}
+
+/// A pass's knots with leads and the joint solutions of each fan branch
+/// and yaw turn that follows the whole pass.
+struct Candidates {
+    /// 2 × the pass's place in the tour + reversed: the join costs' key.
+    id: usize,
+    stroke: usize,
+    knots: Vec<Knot>,
+    paint_first: usize,
+    paint_last: usize,
+    /// (joint travel inside the pass, joints at every knot) per branch.
+    branches: Vec<(f64, Vec<Q>)>,
+    arcs: Vec<f64>,
+}
+
+/// Flown join durations between passes' branches, each found once.
+struct JoinCosts {
+    limits: super::timing::JointLimits<5>,
+    /// (from id, its branch, to id, its branch) → s.
+    known: std::cell::RefCell<std::collections::HashMap<(usize, usize, usize, usize), f64>>,
+}
+
+impl JoinCosts {
+    fn new(robot: &AnyRobot) -> Self {
+        JoinCosts {
+            limits: super::trajectory::timing_limits(robot, 1.0),
+            known: Default::default(),
+        }
+    }
+
+    /// The join from pass a (branch ba) into pass b (branch bb): the flown
+    /// join's duration, or the rest-to-rest joint travel between their
+    /// leads where none is found.
+    fn join(&self, robot: &AnyRobot, a: &Candidates, ba: usize, b: &Candidates, bb: usize) -> f64 {
+        let key = (a.id, ba, b.id, bb);
+        if let Some(&t) = self.known.borrow().get(&key) {
+            return t;
+        }
+        let (ja, jb) = (&a.branches[ba].1, &b.branches[bb].1);
+        let t = super::chain::join_time(
+            &self.limits,
+            Side::new((&a.knots, ja, &a.arcs), a.paint_last, true),
+            Side::new((&b.knots, jb, &b.arcs), b.paint_first, false),
+        )
+        .unwrap_or_else(|| travel(robot, &ja[ja.len() - 1], &jb[0]));
+        self.known.borrow_mut().insert(key, t);
+        t
+    }
+}
+
+/// Solve every pass of every station for the joints, both ways round, and
+/// choose the painting order, each pass's direction and its fan branch
+/// (ψ, β) / (ψ+π, −β) and yaw turn over the whole station: the tour's order
+/// is the starting point, and moves that reverse a pass, move it or reverse
+/// a run of passes are kept while they shorten the station's joint-time
+/// estimate, each priced with the shortest path over the branches
+/// (`best_branches`, every joint counted). A pass out of reach either way
+/// is refused with the stroke, its item and the place.
+pub fn joint_paths(
+    strokes: &PlacedStrokes,
+    passes: &Passes,
+    plan: &StationPlan,
+    tours: &Tours,
+    robot: &AnyRobot,
+) -> Result<JointPaths, CompileError> {
+    let stow = stow_joints(robot);
+    let mut out = JointPaths::default();
+    for (si, (station, tour)) in plan.stations.iter().zip(&tours.stations).enumerate() {
+        // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
+        let mut ways: Vec<[Option<Candidates>; 2]> = Vec::with_capacity(tour.len());
+        for v in tour {
+            let pass = &passes.passes[v.item];
+            let id = 2 * ways.len();
+            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke)
+                .map(|c| Candidates { id, ..c });
+            let rev = candidates(robot, station, &pass.knots, true, pass.stroke)
+                .map(|c| Candidates { id: id + 1, ..c });
+            match (fwd, rev) {
+                (Err((k, e)), Err(_)) => {
+                    let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
+                    return Err(CompileError::Unreachable(format!(
+                        "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
+                         m: {e}; use a smaller --letter-height or check the robot description",
+                        pass.stroke,
+                        strokes.owner(pass.stroke),
+                        si + 1,
+                        tip.x,
+                        tip.y
+                    )));
+                }
+                (f, r) => ways.push([f.ok(), r.ok()]),
+            }
+        }
+        // The tour as (index into ways, reversed), each way one that exists.
+        let mut seq: Vec<(usize, bool)> = tour
+            .iter()
+            .enumerate()
+            .map(|(k, v)| {
+                let rev = if ways[k][v.reversed as usize].is_some() {
+                    v.reversed
+                } else {
+                    !v.reversed
+                };
+                (k, rev)
+            })
+            .collect();
+        let costs = JoinCosts::new(robot);
+        improve(robot, &stow, &ways, &mut seq, &costs);
+        let picked: Vec<&Candidates> = seq
+            .iter()
+            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+            .collect();
+        let (_, choice) = best_branches(robot, &stow, &picked, &costs);
+        out.stations.push(
+            picked
+                .into_iter()
+                .zip(choice)
+                .map(|(c, b)| Run {
+                    stroke: c.stroke,
+                    knots: c.knots.clone(),
+                    joints: c.branches[b].1.clone(),
+                    paint_first: c.paint_first,
+                    paint_last: c.paint_last,
+                })
+                .collect(),
+        );
+    }
+    Ok(out)
+}
+
+/// Most improvement sweeps over a station's order (each strictly lowers the
+/// cost; the bound keeps a long station's compile time in hand).
+const MAX_SWEEPS: usize = 8;
+/// Gains below this (s) are ignored, so rounding cannot make the search cycle.
+const MIN_GAIN_S: f64 = 1e-6;
+
+/// Local search over the order and directions (see `joint_paths`).
+fn improve(
+    robot: &AnyRobot,
+    stow: &Q,
+    ways: &[[Option<Candidates>; 2]],
+    seq: &mut Vec<(usize, bool)>,
+    costs: &JoinCosts,
+) {
+    let cost_of = |seq: &[(usize, bool)]| -> f64 {
+        let picked: Vec<&Candidates> = seq
+            .iter()
+            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+            .collect();
+        if picked.len() < seq.len() {
+            return f64::INFINITY;
+        }
+        best_branches(robot, stow, &picked, costs).0
+    };
+    let n = seq.len();
+    let mut best = cost_of(seq);
+    for _ in 0..MAX_SWEEPS {
+        let mut gained = false;
+        // Reverse one pass.
+        for i in 0..n {
+            let mut t = seq.clone();
+            t[i].1 = !t[i].1;
+            let c = cost_of(&t);
+            if c < best - MIN_GAIN_S {
+                (*seq, best, gained) = (t, c, true);
+            }
+        }
+        // Reverse a run of passes (2-opt), each pass flipped.
+        for i in 0..n {
+            for j in i + 1..n {
+                let mut t = seq.clone();
+                t[i..=j].reverse();
+                for v in &mut t[i..=j] {
+                    v.1 = !v.1;
+                }
+                let c = cost_of(&t);
+                if c < best - MIN_GAIN_S {
+                    (*seq, best, gained) = (t, c, true);
+                }
+            }
+        }
+        // Move one pass elsewhere (or-opt), either way round.
+        for i in 0..n {
+            for j in 0..n {
+                if i == j {
+                    continue;
+                }
+                for flip in [false, true] {
+                    let mut t = seq.clone();
+                    let mut v = t.remove(i);
+                    v.1 ^= flip;
+                    t.insert(j, v);
+                    let c = cost_of(&t);
+                    if c < best - MIN_GAIN_S {
+                        (*seq, best, gained) = (t, c, true);
+                    }
+                }
+            }
+        }
+        if !gained {
+            break;
+        }
+    }
+}
+
+/// A pass's knots (reversed when asked) with the longest leads the arm
+/// reaches, and every branch that follows it. Err: the painting knot (in
+/// the pass's own order) where the last lead length tried fails, and why.
+fn candidates(
+    robot: &AnyRobot,
+    station: &Station,
+    knots: &[Knot],
+    reversed: bool,
+    stroke: usize,
+) -> Result<Candidates, (usize, basr_robot::Unreachable)> {
+    let mut ks = knots.to_vec();
+    if reversed {
+        ks.reverse();
+    }
+    let mut first_err = None;
+    for lead in [LEAD_M, 0.5 * LEAD_M, 0.0] {
+        let (all, a, b) = with_leads(&ks, lead);
+        match solve_branches(robot, station, &all) {
+            Ok(br) => {
+                return Ok(Candidates {
+                    id: 0,
+                    arcs: super::trajectory::arc_lengths(&all),
+                    stroke,
+                    knots: all,
+                    paint_first: a,
+                    paint_last: b,
+                    branches: br,
+                })
+            }
+            Err((k, e)) => {
+                // Report the painting knot, not a lead's.
+                let k = k.saturating_sub(a).min(ks.len() - 1);
+                let k = if reversed { ks.len() - 1 - k } else { k };
+                first_err.get_or_insert((k, e));
+            }
+        }
+    }
+    Err(first_err.unwrap_or((0, unreachable_pose())))
+}
+
+/// The branch of every pass on the cheapest path stow → passes → stow
+/// (Viterbi over the passes; ties to the lower branch index), and its cost.
+fn best_branches(
+    robot: &AnyRobot,
+    stow: &Q,
+    cands: &[&Candidates],
+    costs: &JoinCosts,
+) -> (f64, Vec<usize>) {
+    let n = cands.len();
+    if n == 0 {
+        return (0.0, vec![]);
+    }
+    let first = |c: &Candidates, b: usize| c.branches[b].1[0];
+    let last = |c: &Candidates, b: usize| *c.branches[b].1.last().unwrap_or(stow);
+    // cost[i][b]: cheapest way to have painted passes 0..=i, pass i on branch b.
+    let mut cost: Vec<Vec<f64>> = Vec::with_capacity(n);
+    let mut from: Vec<Vec<usize>> = Vec::with_capacity(n);
+    for (i, c) in cands.iter().enumerate() {
+        let mut row = Vec::with_capacity(c.branches.len());
+        let mut back = Vec::with_capacity(c.branches.len());
+        for (b, (inside, _)) in c.branches.iter().enumerate() {
+            let entry = first(c, b);
+            let (best, arg) = if i == 0 {
+                (travel(robot, stow, &entry), 0)
+            } else {
+                let p = cands[i - 1];
+                (0..p.branches.len())
+                    .map(|a| (cost[i - 1][a] + costs.join(robot, p, a, c, b), a))
+                    .fold(
+                        (f64::INFINITY, 0),
+                        |m, x| if x.0 < m.0 - 1e-12 { x } else { m },
+                    )
+            };
+            let mut total = best + inside;
+            if i + 1 == n {
+                total += travel(robot, &last(c, b), stow);
+            }
+            row.push(total);
+            back.push(arg);
+        }
+        cost.push(row);
+        from.push(back);
+    }
+    let (mut b, total) = cost[n - 1]
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::INFINITY),
+            |m, (k, &v)| if v < m.1 - 1e-12 { (k, v) } else { m },
+        );
+    let mut choice = vec![0; n];
+    for i in (0..n).rev() {
+        choice[i] = b;
+        b = from[i][b];
+    }
+    (total, choice)
+}
+
+/// Joint travel time between two joint sets: the slowest joint, each
+/// accelerating and braking at its limit up to its speed limit.
+fn travel(robot: &AnyRobot, a: &Q, b: &Q) -> f64 {
+    robot
+        .limits()
+        .iter()
+        .zip(a.iter().zip(b))
+        .map(|(l, (x, y))| {
+            let d = (x - y).abs();
+            if d * l.max_acc <= l.max_vel * l.max_vel {
+                2.0 * (d / l.max_acc).sqrt()
+            } else {
+                d / l.max_vel + l.max_vel / l.max_acc
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The nozzle pose of a knot in a station's base frame.
+fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
+    let b = station.road_to_base([k.tip.x, k.tip.y]);
+    NozzlePose {
+        x_m: b[0],
+        y_m: b[1],
+        z_m: k.z_m,
+        yaw_rad: k.yaw_rad - (station.heading_rad - FRAC_PI_2),
+        tilt_rad: k.tilt_rad,
+    }
+}
+
+/// Largest yaw-joint change between two knots of a run (rad). Knots are a
+/// rung spacing apart (20 mm); the tightest turn in the font, a bowl's rung
+/// pivoting about its inner end, turns the fan by well under this. A larger
+/// step is a jump to the other fan branch (π) or yaw turn (2π). The
+/// electric kinds' other joints are held to it too (rad or m): a larger
+/// step between knots 20 mm apart is a jump to another IK solution (the
+/// articulated arm's elbow flipping, say).
+const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
+
+/// The joint whose step between knots `p` → `j` is a jump (see
+/// `MAX_KNOT_YAW_STEP_RAD`): only BASR's yaw joint for BASR (its other
+/// joints have one solution), any joint for the electric kinds.
+fn jump(robot: &AnyRobot, p: &Q, j: &Q) -> Option<usize> {
+    let fan = robot.fan_joint();
+    let step = |k: usize| (j[k] - p[k]).abs() > MAX_KNOT_YAW_STEP_RAD;
+    if robot.basr().is_some() {
+        return step(fan).then_some(fan);
+    }
+    std::iter::once(fan).chain(0..5).find(|&k| step(k))
+}
+
+/// Joints for every knot of a run, per branch: the fan's two branches (ψ
+/// with β, ψ+π with −β) and every yaw turn are tried at the first knot, and
+/// each is followed along the run by the nearest solution; those that hold
+/// to the end come back with their joint travel. Err: no branch does (the
+/// knot index and why).
+#[allow(clippy::type_complexity)]
+fn solve_branches(
+    robot: &AnyRobot,
+    station: &Station,
+    ks: &[Knot],
+) -> Result<Vec<(f64, Vec<Q>)>, (usize, basr_robot::Unreachable)> {
+    let first = knot_pose(station, &ks[0]);
+    let starts = robot.ik(&first).map_err(|e| (0, e))?;
+    let mut found = vec![];
+    let mut last_err = None;
+    'branch: for start in starts {
+        let mut cost = 0.0;
+        let mut out = Vec::with_capacity(ks.len());
+        out.push(start);
+        for (i, k) in ks.iter().enumerate().skip(1) {
+            let p = *out.last().unwrap_or(&start);
+            match robot.ik_nearest(&knot_pose(station, k), &p) {
+                // The nearest solution is on another branch or yaw turn: the
+                // one this branch follows has left the yaw joint's range.
+                // Turning the fan half or whole way round between two knots
+                // would spray a disc with the gun on, so the branch fails.
+                Ok(j) if jump(robot, &p, &j).is_some() => {
+                    let jj = jump(robot, &p, &j).unwrap_or(robot.fan_joint());
+                    let lim = robot.limits()[jj];
+                    let step = j[jj] - p[jj];
+                    // What the branch would have needed: the step less the
+                    // half turns the jump added.
+                    let own = step - std::f64::consts::PI * (step / std::f64::consts::PI).round();
+                    let value = p[jj] + own;
+                    last_err = Some((
+                        i,
+                        basr_robot::Unreachable {
+                            joint: robot.joint_names()[jj].into(),
+                            value,
+                            min: lim.min,
+                            max: lim.max,
+                            excess: (lim.min - value).max(value - lim.max).max(0.0),
+                            flipped: false,
+                        },
+                    ));
+                    continue 'branch;
+                }
+                Ok(j) => {
+                    cost += travel(robot, &p, &j);
+                    out.push(j);
+                }
+                Err(e) => {
+                    last_err = Some((i, e));
+                    continue 'branch;
+                }
+            }
+        }
+        found.push((cost, out));
+    }
+    if found.is_empty() {
+        Err(last_err.unwrap_or_else(|| (0, unreachable_pose())))
+    } else {
+        Ok(found)
+    }
+}
+
+/// Placeholder reason when no IK branch was even tried (never expected).
+fn unreachable_pose() -> basr_robot::Unreachable {
+    basr_robot::Unreachable {
+        joint: "pose".into(),
+        value: f64::NAN,
+        min: f64::NAN,
+        max: f64::NAN,
+        excess: f64::NAN,
+        flipped: false,
+    }
+}

@@ -1,0 +1,40 @@
+//! # basr-plan
+//!
+//! The planner. Imports `basr-io`, `basr-geom`, `basr-robot`, `basr-job` and `basr-shape`; never `basr-sim` or `basr-paint` (Cargo.toml does not list them, so the compiler refuses it). The workspace's crates are the pipeline (docs/architecture.md).
+//!
+//! The planner alone: placed strokes ([`placed`]) to a sealed job, a
+//! module per value: `rungs` → `passes` (knots, 001 §2.4, tilt §2.5) →
+//! `stations` → `tours` (`order`) → `joints` (with `leads`) → `trajectory`
+//! (the `timing` time law) → `samples` → `seal`. `warnings` holds every note
+//! a stage makes; `request` what a compile is asked; `inputs` the robot and
+//! font it reads.
+//!
+//! It imports geom, robot, job and shape (the strokes it plans), never the
+//! simulator or the previewer: verifying a plan on the arm and measuring
+//! its film are the pipeline's (the `basr` crate), which calls the stages
+//! here and re-times with [`trajectory::Pace`].
+
+pub mod chain;
+pub mod error;
+pub mod flight;
+pub mod inputs;
+pub mod joints;
+pub mod knots;
+pub mod leads;
+pub mod order;
+pub mod pairing;
+pub mod passes;
+pub mod placed;
+pub mod rate;
+pub mod request;
+pub mod rungs;
+pub mod samples;
+pub mod seal;
+pub mod stations;
+pub mod stow;
+pub mod tilt;
+pub mod timing;
+pub mod tours;
+pub mod trajectory;
+pub mod turn;
+pub mod warnings;

@@ -1,0 +1,395 @@
+//! Which point of one edge a rung joins to which point of the other, where
+//! equal arc-length steps (001 fig. 2.8) would turn the fan faster than the
+//! yaw joint can follow at painting speed.
+//!
+//! In a bowl's quarter (B, P, R, 3) the two edges' straight runs next to
+//! the shared rung differ (the inner edge's is 1 grid unit, the outer's 2),
+//! so equal arc-length rungs lean 45° at the start of the straight run and
+//! turn square only at the shared rung: 0.8 rad over 0.15 m, faster than
+//! the fan can turn at film speed. The turn limit then holds the fan off
+//! the shared rung, in opposite directions from the two strokes that meet
+//! there, and the footprints cross (docs/planner.md, "What is left in the
+//! bowls"). Here such a stroke's rungs are chosen as a shortest path over
+//! pairs of fine edge points instead: a rung costs its lean against the
+//! direction the nozzle travels (square rungs in a straight band) and a
+//! turn faster than the budget; each step moves both ends forward by one
+//! to three fine steps (no rung pivots about one of its ends, where the
+//! film would go as 1/r), and a wide rung far from the equal arc-length
+//! pairing costs (the tilt's balance is at its limit there already).
+
+use kurbo::{Point, Vec2};
+
+use basr_robot::kinematics::wrap_pi;
+use basr_shape::font::Stroke;
+
+use super::knots::TiltMethod;
+use super::rungs::Rung;
+use super::tilt;
+
+/// What the fan can turn while painting, for choosing rungs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TurnBudget {
+    /// speed × width of the film law (m²/s, 001 eq. 2.6).
+    pub k_m2ps: f64,
+    /// Narrowest band the fan paints (m): narrower rungs are paced by it.
+    pub min_width_m: f64,
+    /// Turn rate the fan may take while painting (rad/s, `turn::TURN_SHARE`
+    /// of the yaw joint's limit).
+    pub max_rate_rps: f64,
+    /// The nozzle height's follow; None for a kind without a vertical joint.
+    pub height: Option<HeightFollow>,
+    /// The tilt's follow; None for a kind that paints untilted.
+    pub tilt: Option<TiltFollow>,
+}
+
+/// How fast the nozzle height may change while painting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeightFollow {
+    /// Nozzle height per metre of fan width: the height law's slope (001
+    /// eq. 2.5 for the geometric law, c1 for a calibrated one).
+    pub dz_dw: f64,
+    /// Speed (m/s) the height may take (`rate::height_follow`).
+    pub max_speed_mps: f64,
+}
+
+/// How fast the quadrilateral tilt may change while painting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TiltFollow {
+    /// Full fan angle α (001 eq. 2.17).
+    pub fan_angle_rad: f64,
+    /// Largest tilt either way.
+    pub max_tilt_rad: f64,
+    /// Speed (rad/s) the tilt may take (`rate::tilt_follow`).
+    pub max_speed_rps: f64,
+}
+
+/// Matched rungs are kept unless they ask the nozzle height or the tilt
+/// to change faster than this many times what its joint follows at film
+/// speed, and faster than equal arc-length rungs would. assumed, measured:
+/// the rate limits (`knots::knots_within`, `rate`) spread what a bowl's
+/// quarter asks (B, P, R, 3, D, 5 at 8 ft: 1.8–2.2 × the tilt's follow)
+/// with the film within 1.01×; the arrow's barb tips at 3 m asked 5.1×
+/// and slowed to 2.7–3.2× film (base rotation and tilt acceleration), the
+/// arrow's point 5.1 × the height's follow (equal arc-length: 3.8×).
+pub const MAX_FOLLOW: f64 = 3.0;
+
+impl TurnBudget {
+    /// Fan turn rate (rad/s) of a step that turns `dpsi` over `ds` of
+    /// travel with rungs `w` wide, at the film law's speed.
+    fn rate(&self, dpsi: f64, ds: f64, w: f64) -> f64 {
+        let v = self.k_m2ps / w.max(self.min_width_m);
+        dpsi.abs() * v / ds.max(1e-6)
+    }
+}
+
+/// Fine steps per rung spacing. assumed: 8 lets a step's edges advance in
+/// ratios 1/3 … 3 and a rung average eight such steps (4 left the ratio
+/// steps visible as a zigzag in the rungs and the tilt: B's middle bar
+/// slowed to 1.49× film by the tilt's acceleration).
+const FINE_PER_SPACING: f64 = 8.0;
+/// Most fine points per edge. assumed: bounds the search (≈ 0.15 M states)
+/// for long strokes; a bowl quarter at 8 ft needs ≈ 340.
+const MAX_FINE: usize = 400;
+/// Largest fine steps one step may take on either edge.
+const MAX_STEP: usize = 3;
+/// Edges whose lengths differ more than this ratio keep equal arc-length
+/// rungs (the search could not reach the far end within `MAX_STEP`).
+const MAX_LENGTH_RATIO: f64 = 2.5;
+/// Share of the budget a step may turn at before it costs.
+/// assumed: leaves the turn limit (`turn`) a margin.
+const TURN_FREE: f64 = 0.8;
+/// Weights of the costs (per metre of travel). assumed, measured on B, P,
+/// R, 3 (docs/planner.md): a turn over budget outweighs everything; the
+/// distance from equal arc-length (× width², `off_diagonal`) next (20: P
+/// cv 0.081, 100: 0.042, 400: 0.051); lean (sin²) last. A cost on the
+/// ratio of the edges' advance instead of the distance left the wide end
+/// pivoting (P cv 0.060–0.072).
+const W_TURN: f64 = 50.0;
+const W_LEAN: f64 = 1.0;
+const W_DIAG: f64 = 100.0;
+/// Width (m) at which the distance from equal arc-length has weight `W_DIAG`.
+const RATIO_WIDTH_M: f64 = 0.1;
+
+/// The highest fan turn rate (rad/s) equal arc-length rungs would ask for
+/// at film speed.
+pub fn worst_rate(rungs: &[(Point, Point)], budget: &TurnBudget) -> f64 {
+    rungs
+        .windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let dpsi = wrap_pi((b.1 - b.0).atan2() - (a.1 - a.0).atan2());
+            let ds = (b.0.midpoint(b.1) - a.0.midpoint(a.1)).hypot();
+            let wid = 0.5 * ((a.1 - a.0).hypot() + (b.1 - b.0).hypot());
+            budget.rate(dpsi, ds, wid)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// How many times what its joint follows the nozzle height and the
+/// quadrilateral tilt (001 eq. 2.13–2.20) must change, the larger of the
+/// two, along `rungs` painted at the film law's speed (001 eq. 2.6); 0
+/// where neither is limited. A width under the fan's narrowest band counts
+/// as that band (the nozzle stays at its lowest there).
+pub fn follow_demand(rungs: &[(Point, Point)], budget: &TurnBudget) -> f64 {
+    let width = |r: &(Point, Point)| (r.1 - r.0).hypot().max(budget.min_width_m);
+    let step_s: Vec<f64> = rungs
+        .windows(2)
+        .map(|w| {
+            let ds = (w[1].0.midpoint(w[1].1) - w[0].0.midpoint(w[0].1)).hypot();
+            (ds * 0.5 * (width(&w[0]) + width(&w[1])) / budget.k_m2ps).max(1e-9)
+        })
+        .collect();
+    let share = |values: &[f64], limit: f64| {
+        values
+            .windows(2)
+            .zip(&step_s)
+            .map(|(v, dt)| (v[1] - v[0]).abs() / dt / limit)
+            .fold(0.0, f64::max)
+    };
+    let height = budget.height.map_or(0.0, |h| {
+        let z: Vec<f64> = rungs.iter().map(|r| h.dz_dw * width(r)).collect();
+        share(&z, h.max_speed_mps)
+    });
+    let tilt = budget.tilt.map_or(0.0, |t| {
+        let rs: Vec<Rung> = rungs
+            .iter()
+            .map(|&(left, right)| Rung { left, right })
+            .collect();
+        let beta = tilt::tilts(
+            &rs,
+            TiltMethod::Quadrilateral,
+            t.fan_angle_rad,
+            t.max_tilt_rad,
+        );
+        share(&beta, t.max_speed_rps)
+    });
+    height.max(tilt)
+}
+
+/// Rungs of `stroke` at most `spacing_m` apart along either edge, chosen by
+/// the shortest path described in the module docs; `None` where the edges'
+/// lengths are too unequal for it.
+pub fn matched_rungs(
+    stroke: &Stroke,
+    spacing_m: f64,
+    budget: &TurnBudget,
+) -> Option<Vec<(Point, Point)>> {
+    let (ll, lr) = (stroke.left.length(), stroke.right.length());
+    if !(ll > 0.0 && lr > 0.0) || ll.max(lr) > MAX_LENGTH_RATIO * ll.min(lr) {
+        return None;
+    }
+    let fine =
+        |len: f64| ((len * FINE_PER_SPACING / spacing_m).ceil() as usize).clamp(MAX_STEP, MAX_FINE);
+    let (nl, nr) = (fine(ll), fine(lr));
+    let lp = stroke.left.subdivide(nl);
+    let rp = stroke.right.subdivide(nr);
+    let (hl, hr) = (ll / nl as f64, lr / nr as f64);
+    let idx = |i: usize, j: usize| i * (nr + 1) + j;
+    let mut cost = vec![f64::INFINITY; (nl + 1) * (nr + 1)];
+    let mut from = vec![usize::MAX; (nl + 1) * (nr + 1)];
+    cost[0] = 0.0;
+    for i in 0..=nl {
+        for j in 0..=nr {
+            let c0 = cost[idx(i, j)];
+            if !c0.is_finite() {
+                continue;
+            }
+            let (m0, d0) = (lp[i].midpoint(rp[j]), rp[j] - lp[i]);
+            for a in 1..=MAX_STEP.min(nl - i) {
+                for b in 1..=MAX_STEP.min(nr - j) {
+                    let (i1, j1) = (i + a, j + b);
+                    let (m1, d1) = (lp[i1].midpoint(rp[j1]), rp[j1] - lp[i1]);
+                    let c = c0
+                        + step_cost(m0, d0, m1, d1, budget)
+                        + W_DIAG
+                            * off_diagonal(
+                                i1 as f64 / nl as f64,
+                                j1 as f64 / nr as f64,
+                                m0,
+                                d0,
+                                m1,
+                                d1,
+                            );
+                    let k = idx(i1, j1);
+                    if c < cost[k] {
+                        cost[k] = c;
+                        from[k] = idx(i, j);
+                    }
+                }
+            }
+        }
+    }
+    let end = idx(nl, nr);
+    if !cost[end].is_finite() {
+        return None;
+    }
+    // The path back from the far end: fine (left, right) arc lengths.
+    let mut path = vec![];
+    let mut k = end;
+    loop {
+        path.push(((k / (nr + 1)) as f64 * hl, (k % (nr + 1)) as f64 * hr));
+        if k == 0 {
+            break;
+        }
+        k = from[k];
+    }
+    path.reverse();
+    Some(resample(stroke, &path, spacing_m))
+}
+
+/// How far a rung's ends are from the equal arc-length pairing (shares of
+/// their edges `fl`, `fr`), weighted by the width squared and the travel:
+/// wide rungs keep to equal arc-length (where a rung turning about a point
+/// near one end lays film ∝ 1/r across it, the tilt's balance is already at
+/// its limit in a bowl), narrow ones may leave it to stand square.
+fn off_diagonal(fl: f64, fr: f64, m0: Point, d0: Vec2, m1: Point, d1: Vec2) -> f64 {
+    let ds = (m1 - m0).hypot();
+    let wide = (0.5 * (d0.hypot() + d1.hypot()) / RATIO_WIDTH_M).powi(2);
+    ds * wide * (fr - fl).powi(2)
+}
+
+/// Cost of the step from rung (m0, d0) to rung (m1, d1) (midpoint, left →
+/// right vector).
+fn step_cost(m0: Point, d0: Vec2, m1: Point, d1: Vec2, budget: &TurnBudget) -> f64 {
+    let travel = m1 - m0;
+    let ds = travel.hypot().max(1e-6);
+    let w = 0.5 * (d0.hypot() + d1.hypot());
+    let dpsi = wrap_pi(d1.atan2() - d0.atan2());
+    let over = (budget.rate(dpsi, ds, w) / budget.max_rate_rps - TURN_FREE).max(0.0);
+    // Lean: the rung's component along the travel (0 when square).
+    let dir = (d0 + d1).normalize();
+    let lean = dir.dot(travel / ds);
+    ds * (W_TURN * over * over + W_LEAN * lean * lean)
+}
+
+/// Rungs at equal steps of the path's edge travel (the larger of the two
+/// edges' advance), at most `spacing_m` apart on either edge.
+fn resample(stroke: &Stroke, path: &[(f64, f64)], spacing_m: f64) -> Vec<(Point, Point)> {
+    let mut u = vec![0.0];
+    for w in path.windows(2) {
+        let d = (w[1].0 - w[0].0).max(w[1].1 - w[0].1);
+        u.push(u.last().unwrap() + d);
+    }
+    let total = *u.last().unwrap();
+    let n = ((total / spacing_m).ceil() as usize).max(1);
+    let mut at = Vec::with_capacity(n + 1);
+    let mut seg = 0;
+    for m in 0..=n {
+        let target = total * m as f64 / n as f64;
+        while seg + 2 < u.len() && u[seg + 1] < target {
+            seg += 1;
+        }
+        let span = (u[seg + 1] - u[seg]).max(1e-15);
+        let f = ((target - u[seg]) / span).clamp(0.0, 1.0);
+        let (a, b) = (path[seg], path[seg + 1]);
+        at.push((a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1)));
+    }
+    // The caps exactly as the font gives them; between, points by length.
+    let point = |e: &basr_geom::Edge, m: usize, s: f64| match m {
+        0 => e.start(),
+        m if m == n => e.end(),
+        _ => e.point_at_length(s),
+    };
+    let out: Vec<(Point, Point)> = at
+        .iter()
+        .enumerate()
+        .map(|(m, &(sl, sr))| (point(&stroke.left, m, sl), point(&stroke.right, m, sr)))
+        .collect();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use basr_shape::font::Font;
+    use kurbo::Affine;
+
+    /// BASR's budget: k of SPEC §4, its 97 mm narrowest fan, 0.85 × 30°/s.
+    const BUDGET: TurnBudget = TurnBudget {
+        k_m2ps: 0.4e-3 / 60.0 * 0.9 / 0.38e-3,
+        min_width_m: 0.097,
+        max_rate_rps: 0.85 * 0.5235987755982988,
+        height: None,
+        tilt: None,
+    };
+
+    /// P's upper bowl quarter at 8 ft (a grid unit of 2.4384 m / 25).
+    fn p_quarter() -> Stroke {
+        let s = &Font::embedded().glyph('P').unwrap().strokes[1];
+        s.transformed(&Affine::scale(2.4384 / 25.0))
+    }
+
+    #[test]
+    fn a_bowl_quarter_gets_square_rungs_at_its_narrow_end() {
+        let st = p_quarter();
+        let spacing = 0.02;
+        let n = (st.left.length().max(st.right.length()) / spacing).ceil() as usize;
+        let equal = st.rungs(n);
+        assert!(worst_rate(&equal, &BUDGET) > BUDGET.max_rate_rps);
+        let m = matched_rungs(&st, spacing, &BUDGET).unwrap();
+        // Caps kept; steps within the spacing on both edges; monotone.
+        assert_eq!(m[0], equal[0]);
+        assert_eq!(*m.last().unwrap(), *equal.last().unwrap());
+        for w in m.windows(2) {
+            assert!((w[1].0 - w[0].0).hypot() <= spacing * 1.0001);
+            assert!((w[1].1 - w[0].1).hypot() <= spacing * 1.0001);
+        }
+        // Over the last 40 mm the rungs lean off the square shared rung
+        // less than equal arc-length rungs do (measured 0.13 against 0.20).
+        let yaw = |r: &(Point, Point)| (r.1 - r.0).atan2();
+        let end = yaw(m.last().unwrap());
+        let near_end = |rs: &[(Point, Point)]| {
+            rs.iter()
+                .filter(|r| (r.0 - rs.last().unwrap().0).hypot() <= 0.04)
+                .map(|r| wrap_pi(yaw(r) - end).abs())
+                .fold(0.0, f64::max)
+        };
+        let (now, before) = (near_end(&m), near_end(&equal));
+        assert!(before > 0.15 && now < 0.8 * before, "{now} {before}");
+        // And the fan is asked to turn less fast than before.
+        assert!(worst_rate(&m, &BUDGET) < worst_rate(&equal, &BUDGET));
+    }
+
+    /// BASR's budget with the height's and the tilt's follow (SPEC §4:
+    /// 15°/s tilt joint under its 0.11 m/s ball nut, × 0.8; the vertical
+    /// joint's speed × 0.8).
+    fn followed() -> TurnBudget {
+        let robot = basr_robot::AnyRobot::load_or_default(None).unwrap();
+        crate::passes::turn_budget(&robot)
+    }
+
+    #[test]
+    fn a_bowl_quarter_keeps_its_matched_rungs_within_the_follow() {
+        let b = followed();
+        assert!(b.height.is_some() && b.tilt.is_some());
+        let st = p_quarter();
+        let m = matched_rungs(&st, 0.02, &b).unwrap();
+        let ask = follow_demand(&m, &b);
+        // Over the follow, but within what the rate limits spread.
+        assert!(ask > 1.0 && ask <= MAX_FOLLOW, "{ask}");
+    }
+
+    #[test]
+    fn the_demand_grows_with_a_faster_tilt_and_is_zero_unlimited() {
+        let b = followed();
+        let st = p_quarter();
+        let m = matched_rungs(&st, 0.02, &b).unwrap();
+        let slow = TurnBudget {
+            tilt: b.tilt.map(|t| TiltFollow {
+                max_speed_rps: 0.5 * t.max_speed_rps,
+                ..t
+            }),
+            ..b
+        };
+        assert!(follow_demand(&m, &slow) > 1.9 * follow_demand(&m, &b) - 1e-9);
+        assert_eq!(follow_demand(&m, &BUDGET), 0.0);
+    }
+
+    #[test]
+    fn very_unequal_edges_keep_equal_arc_length() {
+        let s = &Font::embedded().glyph('I').unwrap().strokes[0];
+        let mut st = s.clone();
+        st.right = st.right.transformed(&Affine::scale_non_uniform(1.0, 3.0));
+        assert!(matched_rungs(&st, 0.02, &BUDGET).is_none());
+    }
+}

@@ -1,0 +1,510 @@
+//! Passes: each stroke's rungs turned into knots (fan direction, height,
+//! tilt, painting speed; `knots`), a stroke wider than one fan split into
+//! parallel passes. A pass is one continuous gun-on path.
+
+use crate::knots::{self, HeightLaw, Knot, PaintLaw, PlanError, TiltMethod};
+use crate::rungs::Rung;
+use basr_job::StrokeBalance;
+use basr_robot::paint_law::paint_law;
+use basr_robot::{AnyRobot, Robot};
+
+use super::error::CompileError;
+use super::placed::PlacedStrokes;
+use super::rate;
+use super::rungs::StrokeRungs;
+use super::warnings::Note;
+
+/// Rounds of turn limiting and re-pacing per pass. assumed: the speeds
+/// settle in two; the third is slack.
+const TURN_TRIES: usize = 3;
+/// Knots keep this far inside the tilt range, so the time law's smooth
+/// joint curves between knots (which may overshoot a knot held at a limit
+/// by a fraction of a milliradian) stay inside it. assumed: forty times the
+/// overshoot seen on STOP. (Narrow rungs hold the vertical joint at the
+/// bottom of its stroke, where a millimetre of inset would widen the fan
+/// past 3 %; there the setpoints are clamped instead, see `samples`.)
+const TILT_INSET_RAD: f64 = 0.0044; // 0.25°
+
+/// One continuous gun-on path: a stroke, or one pass of a wide stroke.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pass {
+    /// Index into the placed strokes.
+    pub stroke: usize,
+    pub knots: Vec<Knot>,
+}
+
+/// Every pass of the marking, in stroke order, with each stroke's paint
+/// balance and the notes of this stage.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Passes {
+    pub passes: Vec<Pass>,
+    pub balance: Vec<StrokeBalance>,
+    pub notes: Vec<Note>,
+}
+
+/// Knots of every stroke's passes (001 §2.4–2.5).
+pub fn passes(
+    strokes: &PlacedStrokes,
+    rungs: &StrokeRungs,
+    robot: &AnyRobot,
+    method: TiltMethod,
+) -> Result<Passes, CompileError> {
+    let law = paint_law(robot);
+    let max_tilt = max_tilt_rad(robot);
+    let max_tilt_rate = robot
+        .tilt_limit()
+        .map_or(f64::INFINITY, |tl| tl.max_vel * super::turn::TURN_SHARE);
+    let max_turn = max_turn_rps(robot);
+    // The tilt and the height within what their joints follow (`rate`).
+    let tilt_follow = rate::tilt_follow(robot);
+    let height_follow = rate::height_follow(robot);
+    let mut out = Passes::default();
+    let mut painted_m2 = 0.0;
+    let mut outside = vec![];
+    for (sid, stroke_rungs) in rungs.rungs.iter().enumerate() {
+        let owner = strokes.owner(sid);
+        let what =
+            |e: knots::PlanError| CompileError::Knots(format!("stroke {sid} ({owner}): {e}"));
+        let split = split_passes(stroke_rungs, law.max_width_m(), 0.0).map_err(what)?;
+        let mut clamped = 0usize;
+        let mut rung_count = 0usize;
+        let mut worst = 1.0f64;
+        let mut outside_m2 = 0.0;
+        // knots::KnotPlan keeps U in percent; the job keeps fractions.
+        let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
+        let mut u_tilted = u_untilted;
+        for pass in &split {
+            let mut kp =
+                knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate).map_err(what)?;
+            tilt_for_turned_fan(
+                pass,
+                &mut kp,
+                &law,
+                method,
+                [max_tilt, max_tilt_rate],
+                max_turn,
+            )
+            .map_err(what)?;
+            u_untilted = [
+                u_untilted[0].min(kp.u_before.0 / 100.0),
+                u_untilted[1].max(kp.u_before.1 / 100.0),
+            ];
+            u_tilted = [
+                u_tilted[0].min(kp.u_after.0 / 100.0),
+                u_tilted[1].max(kp.u_after.1 / 100.0),
+            ];
+            // A turned fan sweeps other road: re-pace, and check the turn
+            // again at the new speeds.
+            // The tilt, likewise, within what its joint follows.
+            for _ in 0..TURN_TRIES {
+                let turned = super::turn::limit_turn_rate(&mut kp.knots, max_turn);
+                let tilted = tilt_follow
+                    .is_some_and(|[v, a]| rate::limit_tilt_rate(&mut kp.knots, &law, v, a));
+                if !(turned || tilted) {
+                    break;
+                }
+                knots::pace(pass, &mut kp.knots, law.k_m2ps);
+            }
+            let raised = match robot.basr() {
+                Some(b) => lift_for_tilt(b, &law, &mut kp.knots),
+                None => vec![],
+            };
+            // The height, too, within what the vertical joint follows.
+            let lifted =
+                height_follow.is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
+            if !raised.is_empty() || lifted {
+                // Wider footprints sweep more road: re-pace the pass.
+                knots::pace(pass, &mut kp.knots, law.k_m2ps);
+            }
+            clamped += kp
+                .clamped
+                .iter()
+                .filter(|c| !raised.contains(&c.rung))
+                .count()
+                + raised.len();
+            rung_count += kp.knots.len();
+            let (outside, painted) = outside_area(&kp.knots);
+            outside_m2 += outside;
+            painted_m2 += painted;
+            for k in &kp.knots {
+                if k.width_m > 0.0 {
+                    worst = worst.max(k.fan_width_m / k.width_m);
+                }
+            }
+            out.passes.push(Pass {
+                stroke: sid,
+                knots: kp.knots,
+            });
+        }
+        if u_untilted[0].is_finite() && u_tilted[0].is_finite() {
+            out.balance.push(StrokeBalance {
+                stroke: sid,
+                char: owner.label.clone(),
+                line: owner.line,
+                u_untilted,
+                u_tilted,
+            });
+        }
+        if split.len() > 1 {
+            out.notes.push(Note::Passes {
+                stroke: sid,
+                owner: owner.clone(),
+                passes: split.len(),
+                max_width_m: law.max_width_m(),
+            });
+        }
+        if clamped > 0 {
+            out.notes.push(Note::HeightClamped {
+                stroke: sid,
+                owner: owner.clone(),
+                clamped,
+                rungs: rung_count,
+                min_height_m: law.min_height_m,
+                worst_ratio: worst,
+                outside_share: 0.0,
+                job_outside_share: 0.0,
+            });
+            outside.push(outside_m2);
+        }
+    }
+    // Shares of the whole job's paint, known once every pass is.
+    let job: f64 = outside.iter().sum();
+    let share = |a: f64| {
+        if painted_m2 > 0.0 {
+            a / painted_m2
+        } else {
+            0.0
+        }
+    };
+    let clamps = out.notes.iter_mut().filter_map(|n| match n {
+        Note::HeightClamped {
+            outside_share,
+            job_outside_share,
+            ..
+        } => Some((outside_share, job_outside_share)),
+        _ => None,
+    });
+    for ((o, j), &a) in clamps.zip(&outside) {
+        *o = share(a);
+        *j = share(job);
+    }
+    Ok(out)
+}
+
+/// Where the turn limit holds the fan off its rungs (`turn`), choose the
+/// tilt for the tiles the fan sweeps, not for the rungs: the knots again
+/// from the fan's own segments (each knot's width along its limited
+/// direction, about the rung's middle), then paced over the stroke's rungs.
+///
+/// The quadrilateral tilt (001 §2.5) balances the paint of a tile whose
+/// rung pivots (one end advancing faster than the other). A loop's short
+/// side (the 8's, 6's and 9's, between two 45° seams) has rungs that turn a
+/// quarter turn within ≈ 0.25 m, so the tilt was at its limit all along
+/// it, while the turn-limited fan turned less than half of that and hardly
+/// pivots. The needless tilt lifted the nozzle (the tilt four-bar's rise
+/// over the vertical joint's lowest height), so the fan painted 29 % wider
+/// than the stroke there, and it laid the film unevenly across the fan.
+fn tilt_for_turned_fan(
+    pass: &[Rung],
+    kp: &mut knots::KnotPlan,
+    law: &PaintLaw,
+    method: TiltMethod,
+    [max_tilt, max_tilt_rate]: [f64; 2],
+    max_turn_rps: f64,
+) -> Result<(), PlanError> {
+    // Only where the fan already paints wider than some rung (a narrow
+    // stroke), where a needless tilt costs paint outside the stroke.
+    if kp.clamped.is_empty() {
+        return Ok(());
+    }
+    let mut turned = kp.knots.clone();
+    if !super::turn::limit_turn_rate(&mut turned, max_turn_rps) {
+        return Ok(());
+    }
+    let fans = super::turn::fan_rungs(&turned);
+    let mut re = knots::knots_within(&fans, law, method, max_tilt, max_tilt_rate)?;
+    knots::pace(pass, &mut re.knots, law.k_m2ps);
+    // U (001 eq. 2.7–2.8) of the stroke's own cells at the tilts now used.
+    let betas: Vec<f64> = re.knots.iter().map(|k| k.tilt_rad).collect();
+    kp.u_after = super::tilt::u_range(&super::tilt::u_ratios(pass, &betas, law.fan_angle_rad));
+    kp.knots = re.knots;
+    kp.clamped = re.clamped;
+    Ok(())
+}
+
+/// Road area (m²) a pass's fan lays paint on outside its stroke, where the
+/// fan is wider than the rung (a clamped height), and all the road it lays
+/// paint on: each knot's width over half the tip travel to each neighbour.
+/// The film is on target over the whole fan, so the first over the second
+/// is the share of the paint that lands outside the stroke.
+pub fn outside_area(ks: &[Knot]) -> (f64, f64) {
+    let n = ks.len();
+    let mut outside = 0.0;
+    let mut painted = 0.0;
+    for (i, k) in ks.iter().enumerate() {
+        let before = if i > 0 {
+            (k.mid - ks[i - 1].mid).hypot()
+        } else {
+            0.0
+        };
+        let after = if i + 1 < n {
+            (ks[i + 1].mid - k.mid).hypot()
+        } else {
+            0.0
+        };
+        let ds = 0.5 * (before + after);
+        outside += (k.fan_width_m - k.width_m).max(0.0) * ds;
+        painted += k.fan_width_m.max(k.width_m) * ds;
+    }
+    (outside, painted)
+}
+
+/// The largest tilt either way the knots may take: the tilt joint's range
+/// less `TILT_INSET_RAD`; 0 for a kind that cannot lean the fan (the
+/// articulated arm paints untilted).
+fn max_tilt_rad(robot: &AnyRobot) -> f64 {
+    robot
+        .tilt_limit()
+        .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0))
+}
+
+/// Turn rate (rad/s) the fan may take while painting: `turn::TURN_SHARE`
+/// of the fan joint's speed limit.
+fn max_turn_rps(robot: &AnyRobot) -> f64 {
+    robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE
+}
+
+/// What the robot's fan may turn while painting, for choosing rungs: the
+/// share of the fan joint's speed limit the turn limit allows
+/// (`turn::TURN_SHARE`) at the film law's speeds, and what the height and
+/// the tilt may take (`rate`), the tilt's judged for the quadrilateral
+/// method (the default; the others tilt no more).
+pub fn turn_budget(robot: &AnyRobot) -> super::pairing::TurnBudget {
+    use super::pairing::{HeightFollow, TiltFollow, TurnBudget};
+    let law = paint_law(robot);
+    let dz_dw = match law.height {
+        HeightLaw::Geometric => law.height_for_width(1.0),
+        HeightLaw::Linear { c1, .. } => c1,
+    };
+    let max_tilt_rad = max_tilt_rad(robot);
+    TurnBudget {
+        k_m2ps: law.k_m2ps,
+        min_width_m: law.width_at_height(law.min_height_m),
+        max_rate_rps: max_turn_rps(robot),
+        height: rate::height_follow(robot).map(|[v, _]| HeightFollow {
+            dz_dw,
+            max_speed_mps: v,
+        }),
+        tilt: rate::tilt_follow(robot)
+            .filter(|_| max_tilt_rad > 0.0)
+            .map(|[v, _]| TiltFollow {
+                fan_angle_rad: law.fan_angle_rad,
+                max_tilt_rad,
+                max_speed_rps: v,
+            }),
+    }
+}
+
+/// Raise knots whose tilted tip would need the vertical joint below its
+/// stroke: the tilt four-bar lifts the tip by rise(β), so the lowest tip
+/// height at tilt ±β is `law.min_height_m + max(rise(β), rise(−β))`. The fan then covers
+/// more than the rung, and the speed follows the covered width (as
+/// `knots::knots` does for its own clamp). Returns the knots raised.
+fn lift_for_tilt(robot: &Robot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
+    let mut raised = vec![];
+    for (i, k) in ks.iter_mut().enumerate() {
+        // The fan's other branch (ψ+π, −β) paints the same rung; the four-bar
+        // lifts the tip differently at −β, so the height suits both and the
+        // tour may pick either branch (`joints`).
+        let rise = robot.tilt_tip_offset(k.tilt_rad)[1].max(robot.tilt_tip_offset(-k.tilt_rad)[1]);
+        if !(rise.is_finite() && rise > 0.0) {
+            continue;
+        }
+        let z_min = law.min_height_m + rise;
+        if k.z_m < z_min {
+            let factor = crate::tilt::height_factor(k.tilt_rad, law.fan_angle_rad);
+            k.z_m = z_min;
+            k.fan_width_m = law.width_at_height(z_min / factor).max(k.width_m);
+            raised.push(i);
+        }
+    }
+    raised
+}
+
+/// Splits a stroke too wide for one pass into parallel passes.
+///
+/// The rule: the number of passes n is the same along the whole stroke (so
+/// each pass is one continuous stroke with the gun on from end to end), the
+/// smallest with w_max/n + overlap ≤ `max_width_m`. Every rung is cut at the
+/// fractions j/n of its length; pass j gets the piece from j/n to (j+1)/n,
+/// widened by `overlap_m`/2 into each neighbour (never past the stroke's
+/// edges). With `overlap_m` = 0 the pieces tile every rung exactly: the
+/// passes share their boundaries, cover the stroke and paint no area twice.
+/// A positive overlap trades a band of double film for tolerance to arm
+/// error at the seam. Passes come left to right (pass 0 touches the left
+/// edge); a stroke narrow enough for one pass comes back unchanged.
+pub fn split_passes(
+    rungs: &[Rung],
+    max_width_m: f64,
+    overlap_m: f64,
+) -> Result<Vec<Vec<Rung>>, PlanError> {
+    if !(max_width_m.is_finite()
+        && overlap_m.is_finite()
+        && overlap_m >= 0.0
+        && max_width_m > overlap_m)
+    {
+        return Err(PlanError::BadPassSplit {
+            max_width_m,
+            overlap_m,
+        });
+    }
+    let widest = rungs.iter().map(Rung::width).fold(0.0_f64, f64::max);
+    if !widest.is_finite() {
+        return Err(PlanError::NotFinite {
+            rung: rungs
+                .iter()
+                .position(|r| !r.width().is_finite())
+                .unwrap_or(0),
+        });
+    }
+    if widest <= max_width_m {
+        return Ok(vec![rungs.to_vec()]);
+    }
+    let n = (widest / (max_width_m - overlap_m)).ceil().max(1.0) as usize;
+    Ok((0..n)
+        .map(|j| {
+            rungs
+                .iter()
+                .map(|r| {
+                    let w = r.width();
+                    let ext = if w > 0.0 { 0.5 * overlap_m / w } else { 0.0 };
+                    let f0 = if j == 0 {
+                        0.0
+                    } else {
+                        j as f64 / n as f64 - ext
+                    };
+                    let f1 = if j + 1 == n {
+                        1.0
+                    } else {
+                        (j + 1) as f64 / n as f64 + ext
+                    };
+                    Rung {
+                        left: r.left.lerp(r.right, f0.max(0.0)),
+                        right: r.left.lerp(r.right, f1.min(1.0)),
+                    }
+                })
+                .collect()
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kurbo::{Point, Vec2};
+    use proptest::prelude::*;
+
+    #[test]
+    fn a_loop_side_is_tilted_for_the_fan_that_turns_not_for_its_rungs() {
+        // The 8's lower loop side at 8 ft: a band 97.6 mm wide between two
+        // 45° seams, its outer edge 0.341 m long and its inner 0.147 m, in
+        // 18 equal arc-length rungs. They turn a quarter turn; the fan, held
+        // to the yaw joint's rate, turns less than half of that.
+        let robot = AnyRobot::load_or_default(None).unwrap();
+        let law = paint_law(&robot);
+        let tl = robot.tilt_limit().unwrap();
+        let limits = [
+            max_tilt_rad(&robot),
+            tl.max_vel * super::super::turn::TURN_SHARE,
+        ];
+        let max_turn = max_turn_rps(&robot);
+        let n = 18;
+        let rungs: Vec<Rung> = (0..=n)
+            .map(|k| {
+                let f = k as f64 / n as f64;
+                Rung {
+                    left: Point::new(0.1952, 0.927 - 0.341 * f),
+                    right: Point::new(0.0976, 0.830 - 0.147 * f),
+                }
+            })
+            .collect();
+        let method = TiltMethod::Quadrilateral;
+        let before = knots::knots_within(&rungs, &law, method, limits[0], limits[1]).unwrap();
+        let mut after = before.clone();
+        tilt_for_turned_fan(&rungs, &mut after, &law, method, limits, max_turn).unwrap();
+        let tilt = |kp: &knots::KnotPlan| {
+            kp.knots.iter().map(|k| k.tilt_rad.abs()).sum::<f64>() / kp.knots.len() as f64
+        };
+        let wide = |kp: &knots::KnotPlan| {
+            kp.knots
+                .iter()
+                .map(|k| k.fan_width_m / k.width_m)
+                .fold(0.0, f64::max)
+        };
+        // Measured: mean |β| 0.257 → 0.130 rad; the widest fan over its
+        // rung 1.086 → 1.008 (before the tilt four-bar's lift, which grows
+        // with |β|).
+        assert!(
+            tilt(&after) < 0.6 * tilt(&before),
+            "{} {}",
+            tilt(&after),
+            tilt(&before)
+        );
+        assert!(
+            wide(&before) > 1.05 && wide(&after) < 1.03,
+            "{} {}",
+            wide(&before),
+            wide(&after)
+        );
+        // Rungs the fan follows keep their knots.
+        let straight: Vec<Rung> = (0..=n)
+            .map(|k| Rung {
+                left: Point::new(0.2, 0.02 * k as f64),
+                right: Point::new(0.1, 0.02 * k as f64),
+            })
+            .collect();
+        let plain = knots::knots_within(&straight, &law, method, limits[0], limits[1]).unwrap();
+        let mut same = plain.clone();
+        tilt_for_turned_fan(&straight, &mut same, &law, method, limits, max_turn).unwrap();
+        assert_eq!(same, plain);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+        #[test]
+        fn passes_tile_every_rung(
+            widths in proptest::collection::vec(0.01f64..1.5, 2..12),
+            max_w in 0.1f64..0.5, overlap_frac in 0.0f64..0.5, angle in -3.0f64..3.0,
+        ) {
+            let overlap = overlap_frac * max_w;
+            let d = Vec2::from_angle(angle);
+            let rungs: Vec<Rung> = widths.iter().enumerate().map(|(k, &w)| {
+                let left = Point::new(0.03 * k as f64, 0.1);
+                Rung { left, right: left + w * d }
+            }).collect();
+            let passes = split_passes(&rungs, max_w, overlap).unwrap();
+            for p in &passes {
+                prop_assert_eq!(p.len(), rungs.len());
+                for r in p { prop_assert!(r.width() <= max_w + 1e-9); }
+            }
+            for (k, r) in rungs.iter().enumerate() {
+                let w = r.width();
+                // Pieces in order, first at the left end, last at the right end,
+                // consecutive ones overlapping by exactly min(overlap, …) and 0 when overlap = 0.
+                prop_assert!((passes[0][k].left - r.left).hypot() < 1e-12);
+                prop_assert!((passes[passes.len() - 1][k].right - r.right).hypot() < 1e-12);
+                let covered: f64 = passes.iter().map(|p| p[k].width()).sum();
+                let seams = (passes.len() - 1) as f64;
+                prop_assert!(covered >= w - 1e-9);
+                prop_assert!(covered <= w + seams * overlap + 1e-9);
+                for pair in passes.windows(2) {
+                    // Next piece starts no later than this one ends: no gap.
+                    let end = (pair[0][k].right - r.left).hypot();
+                    let start = (pair[1][k].left - r.left).hypot();
+                    prop_assert!(start <= end + 1e-12);
+                    if overlap == 0.0 { prop_assert!((start - end).abs() < 1e-12); }
+                }
+            }
+        }
+    }
+}

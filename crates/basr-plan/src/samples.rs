@@ -1,0 +1,248 @@
+//! Samples: the timed trajectory as the job's setpoint rows (joints,
+//! actuators, encoders, nozzle pose in the road frame, gun and width), after
+//! the robot's own check of every joint's range and rate: no job that breaks
+//! a limit leaves the compiler.
+
+use std::f64::consts::FRAC_PI_2;
+
+use crate::knots::Knot;
+use basr_job::{self as job, SampleRow, Samples, Station};
+use basr_robot::kinematics::wrap_pi;
+use basr_robot::{AnyRobot, Joints, NozzlePose, Robot, Q};
+
+use super::error::CompileError;
+use super::joints::{JointPaths, Run};
+use super::stations::StationPlan;
+use super::stow::{stow_joints, truck_rows};
+use super::trajectory::{arc_lengths, joints_of, Timed, TimedTrajectory};
+
+/// Largest joint overshoot `clamp_to_range` absorbs (m or rad); anything
+/// larger is a planning error.
+const CLAMP_MAX: f64 = 1e-3;
+
+/// The job's setpoint rows, station after station.
+pub fn sample(
+    plan: &StationPlan,
+    paths: &JointPaths,
+    timed: TimedTrajectory,
+    robot: &AnyRobot,
+    period_s: f64,
+) -> Result<Samples, CompileError> {
+    let mut samples = Samples::default();
+    if robot.basr().is_none() {
+        samples.kind_columns = robot.joint_names().map(String::from).to_vec();
+        samples.kind_columns.extend(robot.encoder_names());
+    }
+    for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
+        if si > 0 {
+            // The truck drives to this station with the arm stowed: rows of
+            // the station being driven to (the road frame jumps where the
+            // rows change station), one piece with the station's own rows so
+            // the speed column's differences run across the seam.
+            let hold = Timed {
+                q: stow_joints(robot),
+                run: None,
+                s: 0.0,
+                gun: None,
+            };
+            let n = truck_rows(robot, &plan.stations[si - 1], station, period_s);
+            rows.splice(0..0, std::iter::repeat_n(hold, n));
+        }
+        clamp_to_range(robot, &mut rows)?;
+        match robot.basr() {
+            Some(b) => check_basr(b, &rows, si + 1, period_s)?,
+            None => check_servo(robot, &rows, si + 1, period_s)?,
+        }
+        append_samples(
+            &mut samples,
+            robot,
+            station,
+            si as u32,
+            &paths.stations[si],
+            &rows,
+            period_s,
+        );
+    }
+    Ok(samples)
+}
+
+/// BASR's own check of the sampled joints (speeds, accelerations, ball-nut
+/// speed, ranges); `si` is the station's number from 1, as messages count.
+fn check_basr(robot: &Robot, rows: &[Timed], si: usize, period_s: f64) -> Result<(), CompileError> {
+    let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
+    robot
+        .check_rates(&js, period_s)
+        .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
+    for (k, j) in js.iter().enumerate() {
+        robot.check_joints(j).map_err(|e| {
+            CompileError::Timing(format!(
+                "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
+                 range ({e})"
+            ))
+        })?;
+    }
+    Ok(())
+}
+
+/// An electric kind's check of the sampled joints: each joint's range, and
+/// its speed and acceleration by finite differences (as `basr check`
+/// measures them), up to a relative 1e-9 (rounding); `si` counts from 1.
+fn check_servo(
+    robot: &AnyRobot,
+    rows: &[Timed],
+    si: usize,
+    period_s: f64,
+) -> Result<(), CompileError> {
+    let over = |v: f64, lim: f64| v.abs() > lim * (1.0 + 1e-9);
+    let names = robot.joint_names();
+    let fail = |k: usize, what: String| {
+        Err(CompileError::Timing(format!(
+            "station {si}, setpoint {k}: {what}"
+        )))
+    };
+    for (j, l) in robot.limits().iter().enumerate() {
+        let name = names[j];
+        let q: Vec<f64> = rows.iter().map(|p| p.q[j]).collect();
+        for (k, &v) in q.iter().enumerate() {
+            if !(v.is_finite() && l.contains(v)) {
+                return fail(
+                    k,
+                    format!("{name} = {v} leaves its range [{}, {}]", l.min, l.max),
+                );
+            }
+        }
+        for k in 1..q.len() {
+            let v = (q[k] - q[k - 1]) / period_s;
+            if over(v, l.max_vel) {
+                return fail(k, format!("{name} moves at {v}/s, over its {}", l.max_vel));
+            }
+            if k + 1 < q.len() {
+                let a = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (period_s * period_s);
+                if over(a, l.max_acc) {
+                    return fail(
+                        k,
+                        format!("{name} accelerates at {a}/s², over its {}", l.max_acc),
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Clamp setpoints that the smooth joint curves carry a hair past a joint's
+/// range (a knot held at the bottom of the vertical stroke); the rate
+/// checks that follow still see every clamped sample.
+fn clamp_to_range(robot: &AnyRobot, timed: &mut [Timed]) -> Result<(), CompileError> {
+    let names = robot.joint_names();
+    let limits = robot.limits();
+    for (k, p) in timed.iter_mut().enumerate() {
+        for (j, l) in limits.iter().enumerate() {
+            let name = names[j];
+            let v = p.q[j];
+            let c = v.clamp(l.min, l.max);
+            if (c - v).abs() > CLAMP_MAX {
+                return Err(CompileError::Timing(format!(
+                    "setpoint {k}: {name} = {v} leaves its range [{}, {}] between knots",
+                    l.min, l.max
+                )));
+            }
+            p.q[j] = c;
+        }
+    }
+    Ok(())
+}
+
+/// Append a station's samples to the job's columns.
+fn append_samples(
+    samples: &mut Samples,
+    robot: &AnyRobot,
+    station: &Station,
+    station_index: u32,
+    runs: &[Run],
+    timed: &[Timed],
+    period: f64,
+) {
+    let t0 = samples.len();
+    let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
+    // Nozzle in the road frame at every sample.
+    let poses: Vec<(NozzlePose, [f64; 2], f64)> = timed
+        .iter()
+        .map(|p| {
+            let pose = robot.fk(&p.q);
+            let r = station.base_to_road([pose.x_m, pose.y_m]);
+            let yaw = wrap_pi(pose.yaw_rad + station.heading_rad - FRAC_PI_2);
+            (pose, r, yaw)
+        })
+        .collect();
+    for (i, p) in timed.iter().enumerate() {
+        let (pose, r, yaw) = &poses[i];
+        // Central difference of the nozzle position (one-sided at the ends).
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(timed.len() - 1));
+        let speed = if b > a {
+            let (pa, pb) = (&poses[a], &poses[b]);
+            (pb.1[0] - pa.1[0]).hypot(pb.1[1] - pa.1[1]) / ((b - a) as f64 * period)
+        } else {
+            0.0
+        };
+        let (stroke, paint, width) = match p.gun {
+            Some(ri) => {
+                let run = &runs[ri];
+                // Before the run's motion (a gun lead) the width is the first rung's.
+                let s = if p.run == Some(ri) {
+                    p.s
+                } else {
+                    arcs[ri][run.paint_first]
+                };
+                let (w, _) = interp_knot(&run.knots, &arcs[ri], s);
+                (run.stroke as i64, 1u8, w)
+            }
+            None => (-1, 0u8, 0.0),
+        };
+        let nozzle = SampleRow {
+            t_s: job::tick_time(t0 + i, period),
+            station: station_index,
+            stroke,
+            paint,
+            x_m: r[0],
+            y_m: r[1],
+            z_m: pose.z_m,
+            yaw_rad: *yaw,
+            tilt_rad: pose.tilt_rad,
+            speed_mps: speed,
+            width_m: width,
+            ..SampleRow::default()
+        };
+        match robot.basr() {
+            Some(b) => samples.push(&basr_row(b, nozzle, &p.q)),
+            None => {
+                // BASR's joint, actuator and encoder columns stay 0 (not
+                // applicable); the kind's own follow (docs/robot-kinds.md).
+                samples.push(&nozzle);
+                samples.push_kind(p.q, robot.encoders(&p.q));
+            }
+        }
+    }
+}
+
+/// A BASR row: the nozzle columns with BASR's joints, actuators and encoders.
+fn basr_row(robot: &Robot, nozzle: SampleRow, q: &Q) -> SampleRow {
+    nozzle.with_basr_joints(robot, &joints_of(q))
+}
+
+/// Rung width and painting speed at arc length `s`, linear between knots.
+fn interp_knot(ks: &[Knot], arcs: &[f64], s: f64) -> (f64, f64) {
+    let n = ks.len();
+    let i = arcs.partition_point(|&a| a < s).clamp(1, n - 1);
+    let (s0, s1) = (arcs[i - 1], arcs[i]);
+    let f = if s1 > s0 {
+        ((s - s0) / (s1 - s0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let lerp = |a: f64, b: f64| a + f * (b - a);
+    (
+        lerp(ks[i - 1].swept_width_m, ks[i].swept_width_m),
+        lerp(ks[i - 1].speed_mps, ks[i].speed_mps),
+    )
+}

@@ -1,0 +1,546 @@
+//! What the planner tells a person: one variant per kind of note, with its
+//! data, a severity, and the one function that renders it to the job's text.
+//!
+//! Stages return `Note`s; only [`Note::render`] turns them into the job's
+//! `summary.warnings` entries (kind, stroke, time, factor, sentence), so the
+//! wording lives here and nowhere else.
+
+use basr_job::{self as job, Warning};
+
+/// How much a note matters to the crew (issue 15 sorts and colours by it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Severity {
+    /// For the record: the job paints as planned.
+    Info,
+    /// Worth a look before painting: the job paints, but not as asked.
+    Notice,
+    /// The paint will be off target somewhere.
+    Problem,
+}
+
+impl Severity {
+    pub fn name(self) -> &'static str {
+        match self {
+            Severity::Info => "info",
+            Severity::Notice => "notice",
+            Severity::Problem => "problem",
+        }
+    }
+}
+
+/// Which painted item a stroke belongs to, for messages: a letter's
+/// character (or a symbol's name) and its line.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Owner {
+    /// What the item is, for a person: `"letter"`, `"symbol"`, `"shape"`.
+    pub kind: &'static str,
+    /// The character or name (`"S"`, `"arrow_left"`); `layout.glyphs[].char`.
+    pub label: String,
+    /// Line index (0 = nearest the approaching driver).
+    pub line: usize,
+}
+
+impl std::fmt::Display for Owner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} {} of line {}", self.kind, self.label, self.line + 1)
+    }
+}
+
+/// Which limit slowed the nozzle below the painting speed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    /// A joint's speed limit (the joint's setpoint name, of the robot's kind).
+    Speed { joint: &'static str },
+    /// A joint's acceleration limit.
+    Acceleration { joint: &'static str },
+    /// The run-up from rest is too short to reach the speed.
+    RunUp,
+}
+
+impl std::fmt::Display for Limit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Limit::Speed { joint } => write!(f, "the {joint} speed limit"),
+            Limit::Acceleration { joint } => write!(f, "the {joint} acceleration limit"),
+            Limit::RunUp => write!(f, "the run-up from rest"),
+        }
+    }
+}
+
+/// Why the arm comes to rest inside a station.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StopWhy {
+    /// The station starts at rest in the stow pose (the truck has stopped).
+    LeaveStow,
+    /// The station ends at rest in the stow pose (the truck may move).
+    BackToStow,
+    /// Flying into this stroke would carry every moving joint past its range.
+    JointRange {
+        stroke: usize,
+        owner: Owner,
+        joint: &'static str,
+    },
+}
+
+/// The heaviest film on an item: where, how heavy, and the stroke painted
+/// nearest it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HotSpot {
+    pub at_m: [f64; 2],
+    /// Film there / target film.
+    pub film_ratio: f64,
+    pub stroke: Option<usize>,
+}
+
+/// One note of the planner.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Note {
+    /// A layout rule the marking bends (the layout's own sentence).
+    Layout { text: String },
+    /// How a scene's shape item was decomposed, and why (`plan::shapes`:
+    /// the method kept per region, the candidates' measured film, the
+    /// places narrower than the fan); `label` is the shape's file stem.
+    Shape { label: String, text: String },
+    /// A stroke wider than one pass paints, painted in parallel passes.
+    Passes {
+        stroke: usize,
+        owner: Owner,
+        passes: usize,
+        max_width_m: f64,
+    },
+    /// Rungs narrower than the fan paints from the nozzle's lowest height.
+    HeightClamped {
+        stroke: usize,
+        owner: Owner,
+        clamped: usize,
+        rungs: usize,
+        min_height_m: f64,
+        /// Largest fan width / rung width.
+        worst_ratio: f64,
+        /// Share of the job's paint this stroke's wider fan lays outside
+        /// the stroke (`passes::outside_area`).
+        outside_share: f64,
+        /// The same summed over every stroke of the job.
+        job_outside_share: f64,
+    },
+    /// A limit holds the nozzle below the painting speed over paint.
+    Slowed {
+        stroke: usize,
+        owner: Owner,
+        limit: Limit,
+        at_m: [f64; 2],
+        t_s: f64,
+        /// Film there / target film.
+        film_ratio: f64,
+    },
+
+    /// The film the job lays misses one of the preview's bounds
+    /// (`plan::film`, measured with `paint::film` at preview's defaults).
+    Film {
+        /// The bound as the preview words it (`cv 0.051 over the 0.050
+        /// limit`, `paint::verdict::Check::text`).
+        failed: String,
+        /// The metric's name (`cv`, `coverage`, `overspray`).
+        metric: &'static str,
+        /// The job's figure over its limit (value / limit).
+        factor: Option<f64>,
+        /// The item the bound fails worst on, with its own figure.
+        worst: Option<(Owner, f64)>,
+        /// For cv: the heaviest film on that item.
+        hot: Option<HotSpot>,
+    },
+
+    /// The arm comes to rest.
+    Stop {
+        station: usize,
+        t_s: f64,
+        at_m: [f64; 2],
+        why: StopWhy,
+    },
+}
+
+/// Film within this factor of the target is on target: the ±10 % band the
+/// preview's colour scale draws. // assumed: a film 10 % heavy or light is
+/// not visible on the road.
+pub const FILM_BAND: f64 = 1.10;
+/// Film from this factor of the target shows as a heavy line. // assumed:
+/// 1.5×, the top of the preview's colour scale.
+pub const FILM_HEAVY: f64 = 1.5;
+/// A fan at most this much wider than the stroke is not worth saying.
+/// // assumed: 5 %, about one 5 mm raster cell either side of a 0.1 m stroke.
+pub const WIDER_SMALL: f64 = 1.05;
+/// A fan more than this much wider than the stroke paints visibly outside
+/// the letter. // assumed: 25 %, about 12 mm either side of a 0.1 m stroke.
+pub const WIDER_LARGE: f64 = 1.25;
+
+/// Most of the job's paint the wider fans may lay outside their strokes
+/// before a clamp is a problem. assumed: the preview's overspray bound
+/// (3 %) less the 1.9 % (median) the fan's soft edges lay outside every letter
+/// (preview at defaults: I 2.1 %, T 1.9 %, L 1.8 %), so the job as a whole
+/// still meets the bound; see docs/planner.md.
+pub const OUTSIDE_BUDGET: f64 = 0.011;
+
+/// The severity of a measured excess: on target, off, visibly off.
+fn graded(ratio: f64, small: f64, large: f64) -> Severity {
+    if ratio > large {
+        Severity::Problem
+    } else if ratio > small {
+        Severity::Notice
+    } else {
+        Severity::Info
+    }
+}
+
+impl Note {
+    /// Graded by how far off the paint is, not by the kind alone: a film
+    /// 1.03× the target is information, 1.7× a problem.
+    pub fn severity(&self) -> Severity {
+        match self {
+            Note::Layout { .. } => Severity::Notice,
+            Note::Passes { .. } | Note::Stop { .. } | Note::Shape { .. } => Severity::Info,
+            // A fan visibly wider than the stroke is a problem only if the
+            // paint it lays outside, measured over the whole job, could
+            // carry the job past the preview's overspray bound.
+            Note::HeightClamped {
+                worst_ratio,
+                job_outside_share,
+                ..
+            } => match graded(*worst_ratio, WIDER_SMALL, WIDER_LARGE) {
+                Severity::Problem if *job_outside_share <= OUTSIDE_BUDGET => Severity::Notice,
+                s => s,
+            },
+            Note::Slowed { film_ratio, .. } => graded(*film_ratio, FILM_BAND, FILM_HEAVY),
+            // The preview fails this job's film (exit 1): the crew's
+            // verdict must not say READY (docs/planner.md "Film").
+            Note::Film { .. } => Severity::Problem,
+        }
+    }
+
+    /// What the crew should do about it, by severity.
+    fn todo(&self) -> &'static str {
+        match (self, self.severity()) {
+            (_, Severity::Info) => "Nothing to do.",
+            (Note::Layout { .. }, _) => "Check that this is what was asked for.",
+            (Note::HeightClamped { worst_ratio, .. }, Severity::Notice)
+                if *worst_ratio <= WIDER_LARGE =>
+            {
+                "The edge there is slightly soft; nothing to do unless the edges must be crisp."
+            }
+            (Note::HeightClamped { .. }, Severity::Notice) => {
+                "Expect a soft, slightly wide edge there; the job as a whole stays within the \
+                 preview's overspray bound. Larger letters (--letter-height) avoid it."
+            }
+            (Note::HeightClamped { .. }, _) => {
+                "Expect paint outside the letter there; larger letters (--letter-height) avoid it."
+            }
+            (Note::Film { .. }, _) => {
+                "Do not paint it as it is: `basr preview` of the job shows where; tell the \
+                 engineer who planned it (a larger --letter-height or --shape-height-m often \
+                 paints more evenly)."
+            }
+            (Note::Slowed { .. }, Severity::Notice) => {
+                "It dries a little slower there; check it before opening the lane."
+            }
+            _ => {
+                "Expect a heavy, slow-drying line there: check it before opening the lane and \
+                 tell the engineer who planned the job."
+            }
+        }
+    }
+
+    /// The job's entry for this note: the one place a note becomes text.
+    pub fn render(&self) -> Warning {
+        let severity = self.severity().name().to_string();
+        let todo = self.todo();
+        match self {
+            Note::Layout { text } => Warning {
+                kind: "layout".into(),
+                severity,
+                stroke: -1,
+                t_s: None,
+                factor: None,
+                message: format!("{text}. {todo}"),
+            },
+            // As `plan::shapes::compile_shape` writes a `--shape` job's lines.
+            Note::Shape { label, text } => Warning {
+                kind: "shape".into(),
+                severity,
+                stroke: -1,
+                t_s: None,
+                factor: None,
+                message: format!("shape {label}: {text}"),
+            },
+            Note::Passes {
+                stroke,
+                owner,
+                passes,
+                max_width_m,
+            } => Warning {
+                kind: "passes".into(),
+                severity,
+                stroke: *stroke as i64,
+                t_s: None,
+                factor: Some(*passes as f64),
+                message: format!(
+                    "{owner}, stroke {stroke}: wider than one sweep of the fan ({:.0} mm), so it \
+                     is painted in {passes} side-by-side sweeps. {todo}",
+                    max_width_m * 1e3
+                ),
+            },
+            Note::HeightClamped {
+                stroke,
+                owner,
+                clamped,
+                rungs,
+                min_height_m,
+                worst_ratio,
+                outside_share,
+                job_outside_share,
+            } => Warning {
+                kind: "height_clamped".into(),
+                severity,
+                stroke: *stroke as i64,
+                t_s: None,
+                factor: Some(*worst_ratio),
+                message: format!(
+                    "{owner}, stroke {stroke}: at {clamped} of {rungs} places the stroke is \
+                     narrower than the fan paints even with the nozzle at its lowest \
+                     ({:.0} mm over the road), so paint lands up to {:.1} % wider than the \
+                     stroke there (the film stays on target): {:.2} % of the job's paint \
+                     lands outside the stroke there, {:.2} % over the whole job (budget {:.1} %). \
+                     {todo}",
+                    min_height_m * 1e3,
+                    (worst_ratio - 1.0) * 100.0,
+                    outside_share * 100.0,
+                    job_outside_share * 100.0,
+                    OUTSIDE_BUDGET * 100.0
+                ),
+            },
+            Note::Slowed {
+                stroke,
+                owner,
+                limit,
+                at_m,
+                t_s,
+                film_ratio,
+            } => Warning {
+                kind: "slowed".into(),
+                severity,
+                stroke: *stroke as i64,
+                t_s: Some(job::round_ns(*t_s)),
+                factor: Some(*film_ratio),
+                message: format!(
+                    "{owner}, stroke {stroke}: near ({:.2}, {:.2}) m the arm cannot keep the \
+                     painting speed ({limit} holds it back, {t_s:.1} s into the job), so the \
+                     film there is up to {film_ratio:.2}× the target. {todo}",
+                    at_m[0], at_m[1]
+                ),
+            },
+            Note::Film {
+                failed,
+                metric,
+                factor,
+                worst,
+                hot,
+            } => Warning {
+                kind: "film".into(),
+                severity,
+                stroke: hot.as_ref().and_then(|h| h.stroke).map_or(-1, |s| s as i64),
+                t_s: None,
+                factor: *factor,
+                message: format!(
+                    "the film fails the preview's check: {failed}{}{}. {todo}",
+                    worst.as_ref().map_or(String::new(), |(owner, v)| format!(
+                        ", worst on {owner} ({metric} {v:.3})"
+                    )),
+                    hot.as_ref().map_or(String::new(), |h| format!(
+                        "; its heaviest film is {:.2}× the target near ({:.2}, {:.2}) m{}",
+                        h.film_ratio,
+                        h.at_m[0],
+                        h.at_m[1],
+                        h.stroke.map_or(String::new(), |s| format!(", stroke {s}"))
+                    ))
+                ),
+            },
+            Note::Stop {
+                station,
+                t_s,
+                at_m,
+                why,
+            } => {
+                let (stroke, reason) = match why {
+                    StopWhy::LeaveStow => (-1, "the station starts from the stow pose".to_string()),
+                    StopWhy::BackToStow => (-1, "the station ends in the stow pose".to_string()),
+                    StopWhy::JointRange {
+                        stroke,
+                        owner,
+                        joint,
+                    } => (
+                        *stroke as i64,
+                        format!(
+                            "flying into stroke {stroke} ({owner}) would carry {joint} past its range"
+                        ),
+                    ),
+                };
+                Warning {
+                    kind: "stop".into(),
+                    severity,
+                    stroke,
+                    t_s: Some(job::round_ns(*t_s)),
+                    factor: None,
+                    message: format!(
+                        "station {}: the arm stops at t = {t_s:.2} s near ({:.3}, {:.3}) m: \
+                         {reason}. {todo}",
+                        station + 1,
+                        at_m[0],
+                        at_m[1]
+                    ),
+                }
+            }
+        }
+    }
+}
+
+/// The job's `summary.warnings`, in the order the notes were made.
+pub fn render_all(notes: &[Note]) -> Vec<Warning> {
+    notes.iter().map(Note::render).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn owner() -> Owner {
+        Owner {
+            kind: "letter",
+            label: "S".into(),
+            line: 0,
+        }
+    }
+
+    #[test]
+    fn every_kind_renders_its_data_and_severity() {
+        let slowed = Note::Slowed {
+            stroke: 4,
+            owner: owner(),
+            limit: Limit::Acceleration {
+                joint: "ee_yaw_rad",
+            },
+            at_m: [-1.0524, 0.6081],
+            t_s: 19.3249999999,
+            film_ratio: 1.05,
+        };
+        let w = slowed.render();
+        assert_eq!(w.kind, "slowed");
+        assert_eq!(w.stroke, 4);
+        assert_eq!(w.factor, Some(1.05));
+        assert!(
+            w.message
+                .starts_with("letter S of line 1, stroke 4: near (-1.05, 0.61) m"),
+            "{}",
+            w.message
+        );
+        assert!(w
+            .message
+            .contains("(the ee_yaw_rad acceleration limit holds it back, 19.3 s"));
+        // 1.05× is inside the ±10 % band: information, nothing to do.
+        assert_eq!(slowed.severity(), Severity::Info);
+        assert_eq!(w.severity, "info");
+        assert!(w.message.ends_with("Nothing to do."), "{}", w.message);
+        let layout = Note::Layout { text: "gap".into() };
+        assert_eq!(layout.render().stroke, -1);
+        assert_eq!(layout.severity(), Severity::Notice);
+        let passes = Note::Passes {
+            stroke: 2,
+            owner: owner(),
+            passes: 3,
+            max_width_m: 0.2,
+        };
+        assert_eq!(passes.render().factor, Some(3.0));
+        assert_eq!(passes.severity().name(), "info");
+    }
+
+    #[test]
+    fn a_failed_film_bound_is_a_problem_naming_bound_value_and_where() {
+        let film = Note::Film {
+            failed: "cv 0.051 over the 0.050 limit".into(),
+            metric: "cv",
+            factor: Some(1.02),
+            worst: Some((owner(), 0.063)),
+            hot: Some(HotSpot {
+                at_m: [0.123, -1.5],
+                film_ratio: 1.625,
+                stroke: Some(7),
+            }),
+        };
+        assert_eq!(film.severity(), Severity::Problem);
+        let w = film.render();
+        assert_eq!((w.kind.as_str(), w.severity.as_str()), ("film", "problem"));
+        assert_eq!(w.stroke, 7);
+        assert!(
+            w.message.starts_with(
+                "the film fails the preview's check: cv 0.051 over the 0.050 limit, worst on \
+                 letter S of line 1 (cv 0.063); its heaviest film is 1.62× the target near \
+                 (0.12, -1.50) m, stroke 7. Do not paint it"
+            ),
+            "{}",
+            w.message
+        );
+    }
+
+    #[test]
+    fn severity_grows_with_how_far_off_the_paint_is() {
+        let slowed = |film_ratio| Note::Slowed {
+            stroke: 1,
+            owner: owner(),
+            limit: Limit::RunUp,
+            at_m: [0.0, 0.0],
+            t_s: 1.0,
+            film_ratio,
+        };
+        assert_eq!(slowed(1.03).severity(), Severity::Info);
+        assert_eq!(slowed(1.10).severity(), Severity::Info);
+        assert_eq!(slowed(1.2).severity(), Severity::Notice);
+        assert_eq!(slowed(1.71).severity(), Severity::Problem);
+        assert!(slowed(1.71)
+            .render()
+            .message
+            .contains("heavy, slow-drying line"));
+        let clamped = |worst_ratio, job_outside_share| Note::HeightClamped {
+            stroke: 1,
+            owner: owner(),
+            clamped: 9,
+            rungs: 65,
+            min_height_m: 0.078,
+            worst_ratio,
+            outside_share: 0.004,
+            job_outside_share,
+        };
+        assert_eq!(clamped(1.009, 0.02).severity(), Severity::Info);
+        assert_eq!(clamped(1.1, 0.02).severity(), Severity::Notice);
+        assert_eq!(clamped(1.297, 0.02).severity(), Severity::Problem);
+        let w = clamped(1.297, 0.02).render();
+        assert!(!w.message.contains("rung"), "jargon: {}", w.message);
+        assert_eq!(w.severity, "problem");
+        assert!(
+            w.message.contains("0.40 % of the job's paint"),
+            "{}",
+            w.message
+        );
+        assert!(w
+            .message
+            .contains("2.00 % over the whole job (budget 1.1 %)"));
+        // Within the budget over the whole job: a notice that says why.
+        let w = clamped(1.297, 0.008).render();
+        assert_eq!(w.severity, "notice");
+        assert!(
+            w.message.contains("within the preview's overspray bound"),
+            "{}",
+            w.message
+        );
+        assert!(clamped(1.1, 0.008)
+            .render()
+            .message
+            .contains("slightly soft"));
+    }
+}

@@ -1,0 +1,345 @@
+//! One closed-loop run as stages, each with one typed input and output:
+//!
+//! - [`prepare`]: job, models, options and faults → [`Setup`] (everything
+//!   checked, the job's nozzle path in each station's base frame);
+//! - per control tick, [`Setup::references`] (t → [`Refs`]),
+//!   [`Setup::measure`] (the plant's state → the controller's
+//!   [`Measurement`]), the controller and the safety monitor, then
+//!   [`Arm::advance`] (held [`Inputs`] → the plant one period on);
+//! - [`Tally::observe`] (in `tally`): one tick's [`Tick`] → the running figures;
+//! - [`Tally::report`]: the figures → the `Report`.
+
+use super::control::{Command, Measurement, Reference};
+use super::fault::{self, Active, Fault};
+use super::model::{ServoAxis, SimModel};
+use super::plant::{self, Inputs, State};
+use super::reference::{curve, within, NutTable, Pose};
+use super::report::Place;
+use super::tally::{Tally, Tick};
+use super::{ee, nozzle_base, safety, validate_job, Options, Outcome, SimError};
+use basr_job::{Job, Samples};
+use basr_robot::{Joints, Robot};
+
+/// A checked run, ready to tick.
+pub(super) struct Setup<'a> {
+    pub(super) samples: &'a Samples,
+    pub(super) robot: &'a Robot,
+    /// The controller is built for `nominal`; `model` is the plant.
+    pub(super) nominal: &'a SimModel,
+    pub(super) model: &'a SimModel,
+    pub(super) opts: &'a Options,
+    pub(super) faults: &'a [Fault],
+    pub(super) poses: Vec<Pose>,
+    /// The job's nozzle path in its stations' base frames.
+    pub(super) base_x: Vec<f64>,
+    pub(super) base_y: Vec<f64>,
+    pub(super) nut_to_tilt: NutTable,
+    pub(super) dt_job: f64,
+    pub(super) period: f64,
+    pub(super) substeps: u32,
+    pub(super) h: f64,
+    pub(super) ticks: u64,
+    pub(super) duration: f64,
+    /// Encoder and pressure-ADC quanta.
+    pub(super) base_q: f64,
+    pub(super) pressure_q: f64,
+    pub(super) r_max: f64,
+}
+
+/// Stage 1: check everything a run needs and lay the job out for it.
+pub(super) fn prepare<'a>(
+    job: &'a Job,
+    nominal: &'a SimModel,
+    model: &'a SimModel,
+    opts: &'a Options,
+    faults: &'a [Fault],
+) -> Result<Setup<'a>, SimError> {
+    validate_job(job)?;
+    // The hydraulic plant is BASR's; the electric kinds have theirs (`servo_job`).
+    let robot = job.robot.basr().ok_or_else(|| {
+        SimError::Job(format!(
+            "its robot is of the {} kind, which the hydraulic plant does not model",
+            job.robot.kind().name()
+        ))
+    })?;
+    nominal.validate().map_err(SimError::Model)?;
+    model.validate().map_err(SimError::Model)?;
+    if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
+        return Err(SimError::Option(format!(
+            "tolerance {} m must be positive",
+            opts.tolerance_m
+        )));
+    }
+    if let Some(n) = opts.substeps.filter(|n| !(1..=100).contains(n)) {
+        return Err(SimError::Option(format!(
+            "substeps = {n} must be 1–100 RK4 steps per control period"
+        )));
+    }
+    let substeps = opts.substeps.unwrap_or(model.substeps);
+    fault::check(
+        faults,
+        (job.samples.len().saturating_sub(1)) as f64 * job.control_period_s,
+    )
+    .map_err(SimError::Option)?;
+    let s = &job.samples;
+    let n = s.len();
+    let dt_job = job.control_period_s;
+    let period = model.control.period_s;
+    let duration = (n - 1) as f64 * dt_job;
+    let poses: Vec<Pose> = job.stations.iter().map(Pose::new).collect();
+    let (mut base_x, mut base_y) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    for i in 0..n {
+        let b = poses[s.station[i] as usize].to_base([s.x_m[i], s.y_m[i]]);
+        base_x.push(b[0]);
+        base_y.push(b[1]);
+    }
+    let sens = &model.sensors;
+    Ok(Setup {
+        samples: s,
+        robot,
+        nominal,
+        model,
+        opts,
+        faults,
+        poses,
+        base_x,
+        base_y,
+        nut_to_tilt: NutTable::new(robot),
+        dt_job,
+        period,
+        substeps,
+        h: period / substeps as f64,
+        ticks: (duration / period + 1e-9).floor() as u64 + 1,
+        duration,
+        base_q: std::f64::consts::TAU / sens.base_counts_per_turn,
+        pressure_q: sens.adc_step_v * sens.pressure_pa_per_volt,
+        r_max: model.arm.r_of_x(model.arm.x_max_m()),
+    })
+}
+
+/// The trajectory generator's output at one tick: the arm's reference and
+/// the end-effector axes' (position, rate).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Refs {
+    pub(super) arm: Reference,
+    pub(super) yaw: [f64; 3],
+    pub(super) nut: [f64; 3],
+    pub(super) vert: [f64; 3],
+}
+
+impl Setup<'_> {
+    /// The reference at `t`, held within the joints' ranges.
+    fn references(&self, t: f64) -> Refs {
+        let (s, dt, arm) = (self.samples, self.dt_job, &self.model.arm);
+        let nx = curve(&self.base_x, dt, t);
+        let ny = curve(&self.base_y, dt, t);
+        let (th_lo, th_hi) = (arm.theta_min_rad, arm.theta_max_rad);
+        Refs {
+            arm: Reference {
+                base_rot: within(curve(&s.base_rot_rad, dt, t), th_lo, th_hi),
+                extension: within(curve(&s.extension_m, dt, t), arm.r_min_m, self.r_max),
+                nozzle: [[nx[0], ny[0]], [nx[1], ny[1]], [nx[2], ny[2]]],
+            },
+            yaw: curve(&s.ee_yaw_rad, dt, t),
+            nut: curve(&s.tilt_nut_m, dt, t),
+            vert: curve(&s.vertical_m, dt, t),
+        }
+    }
+
+    /// What the controller reads: quantised encoders, pressures through the
+    /// transducers' volts and the ADC's steps.
+    fn measure(&self, st: &State, t: f64, reference: Reference, f: &Active) -> Measurement {
+        let (model, sens) = (self.model, &self.model.sensors);
+        let quant = |v: f64, q: f64| if sens.exact { v } else { (v / q).round() * q };
+        let pres = |p: f64| quant(p * sens.pressure_gain, self.pressure_q);
+        let r = model.arm.r_of_x(st[plant::X]);
+        Measurement {
+            t_s: t,
+            base_rot_rad: quant(st[plant::TH] + f.encoder_offset_rad, self.base_q),
+            extension_m: model.arm.r_min_m
+                + quant(r - model.arm.r_min_m, sens.extension_m_per_count),
+            motor_pa: [pres(st[plant::PA1]), pres(st[plant::PB1])],
+            cylinder_pa: [pres(st[plant::PA2]), pres(st[plant::PB2])],
+            supply_pa: pres(st[plant::PS]),
+            reference,
+        }
+    }
+
+    fn active(&self, t: f64) -> Active {
+        Active::at(self.faults, t, self.model.sensors.base_counts_per_turn)
+    }
+
+    /// The job's row at `t`.
+    fn row(&self, t: f64) -> usize {
+        ((t / self.dt_job + 1e-9).floor() as usize).min(self.samples.len() - 1)
+    }
+}
+
+/// The plant: arm and hydraulics, and the end-effector's servo axes.
+pub(super) struct Arm {
+    pub(super) state: State,
+    pub(super) yaw: ee::Servo,
+    pub(super) nut: ee::Servo,
+    pub(super) vert: ee::Servo,
+}
+
+/// Which end-effector axes hit a rate or acceleration limit in a period.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct ServoLimited {
+    pub(super) yaw: bool,
+    pub(super) nut: bool,
+    pub(super) vert: bool,
+}
+
+impl Arm {
+    fn at_rest(setup: &Setup) -> Arm {
+        let s = setup.samples;
+        Arm {
+            state: plant::rest_state(setup.model, s.base_rot_rad[0], s.extension_m[0]),
+            yaw: ee::Servo::at(s.ee_yaw_rad[0]),
+            nut: ee::Servo::at(s.tilt_nut_m[0]),
+            vert: ee::Servo::at(s.vertical_m[0]),
+        }
+    }
+
+    /// The nozzle now (base frame): the robot's FK of the actual joints
+    /// plus the linkage's deflection and the links' bending; and that
+    /// deflection alone.
+    fn nozzle(&self, setup: &Setup) -> ([f64; 2], [f64; 2]) {
+        let st = &self.state;
+        let pose = setup.robot.fk(&Joints {
+            base_rot_rad: st[plant::TH],
+            extension_m: setup.model.arm.r_of_x(st[plant::X]),
+            vertical_m: self.vert.pos,
+            ee_yaw_rad: self.yaw.pos,
+            tilt_rad: setup.nut_to_tilt.tilt(self.nut.pos),
+        });
+        let bend = plant::boom_offset(st);
+        (
+            [
+                pose.x_m + st[plant::DX] + bend[0],
+                pose.y_m + st[plant::DY] + bend[1],
+            ],
+            [st[plant::DX] + bend[0], st[plant::DY] + bend[1]],
+        )
+    }
+
+    /// Stage: the plant one control period on under held `inputs`, the
+    /// end-effector axes towards their references (clipped to travel).
+    pub(super) fn advance(&mut self, setup: &Setup, inputs: &Inputs, refs: &Refs) -> ServoLimited {
+        let model = setup.model;
+        let clip = |v: f64, a: &ServoAxis| v.clamp(a.min, a.max);
+        let (ay, an, av) = (&model.yaw, &model.tilt_nut, &model.vertical);
+        let mut lim = ServoLimited::default();
+        for _ in 0..setup.substeps {
+            plant::rk4_step(model, &mut self.state, inputs, setup.h);
+            lim.yaw |= self
+                .yaw
+                .step(ay, clip(refs.yaw[0], ay), refs.yaw[1], setup.h);
+            lim.nut |= self
+                .nut
+                .step(an, clip(refs.nut[0], an), refs.nut[1], setup.h);
+            lim.vert |= self
+                .vert
+                .step(av, clip(refs.vert[0], av), refs.vert[1], setup.h);
+        }
+        lim
+    }
+}
+
+/// The run: prepare, then tick (measure, control, monitor, tally, advance)
+/// until the job ends, the loop diverges or the stopped arm is at rest.
+pub(super) fn run(
+    job: &Job,
+    nominal: &SimModel,
+    model: &SimModel,
+    opts: &Options,
+    faults: &[Fault],
+    progress: &mut dyn FnMut(u64, u64),
+) -> Result<Outcome, SimError> {
+    let setup = prepare(job, nominal, model, opts, faults)?;
+    let (s, period, ticks) = (setup.samples, setup.period, setup.ticks);
+    let mut arm = Arm::at_rest(&setup);
+    let m0 = setup.measure(
+        &arm.state,
+        0.0,
+        setup.references(0.0).arm,
+        &setup.active(0.0),
+    );
+    let mut ctrl = opts.controller.build(setup.nominal, &m0);
+    let mut tally = Tally::new();
+    let mut monitor = safety::Monitor::new(model, faults);
+    for k in 0..ticks {
+        let t = k as f64 * period;
+        let row = setup.row(t);
+        let refs = setup.references(t);
+        let active = setup.active(t);
+        let meas = setup.measure(&arm.state, t, refs.arm, &active);
+        let cmd = ctrl.step(&meas);
+        let station = s.station[row];
+        let station_pose = &setup.poses[station as usize];
+        let (nozzle, deflection) = arm.nozzle(&setup);
+        let des = refs.arm.nozzle[0];
+        let error = [nozzle[0] - des[0], nozzle[1] - des[1]];
+        let des_road = station_pose.to_road(des);
+        let place = Place {
+            t_s: t,
+            stroke: s.stroke[row],
+            station,
+            x_m: des_road[0],
+            y_m: des_road[1],
+        };
+        // the safety monitor: the nozzle off its path by the encoders
+        monitor.note_faults(t, period, &place);
+        let w_meas = nozzle_base(model, meas.base_rot_rad, meas.extension_m);
+        let w_ref = nozzle_base(model, refs.arm.base_rot[0], refs.arm.extension[0]);
+        let follow = (w_meas[0] - w_ref[0]).hypot(w_meas[1] - w_ref[1]);
+        let before_stop = !monitor.stopped();
+        let estop = monitor.check(model, &meas, follow, &place);
+        let painting = s.paint[row] != 0;
+        let gun = monitor.gun_open(painting, follow, opts.tolerance_m);
+        let err = error[0].hypot(error[1]);
+        monitor.nozzle(t, station_pose.to_road(nozzle), err, gun, opts.tolerance_m);
+        let cmd = if estop { Command::default() } else { cmd };
+        tally.observe(
+            &setup,
+            &Tick {
+                row,
+                place,
+                // the job's painting ends where the arm was stopped
+                painting: painting && before_stop,
+                before_stop,
+                refs: &refs,
+                arm: &arm,
+                cmd,
+                nozzle,
+                deflection,
+                error,
+            },
+        );
+        if k + 1 == ticks {
+            break;
+        }
+        let inputs = Inputs {
+            u_motor: cmd.u_motor,
+            u_cyl: cmd.u_cyl,
+            estop,
+            faults: active,
+        };
+        let lim = arm.advance(&setup, &inputs, &refs);
+        tally.servo_limited(lim, period);
+        if arm.state.iter().any(|v| !v.is_finite()) {
+            // an unstable loop: a failed run, judged on what it did so far
+            tally.diverged = Some(t);
+            break;
+        }
+        if k % 2000 == 0 {
+            progress(k, ticks);
+        }
+        if monitor.done(t) {
+            break;
+        }
+    }
+    progress(ticks, ticks);
+    Ok(tally.report(&setup, monitor.finish()))
+}

@@ -1,0 +1,120 @@
+//! The film check of a compiled job: the sealed job's film measured by the
+//! preview's own stage (`paint::film`, at `basr preview`'s defaults) and
+//! every bound it misses made a [`Note::Film`], so compile's verdict knows
+//! what the preview will say (docs/planner.md "Film").
+
+use crate::job::{FilmSummary, Job};
+use crate::paint::film::{self, FilmOptions, JobFilm};
+use crate::paint::metrics::GlyphMetrics;
+
+use basr_plan::error::CompileError;
+use basr_plan::warnings::{HotSpot, Note, Owner};
+
+/// What compile records of the film: the summary's figures and the notes
+/// for the bounds it misses.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilmCheck {
+    pub summary: FilmSummary,
+    pub notes: Vec<Note>,
+}
+
+/// The film stage of compile: `job`'s film as `basr preview JOB` measures
+/// it; `owners[i]` names the job's `layout.glyphs[i]` in the notes.
+pub fn check(job: &Job, owners: &[Owner]) -> Result<FilmCheck, CompileError> {
+    let measured = film::film(job, &FilmOptions::preview_defaults(), &|_, _| {})
+        .map_err(|e| CompileError::Film(e.to_string()))?;
+    Ok(FilmCheck {
+        summary: measured.summary(),
+        notes: notes(&measured, job, owners),
+    })
+}
+
+/// One [`Note::Film`] per failed bound, naming the item it fails worst on
+/// (for cv also its heaviest film, where and on which stroke).
+fn notes(measured: &JobFilm, job: &Job, owners: &[Owner]) -> Vec<Note> {
+    let glyphs = &measured.preview.metrics.glyphs;
+    measured
+        .verdict
+        .checks
+        .iter()
+        .filter(|c| !c.pass)
+        .map(|c| {
+            let max = c.bound == "max";
+            // The item's own figure of this metric; the worst is the
+            // highest for an upper bound, the lowest for a lower one.
+            let worst = glyphs
+                .iter()
+                .zip(owners)
+                .enumerate()
+                .filter_map(|(i, (g, o))| figure(g, c.metric).map(|v| (i, o, v)))
+                .max_by(|a, b| {
+                    let ord = a.2.total_cmp(&b.2);
+                    if max {
+                        ord
+                    } else {
+                        ord.reverse()
+                    }
+                });
+            let hot = match (c.metric, worst) {
+                ("cv", Some((i, _, _))) => hot_spot(measured, job, i),
+                _ => None,
+            };
+            Note::Film {
+                failed: c.text(),
+                metric: c.metric,
+                factor: c.value.map(|v| v / c.limit),
+                worst: worst.map(|(_, o, v)| (o.clone(), v)),
+                hot,
+            }
+        })
+        .collect()
+}
+
+/// The heaviest film over item `item` (the fullest raster cell inside its
+/// outline's box: the hot spots of joins and slowed places are what lift
+/// a letter's cv) and the stroke whose painting setpoint lies nearest it.
+fn hot_spot(measured: &JobFilm, job: &Job, item: usize) -> Option<HotSpot> {
+    let outline = measured.preview.outlines.get(item)?;
+    let b = outline.bounds();
+    let g = &measured.preview.film.grid;
+    let index = |v: f64, o: f64, n: usize| (((v - o) / g.cell_m).floor().max(0.0) as usize).min(n);
+    let (i0, i1) = (index(b.min[0], g.x0, g.nx), index(b.max[0], g.x0, g.nx));
+    let (j0, j1) = (index(b.min[1], g.y0, g.ny), index(b.max[1], g.y0, g.ny));
+    let (mut best, mut at) = (f64::NEG_INFINITY, None);
+    for j in j0..j1 {
+        for i in i0..i1 {
+            let v = g.data[j * g.nx + i];
+            if v > best {
+                best = v;
+                at = Some([
+                    g.x0 + (i as f64 + 0.5) * g.cell_m,
+                    g.y0 + (j as f64 + 0.5) * g.cell_m,
+                ]);
+            }
+        }
+    }
+    let at_m = at?;
+    let s = &job.samples;
+    let stroke = (0..s.len())
+        .filter(|&k| s.paint[k] == 1 && s.stroke[k] >= 0)
+        .min_by(|&a, &b| {
+            let d = |k: usize| (s.x_m[k] - at_m[0]).hypot(s.y_m[k] - at_m[1]);
+            d(a).total_cmp(&d(b))
+        })
+        .map(|k| s.stroke[k] as usize);
+    Some(HotSpot {
+        at_m,
+        film_ratio: best / measured.preview.metrics.target_film_m,
+        stroke,
+    })
+}
+
+/// A letter's figure of `metric` (the preview's per-letter table).
+fn figure(g: &GlyphMetrics, metric: &str) -> Option<f64> {
+    match metric {
+        "cv" => g.cv,
+        "coverage" => g.coverage,
+        "overspray" => g.overspray,
+        _ => None,
+    }
+}

@@ -1,0 +1,129 @@
+//! Verification: every job compile writes is run through the closed-loop
+//! simulator (`sim::simulate`, the default controller, the job's robot
+//! dynamics) before it is written; a job whose nozzle strays more than
+//! `VERIFY_SHARE` of the tolerance while painting, or that breaks a limit
+//! of the plant, is re-timed slower by the caller or refused.
+
+use crate::job::Job;
+use crate::sim::{self, SimModel};
+
+use basr_plan::error::CompileError;
+
+/// Share of the tolerance the verified error may use (issue 11: 0.75 ×
+/// 6.35 mm), leaving the rest for what the model does not know.
+pub const VERIFY_SHARE: f64 = 0.75;
+
+/// What the simulator made of a job.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    pub max_error_m: f64,
+    /// Within `VERIFY_SHARE` of the tolerance and no plant limit broken.
+    pub ok: bool,
+    /// Where and why it failed (empty when `ok`).
+    pub why: String,
+    /// Station and stroke of the worst error (stroke −1 in an air move).
+    pub worst: (u32, i64),
+    /// Job time of the worst error (s).
+    pub worst_t_s: f64,
+    /// Every stroke whose error is over the bound: (station, stroke, job
+    /// time of its worst error, the error in m).
+    pub failing: Vec<(u32, i64, f64, f64)>,
+}
+
+/// Simulate `job` with the default options and judge it.
+pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
+    // The checks `basr check` and `simulate` make of every job: compile must
+    // not write one they refuse.
+    let problems = crate::job::verify::problems(job, "the compiled job");
+    if let Some(first) = problems.first() {
+        return Err(CompileError::Verify(format!(
+            "the job fails the content checks of `basr check` ({} problem(s)), first: {first}; \
+             this is a planner bug, please report it",
+            problems.len()
+        )));
+    }
+    let Some(robot) = job.robot.basr() else {
+        return verify_servo(job);
+    };
+    let model = SimModel::from_robot(robot)
+        .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
+    let opts = sim::Options::default();
+    let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let r = &outcome.report;
+    let broken: Vec<&str> = r
+        .limits
+        .iter()
+        .filter(|l| l.fails)
+        .map(|l| l.message.as_str())
+        .collect();
+    let bound = VERIFY_SHARE * opts.tolerance_m;
+    let failing = r
+        .strokes
+        .iter()
+        .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
+        .map(|s| (s.worst.station, s.stroke, s.worst.t_s, s.max_error_m))
+        .collect();
+    Ok(judge(
+        r.max_error_m,
+        &r.worst,
+        &broken,
+        opts.tolerance_m,
+        failing,
+    ))
+}
+
+/// The verdict on a simulated job: its painting error within
+/// `VERIFY_SHARE` of `tolerance_m` and no limit `broken`; `failing` lists
+/// the strokes over that bound (see [`Verdict::failing`]).
+fn judge(
+    max_error_m: f64,
+    worst: &sim::report::Place,
+    broken: &[impl AsRef<str>],
+    tolerance_m: f64,
+    failing: Vec<(u32, i64, f64, f64)>,
+) -> Verdict {
+    let bound = VERIFY_SHARE * tolerance_m;
+    let ok = max_error_m <= bound && broken.is_empty();
+    let why = if ok {
+        String::new()
+    } else {
+        let mut w = format!(
+            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
+             × the {:.2} mm tolerance) at {}",
+            max_error_m * 1e3,
+            bound * 1e3,
+            tolerance_m * 1e3,
+            worst.describe()
+        );
+        if !broken.is_empty() {
+            let b: Vec<&str> = broken.iter().map(AsRef::as_ref).collect();
+            w.push_str(&format!("; limits broken: {}", b.join("; ")));
+        }
+        w
+    };
+    Verdict {
+        max_error_m,
+        ok,
+        why,
+        worst: (worst.station, worst.stroke),
+        worst_t_s: worst.t_s,
+        failing,
+    }
+}
+
+/// An electric kind's job through its servo plant (`sim::servo_job`),
+/// judged as BASR's: within `VERIFY_SHARE` of the default tolerance, no
+/// joint out of its range.
+fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
+    let tolerance = sim::Options::default().tolerance_m;
+    let r = sim::servo_job::simulate_job(job, tolerance)
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    Ok(judge(
+        r.max_error_m,
+        &r.worst,
+        &r.broken_limits(),
+        tolerance,
+        vec![],
+    ))
+}
