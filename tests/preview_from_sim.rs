@@ -85,9 +85,19 @@ fn from_sim_u_stays_near_the_compiled_jobs() {
 #[test]
 fn from_sim_and_compare_do_not_combine() {
     let dir = tempfile::tempdir().unwrap();
+    // A real job, so the refusal can only be the options' (a missing job
+    // is refused with exit 2 too).
+    let out = basr(dir.path(), &["compile", "L", "-q"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let out = basr(
         dir.path(),
-        &["preview", "x.job.json", "--from-sim", "--compare", "none"],
+        &["preview", "L.job.json", "--from-sim", "--compare", "none"],
     );
     assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--from-sim") && err.contains("--compare"),
+        "the refusal names both options: {err}"
+    );
+    assert!(!dir.path().join("L.svg").exists(), "no preview written");
 }

@@ -34,10 +34,6 @@ const PAINTING_SHADE: &str = "#eef5ff";
 /// // assumed: large enough to see millimetres on a 4 m wide plot.
 pub const ERROR_MAGNIFICATION: f64 = 20.0;
 
-fn magnification(_max_err: f64, _span: f64) -> f64 {
-    ERROR_MAGNIFICATION
-}
-
 fn polyline(pts: impl Iterator<Item = (f64, f64)>) -> String {
     let mut d = String::new();
     for (i, (x, y)) in pts.enumerate() {
@@ -132,7 +128,7 @@ pub fn render(trace: &[TraceRow], report: &Report) -> String {
     let px_per_m = (MAP_W / span_x).min(MAP_MAX_H / span_y);
     let map_top = 80.0;
     let frame = Frame::new(PAD, map_top, px_per_m, road_min, road_max);
-    let mag = magnification(report.max_error_all_m, span_x.max(span_y));
+    let mag = ERROR_MAGNIFICATION;
     let groups = runs(trace);
 
     let mut g = Group::new();
@@ -375,13 +371,6 @@ pub fn render(trace: &[TraceRow], report: &Report) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn magnification_is_the_same_for_every_job() {
-        assert_eq!(magnification(0.001, 2.0), 20.0);
-        assert_eq!(magnification(1.0, 2.0), 20.0);
-        assert_eq!(magnification(0.0003, 3.0), 20.0);
-    }
 
     #[test]
     fn runs_split_on_the_gun_state() {
