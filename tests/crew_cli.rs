@@ -1,20 +1,8 @@
 //! Issue 15: lengths with units, hints for the usual slips, output paths
 //! refused before any work.
 
-use assert_cmd::Command;
-
-fn basr(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(out: &std::process::Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+mod common;
+use common::{basr, stderr};
 
 #[test]
 fn letter_height_in_feet_and_a_bare_feet_number_hinted() {

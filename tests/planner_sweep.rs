@@ -56,8 +56,15 @@ fn holds_then(args: &[&str], expect: Expect, also: impl Fn(&Path)) {
     let code = out.status.code();
     let err = String::from_utf8_lossy(&out.stderr);
     if let Expect::Refused(reason) = expect {
-        assert_eq!(code, Some(2), "{args:?} must be refused: exit {code:?}: {err}");
-        assert!(err.contains(reason), "{args:?}: the refusal does not say {reason:?}: {err}");
+        assert_eq!(
+            code,
+            Some(2),
+            "{args:?} must be refused: exit {code:?}: {err}"
+        );
+        assert!(
+            err.contains(reason),
+            "{args:?}: the refusal does not say {reason:?}: {err}"
+        );
         assert!(!job.exists(), "{args:?}: a refused compile left a job");
         return;
     }
@@ -175,5 +182,8 @@ fn ends_of_the_geometry_ranges() {
         &["S", "--letter-height", "10"],
         Expect::Refused(OUT_OF_REACH),
     );
-    holds(&["I", "--letter-height", "4"], Expect::Refused(OUT_OF_REACH));
+    holds(
+        &["I", "--letter-height", "4"],
+        Expect::Refused(OUT_OF_REACH),
+    );
 }

@@ -1,18 +1,10 @@
 //! `basr preview --from-sim`: the film of the simulated arm, end to end.
 
+mod common;
+use common::basr;
+
 #[path = "preview_common/mod.rs"]
 mod preview_common;
-
-use assert_cmd::Command;
-
-fn basr(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 #[test]
 fn from_sim_previews_the_film_the_arm_lays() {
@@ -88,7 +80,11 @@ fn from_sim_and_compare_do_not_combine() {
     // A real job, so the refusal can only be the options' (a missing job
     // is refused with exit 2 too).
     let out = basr(dir.path(), &["compile", "L", "-q"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let out = basr(
         dir.path(),
         &["preview", "L.job.json", "--from-sim", "--compare", "none"],

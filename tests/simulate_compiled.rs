@@ -3,18 +3,10 @@
 //! whose speed and acceleration limits are raised far beyond what the arm
 //! can do fails and says where.
 
+mod common;
+use common::basr;
+
 use std::path::Path;
-
-use assert_cmd::Command;
-
-fn basr(dir: &Path, args: &[&str]) -> std::process::Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn ok(out: &std::process::Output) {
     assert!(

@@ -3,22 +3,9 @@
 //! (exit 2), each naming the field; a correctly sealed job whose content
 //! `check` refuses is refused by `simulate` and `preview` before any work.
 
-use std::path::Path;
+mod common;
+use common::{basr, stderr};
 
-use assert_cmd::Command;
-
-fn basr(dir: &Path, args: &[&str]) -> std::process::Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &std::process::Output) -> String {
-    String::from_utf8_lossy(&o.stderr).to_string()
-}
 
 /// The embedded description with `key = value` in place of its first `key =` line.
 fn robot_with(key: &str, value: &str) -> String {

@@ -3,19 +3,12 @@
 //! markings/; `basr symbols`; and the refusals (unknown symbol, overlapping
 //! items, an item outside the lane, MUTCD errors), each exit 2 with no file.
 
+mod common;
+use common::basr;
+
 use std::path::Path;
 
-use assert_cmd::Command;
 use serde_json::Value;
-
-fn basr(dir: &Path, args: &[&str]) -> std::process::Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn json_of(out: &std::process::Output) -> Value {
     serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {

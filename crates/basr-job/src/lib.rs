@@ -192,6 +192,33 @@ pub struct Summary {
     pub film: Option<FilmSummary>,
 }
 
+impl Summary {
+    /// The totals of a job built by hand (tests, synthetic jobs): its
+    /// duration, painting time, strokes and paint volume, the air time
+    /// the rest, and nothing planned (no warnings, bound, film or verdict).
+    pub fn timed(
+        duration_s: f64,
+        paint_time_s: f64,
+        strokes: usize,
+        paint_volume_m3: f64,
+    ) -> Summary {
+        Summary {
+            duration_s,
+            paint_time_s,
+            air_time_s: duration_s - paint_time_s,
+            strokes,
+            paint_volume_m3,
+            warnings: vec![],
+            balance: vec![],
+            lower_bound_s: 0.0,
+            bound_ratio: 0.0,
+            verified_max_error_m: None,
+            truck_moves_m: vec![],
+            film: None,
+        }
+    }
+}
+
 /// The film figures of a job as `basr preview JOB` gives them at its
 /// defaults (docs/preview.md: metrics and verdict).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -636,20 +663,7 @@ mod tests {
                 heading_rad: -std::f64::consts::FRAC_PI_2,
             }],
             samples,
-            summary: Summary {
-                duration_s: 0.064,
-                paint_time_s: 0.0,
-                air_time_s: 0.064,
-                strokes: 0,
-                paint_volume_m3: 0.0,
-                warnings: vec![],
-                balance: vec![],
-                lower_bound_s: 0.0,
-                bound_ratio: 0.0,
-                verified_max_error_m: None,
-                truck_moves_m: vec![],
-                film: None,
-            },
+            summary: Summary::timed(0.064, 0.0, 0, 0.0),
             outputs: BTreeMap::new(),
             sha256: String::new(),
             signature: None,
