@@ -17,6 +17,16 @@
 //! This crate joins them: [`pipeline`] (lay out → plan → verify on the
 //! simulator → re-time → measure the film) and [`report`] (the job sheet);
 //! the `basr` binary is its command line.
+//!
+//! ```no_run
+//! use basr::pipeline::compile::{compile_job, CompileRequest};
+//!
+//! // What `basr compile STOP` does: plan, verify on the simulated arm,
+//! // measure the film, seal.
+//! let job = compile_job(&CompileRequest::message("STOP")).unwrap();
+//! assert_eq!(job.message, "STOP");
+//! assert!(job.summary.verified_max_error_m.is_some());
+//! ```
 
 pub use basr_geom as geom;
 pub use basr_geom::units;

@@ -1,5 +1,8 @@
 //! End-to-end tests of `basr pose`.
 
+mod common;
+use common::json_of;
+
 use assert_cmd::Command;
 use predicates::prelude::*;
 
@@ -9,16 +12,12 @@ fn basr() -> Command {
 
 #[test]
 fn pose_json_keyed_by_csv_columns() {
-    let out = basr()
-        .args(["pose", "0", "3", "--tilt-deg", "10", "--json"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let v = json_of(
+        basr()
+            .args(["pose", "0", "3", "--tilt-deg", "10", "--json"])
+            .output()
+            .unwrap(),
     );
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for k in [
         "base_rot_rad",
         "extension_m",

@@ -1,7 +1,7 @@
 //! `basr preview --from-sim`: the film of the simulated arm, end to end.
 
 mod common;
-use common::basr;
+use common::{basr, succeeded};
 
 #[path = "preview_common/mod.rs"]
 mod preview_common;
@@ -9,12 +9,7 @@ mod preview_common;
 #[test]
 fn from_sim_previews_the_film_the_arm_lays() {
     let dir = tempfile::tempdir().unwrap();
-    let out = basr(dir.path(), &["compile", "L", "-q"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(basr(dir.path(), &["compile", "L", "-q"]));
     let out = basr(
         dir.path(),
         &[
@@ -79,12 +74,7 @@ fn from_sim_and_compare_do_not_combine() {
     let dir = tempfile::tempdir().unwrap();
     // A real job, so the refusal can only be the options' (a missing job
     // is refused with exit 2 too).
-    let out = basr(dir.path(), &["compile", "L", "-q"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeded(basr(dir.path(), &["compile", "L", "-q"]));
     let out = basr(
         dir.path(),
         &["preview", "L.job.json", "--from-sim", "--compare", "none"],

@@ -6,7 +6,6 @@
 mod common;
 use common::{basr, stderr};
 
-
 /// The embedded description with `key = value` in place of its first `key =` line.
 fn robot_with(key: &str, value: &str) -> String {
     let text = basr::robot::BASR_TOML;

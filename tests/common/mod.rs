@@ -25,3 +25,15 @@ pub fn stderr(out: &Output) -> String {
 pub fn stdout(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
+
+/// Asserts a run succeeded (showing its stderr if not) and returns it.
+pub fn succeeded(out: Output) -> Output {
+    assert!(out.status.success(), "{}", stderr(&out));
+    out
+}
+
+/// Asserts a run succeeded and parses its stdout as JSON.
+pub fn json_of(out: Output) -> serde_json::Value {
+    let out = succeeded(out);
+    serde_json::from_slice(&out.stdout).expect("stdout is JSON")
+}

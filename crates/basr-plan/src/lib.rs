@@ -2,6 +2,25 @@
 //!
 //! The planner. Imports `basr-io`, `basr-geom`, `basr-robot`, `basr-job` and `basr-shape`; never `basr-sim` or `basr-paint` (Cargo.toml does not list them, so the compiler refuses it). The workspace's crates are the pipeline (docs/architecture.md).
 //!
+//! ```
+//! use basr_plan::placed::PlacedStrokes;
+//! use basr_plan::request::{self, CompileRequest};
+//! use basr_plan::{inputs, passes, rungs, stations};
+//! use basr_shape::layout::{lay_marking, Marking};
+//!
+//! // The first stages of the planner on the letter I.
+//! let req = CompileRequest::message("I");
+//! let inputs::Inputs { robot, font } = inputs::read(&req).unwrap();
+//! let marking = Marking::from_message("I", &req.overrides).unwrap();
+//! let laid = lay_marking(&marking, &font, false).unwrap();
+//! let strokes = PlacedStrokes::from_laid(&laid);
+//! let rungs = rungs::rungs(&strokes, req.rung_spacing_m, Some(&passes::turn_budget(&robot)));
+//! let (tilt, _) = request::tilt_for(req.tilt, &robot);
+//! let passes = passes::passes(&strokes, &rungs, &robot, tilt.method()).unwrap();
+//! let plan = stations::for_passes(&passes, laid.lane_width_m, req.reach_margin_m, &robot).unwrap();
+//! assert_eq!(plan.stations.len(), 1);
+//! ```
+//!
 //! The planner alone: placed strokes ([`placed`]) to a sealed job, a
 //! module per value: `rungs` → `passes` (knots, 001 §2.4, tilt §2.5) →
 //! `stations` → `tours` (`order`) → `joints` (with `leads`) → `trajectory`

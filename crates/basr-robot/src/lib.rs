@@ -2,6 +2,17 @@
 //!
 //! Robot descriptions of every kind behind one `ArmKind` trait, their kinematics, limits, paint law, workspace and design. Imports `basr-io` only; never the job, the planner or the simulator. The workspace's crates are the pipeline (docs/architecture.md).
 //!
+//! ```
+//! use basr_robot::{AnyRobot, NozzlePose};
+//!
+//! // The embedded BASR: the nozzle 3 m straight back, 0.1 m over the road,
+//! // its fan across the arm, untilted.
+//! let robot = AnyRobot::load_or_default(None).unwrap();
+//! let pose = NozzlePose { x_m: 0.0, y_m: 3.0, z_m: 0.1, yaw_rad: 0.0, tilt_rad: 0.0 };
+//! let solutions = robot.ik(&pose).unwrap();
+//! assert!(!solutions.is_empty());
+//! ```
+//!
 //! Robot description (TOML, validated, hashed) and its kinematics: nozzle
 //! pose ↔ joints ↔ actuators ↔ encoders, the tilt four-bar, limits and the
 //! reachable workspace. The default robot is BASR (`robots/basr.toml`).

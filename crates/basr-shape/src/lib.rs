@@ -2,6 +2,17 @@
 //!
 //! What is painted: fonts (`font`), the symbol library, outline import and decomposition (this module), the layout in the lane (`layout`). Imports `basr-io`, `basr-geom`, `basr-robot` and `basr-job`; never the planner, the previewer or the simulator. The workspace's crates are the pipeline (docs/architecture.md).
 //!
+//! ```
+//! use basr_shape::font::Font;
+//! use basr_shape::layout::{lay_marking, Marking, Overrides};
+//!
+//! // STOP at the default 8 ft letters in the default lane.
+//! let marking = Marking::from_message("STOP", &Overrides::default()).unwrap();
+//! let laid = lay_marking(&marking, Font::embedded(), false).unwrap();
+//! assert_eq!(laid.marks.len(), 4);
+//! assert!((laid.letter_height_m - 2.44).abs() < 1e-9);
+//! ```
+//!
 //! Custom shapes: a filled outline from an SVG or DXF file, resolved into
 //! regions with holes and decomposed into strokes (bands between two edges)
 //! that the rest of the pipeline paints like a letter's.

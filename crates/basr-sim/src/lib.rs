@@ -2,6 +2,15 @@
 //!
 //! The arm in closed loop. Imports `basr-io`, `basr-robot`, `basr-job` and `basr-plot`; never the planner or the previewer. The workspace's crates are the pipeline (docs/architecture.md).
 //!
+//! ```
+//! use basr_sim::{simulate, synthetic, Options, SimModel};
+//!
+//! // A letter-sized synthetic job through the default arm and controller.
+//! let job = synthetic::letter_job();
+//! let outcome = simulate(&job, &SimModel::basr(), &Options::default(), &mut |_, _| {}).unwrap();
+//! assert!(outcome.report.max_error_m < 6.35e-3);
+//! ```
+//!
 //! Closed-loop simulation: arm and hydraulics plant, sensors, controllers, integrator, report.
 //!
 //! `simulate(job, model, options, progress)` plays a job's setpoints through
