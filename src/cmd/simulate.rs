@@ -260,6 +260,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             );
         }
         r.verdict = if r.reasons.is_empty() { "pass" } else { "fail" }.into();
+        r.verdict_on = sim::report::VERDICT_ON_PLANTS_P95.into();
         r.plants = Some(summary);
     }
     let report = &outcome.report;

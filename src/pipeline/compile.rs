@@ -9,8 +9,10 @@ use crate::layout;
 use super::placed::lay_out;
 use super::{film, verify};
 use basr_plan::placed::PlacedStrokes;
-use basr_plan::seal::{seal, Planned};
+use basr_plan::seal::{self, Planned};
+use basr_plan::stow::truck_rows;
 use basr_plan::{inputs, joints, passes, request, rungs, samples, stations, tours, trajectory};
+use rayon::prelude::*;
 
 pub use basr_plan::error::CompileError;
 pub use basr_plan::request::{
@@ -44,9 +46,13 @@ pub fn compile_strokes(
     let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)?;
     let tours = tours::tours(&passes, &plan, &robot);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
-    let mut pace = trajectory::Pace::FULL;
+    let n = paths.stations.len();
+    let mut paces = vec![trajectory::Pace::FULL; n];
+    let mut cache = trajectory::StationTimings::default();
+    // verdicts[s]: station s's verdict at the pace it was last simulated.
+    let mut verdicts: Vec<Option<(trajectory::Pace, verify::Verdict)>> = vec![None; n];
     loop {
-        let timed = trajectory::time_law(
+        let timed = trajectory::time_law_paced(
             strokes,
             &plan,
             &paths,
@@ -55,15 +61,18 @@ pub fn compile_strokes(
                 period_s: req.period_s,
                 gun_lead_s: req.gun_lead_s,
                 gun_lag_s: req.gun_lag_s,
-                pace: pace.clone(),
+                pace: trajectory::Pace::FULL,
             },
+            &paces,
+            &mut cache,
         )?;
         let mut notes = strokes.notes.clone();
         notes.extend(tilt_note.iter().cloned());
         notes.extend(passes.notes.iter().cloned());
         notes.extend(timed.notes.iter().cloned());
+        let rows = station_rows(&plan, &timed, &robot, req.period_s);
         let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
-        let mut job = seal(Planned {
+        let mut job = seal::assemble(Planned {
             marking,
             font,
             robot: robot.clone(),
@@ -76,69 +85,172 @@ pub fn compile_strokes(
             notes,
         });
         if !req.verify {
+            job.seal();
             return with_film(req, job, strokes);
         }
-        let verdict = verify::verify(&job)?;
-        if verdict.ok {
-            job.summary.verified_max_error_m = Some(verdict.max_error_m);
+        // Stations are independent once the arm is stowed: each is
+        // simulated alone from the stow pose at rest, again only when its
+        // pace changed, the stations in parallel.
+        let stale: Vec<usize> = (0..n)
+            .filter(|&si| !matches!(&verdicts[si], Some((p, _)) if *p == paces[si]))
+            .collect();
+        let skeleton = skeleton(&mut job);
+        let fresh: Vec<Result<verify::Verdict, CompileError>> = stale
+            .par_iter()
+            .map(|&si| verify_station(&job, &skeleton, rows[si].clone(), req.period_s))
+            .collect();
+        for (si, v) in stale.into_iter().zip(fresh) {
+            verdicts[si] = Some((paces[si].clone(), v?));
+        }
+        let failing: Vec<(usize, &verify::Verdict)> = verdicts
+            .iter()
+            .enumerate()
+            .filter_map(|(si, v)| v.as_ref().map(|(_, v)| (si, v)))
+            .filter(|(_, v)| !v.ok)
+            .collect();
+        if failing.is_empty() {
+            // The content checks `basr check` and `simulate` make of
+            // every job: compile must not write one they refuse.
+            verify::content(&job)?;
+            job.summary.verified_max_error_m = verdicts
+                .iter()
+                .flatten()
+                .map(|(_, v)| v.max_error_m)
+                .reduce(f64::max);
+            job.seal();
             return with_film(req, job, strokes);
         }
-        // Slow where the arm fell behind: the move out of stow when the
-        // worst error is on a station's first stroke; else the joins into
-        // the strokes alone where the arm arrives behind at their first
-        // rungs (every such stroke at once); else the strokes' path.
-        let (si, stroke) = verdict.worst;
-        let first_of = |si: u32, stroke: i64| {
-            paths
-                .stations
-                .get(si as usize)
-                .and_then(|r| r.first())
-                .is_some_and(|r| r.stroke as i64 == stroke)
-        };
-        let after_stow = first_of(si, stroke) && pace.air > MIN_PACE;
-        let mut joins_slowed = false;
-        if !after_stow {
-            // The worst stroke first; others over the bound only if far
-            // over it (the hydraulic supply couples them: slowing one often
-            // brings the others in).
-            let far = FAR_OVER * verify::VERIFY_SHARE * crate::sim::Options::default().tolerance_m;
-            let worst = (si, stroke, verdict.worst_t_s);
-            let others = verdict.failing.iter().filter(|f| f.1 != stroke);
-            let others = others.filter(|f| f.3 > far);
-            for (fs, fstroke, ft) in std::iter::once(worst).chain(others.map(|f| (f.0, f.1, f.2))) {
-                let arrival = !first_of(fs, fstroke)
-                    && paint_start(&job, fstroke).is_some_and(|t0| ft - t0 < ARRIVAL_S);
-                if !arrival {
-                    continue;
+        let slowed: Vec<(usize, trajectory::Pace)> = failing
+            .iter()
+            .map(|&(si, v)| {
+                let range = rows[si].clone();
+                slower(&paces[si], v, &paths, &job.samples, range).map(|p| (si, p))
+            })
+            .collect::<Result<_, _>>()?;
+        for (si, p) in slowed {
+            paces[si] = p;
+        }
+    }
+}
+
+/// The rows of each station's own motion in the job (after the truck's
+/// drive to it, where the arm holds the stow pose).
+fn station_rows(
+    plan: &stations::StationPlan,
+    timed: &trajectory::TimedTrajectory,
+    robot: &crate::robot::AnyRobot,
+    period_s: f64,
+) -> Vec<std::ops::Range<usize>> {
+    let mut at = 0usize;
+    let mut out = Vec::with_capacity(timed.stations.len());
+    for (si, t) in timed.stations.iter().enumerate() {
+        if si > 0 {
+            at += truck_rows(robot, &plan.stations[si - 1], &plan.stations[si], period_s);
+        }
+        out.push(at..at + t.len());
+        at += t.len();
+    }
+    out
+}
+
+/// `job` without its samples, glyphs, warnings and balance: what a
+/// station's rows are simulated in (a copy per station stays small).
+fn skeleton(job: &mut Job) -> Job {
+    let samples = std::mem::take(&mut job.samples);
+    let glyphs = std::mem::take(&mut job.layout.glyphs);
+    let warnings = std::mem::take(&mut job.summary.warnings);
+    let balance = std::mem::take(&mut job.summary.balance);
+    let skeleton = job.clone();
+    job.samples = samples;
+    job.layout.glyphs = glyphs;
+    job.summary.warnings = warnings;
+    job.summary.balance = balance;
+    skeleton
+}
+
+/// Station `rows` of `job` simulated alone (from the stow pose at rest, as
+/// the arm waits after the truck's drive), in a copy of `skeleton`; judged
+/// in job time.
+fn verify_station(
+    job: &Job,
+    skeleton: &Job,
+    rows: std::ops::Range<usize>,
+    period_s: f64,
+) -> Result<verify::Verdict, CompileError> {
+    let t0_s = rows.start as f64 * period_s;
+    if rows.start == 0 && rows.end == job.samples.len() {
+        return verify::simulated(job, t0_s);
+    }
+    let mut alone = skeleton.clone();
+    alone.samples = job.samples.rows(rows);
+    verify::simulated(&alone, t0_s)
+}
+
+/// The station's pace after `verdict` (a failed one): slow where the arm
+/// fell behind: the move out of stow when the worst error is on the
+/// station's first stroke; else the joins into the strokes alone where the
+/// arm arrives behind at their first rungs (every such stroke at once);
+/// else the strokes' path. `rows`: the station's rows in `samples`.
+fn slower(
+    pace: &trajectory::Pace,
+    verdict: &verify::Verdict,
+    paths: &joints::JointPaths,
+    samples: &crate::job::Samples,
+    rows: std::ops::Range<usize>,
+) -> Result<trajectory::Pace, CompileError> {
+    let mut pace = pace.clone();
+    let (si, stroke) = verdict.worst;
+    let first_of = |si: u32, stroke: i64| {
+        paths
+            .stations
+            .get(si as usize)
+            .and_then(|r| r.first())
+            .is_some_and(|r| r.stroke as i64 == stroke)
+    };
+    let after_stow = first_of(si, stroke) && pace.air > MIN_PACE;
+    let mut joins_slowed = false;
+    if !after_stow {
+        // The worst stroke first; others over the bound only if far
+        // over it (the hydraulic supply couples them: slowing one often
+        // brings the others in).
+        let far = FAR_OVER * verify::VERIFY_SHARE * crate::sim::Options::default().tolerance_m;
+        let worst = (si, stroke, verdict.worst_t_s);
+        let others = verdict.failing.iter().filter(|f| f.1 != stroke);
+        let others = others.filter(|f| f.3 > far);
+        for (fs, fstroke, ft) in std::iter::once(worst).chain(others.map(|f| (f.0, f.1, f.2))) {
+            let arrival = !first_of(fs, fstroke)
+                && paint_start(samples, rows.clone(), fstroke)
+                    .is_some_and(|t0| ft - t0 < ARRIVAL_S);
+            if !arrival {
+                continue;
+            }
+            match pace.joins.iter().position(|(s, _)| *s as i64 == fstroke) {
+                Some(k) if pace.joins[k].1 > MIN_PACE => {
+                    pace.joins[k].1 *= PACE_STEP;
+                    joins_slowed = true;
                 }
-                match pace.joins.iter().position(|(s, _)| *s as i64 == fstroke) {
-                    Some(k) if pace.joins[k].1 > MIN_PACE => {
-                        pace.joins[k].1 *= PACE_STEP;
-                        joins_slowed = true;
-                    }
-                    Some(_) => {}
-                    None => {
-                        pace.joins.push((fstroke as usize, PACE_STEP));
-                        joins_slowed = true;
-                    }
+                Some(_) => {}
+                None => {
+                    pace.joins.push((fstroke as usize, PACE_STEP));
+                    joins_slowed = true;
                 }
             }
         }
-        if after_stow && pace.fly_in {
-            pace.fly_in = false;
-        } else if after_stow {
-            pace.air *= PACE_STEP;
-        } else if joins_slowed {
-            continue;
-        } else if pace.path > MIN_PACE {
-            pace.path *= PACE_STEP;
-        } else {
-            return Err(CompileError::NotFollowed {
-                pace: pace.path * 100.0,
-                why: verdict.why,
-            });
-        }
     }
+    if after_stow && pace.fly_in {
+        pace.fly_in = false;
+    } else if after_stow {
+        pace.air *= PACE_STEP;
+    } else if joins_slowed {
+    } else if pace.path > MIN_PACE {
+        pace.path *= PACE_STEP;
+    } else {
+        return Err(CompileError::NotFollowed {
+            pace: pace.path * 100.0,
+            why: verdict.why.clone(),
+        });
+    }
+    Ok(pace)
 }
 
 /// The job with its film measured (`plan::film`, when `req.film`): the
@@ -160,10 +272,9 @@ fn with_film(
     Ok(job)
 }
 
-/// Job time at which stroke `stroke` starts painting.
-fn paint_start(job: &Job, stroke: i64) -> Option<f64> {
-    let s = &job.samples;
-    (0..s.stroke.len())
+/// Job time at which stroke `stroke` starts painting within `rows`.
+fn paint_start(s: &crate::job::Samples, rows: std::ops::Range<usize>, stroke: i64) -> Option<f64> {
+    rows.into_iter()
         .find(|&i| s.stroke[i] == stroke && s.paint[i] == 1)
         .map(|i| s.t_s[i])
 }

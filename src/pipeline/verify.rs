@@ -32,8 +32,13 @@ pub struct Verdict {
 
 /// Simulate `job` with the default options and judge it.
 pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
-    // The checks `basr check` and `simulate` make of every job: compile must
-    // not write one they refuse.
+    content(job)?;
+    simulated(job, 0.0)
+}
+
+/// The checks `basr check` and `simulate` make of every job: compile must
+/// not write one they refuse.
+pub fn content(job: &Job) -> Result<(), CompileError> {
     let problems = crate::job::verify::problems(job, "the compiled job");
     if let Some(first) = problems.first() {
         return Err(CompileError::Verify(format!(
@@ -42,15 +47,26 @@ pub fn verify(job: &Job) -> Result<Verdict, CompileError> {
             problems.len()
         )));
     }
+    Ok(())
+}
+
+/// Simulate `job` (the content checks already made) and judge it; its
+/// times are reported `t0_s` later (a station's rows simulated alone
+/// report job time).
+pub fn simulated(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
     let Some(robot) = job.robot.basr() else {
-        return verify_servo(job);
+        return verify_servo(job, t0_s);
     };
     let model = SimModel::from_robot(robot)
         .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
     let opts = sim::Options::default();
     let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
         .map_err(|e| CompileError::Verify(e.to_string()))?;
-    let r = &outcome.report;
+    let mut r = outcome.report;
+    r.worst.t_s += t0_s;
+    for s in &mut r.strokes {
+        s.worst.t_s += t0_s;
+    }
     let broken: Vec<&str> = r
         .limits
         .iter()
@@ -115,10 +131,11 @@ fn judge(
 /// An electric kind's job through its servo plant (`sim::servo_job`),
 /// judged as BASR's: within `VERIFY_SHARE` of the default tolerance, no
 /// joint out of its range.
-fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
+fn verify_servo(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
     let tolerance = sim::Options::default().tolerance_m;
-    let r = sim::servo_job::simulate_job(job, tolerance)
+    let mut r = sim::servo_job::simulate_job(job, tolerance)
         .map_err(|e| CompileError::Verify(e.to_string()))?;
+    r.worst.t_s += t0_s;
     Ok(judge(
         r.max_error_m,
         &r.worst,

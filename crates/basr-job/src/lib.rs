@@ -403,6 +403,17 @@ macro_rules! samples_struct {
                 Ok(n)
             }
 
+            /// Rows `r` as samples of their own, the kind's columns too
+            /// (a station's rows, simulated alone).
+            pub fn rows(&self, r: std::ops::Range<usize>) -> Samples {
+                Samples {
+                    $($name: self.$name[r.clone()].to_vec(),)*
+                    kind_columns: self.kind_columns.clone(),
+                    kind_joints: self.kind_joints.get(r.clone()).map(<[_]>::to_vec).unwrap_or_default(),
+                    kind_encoders: self.kind_encoders.get(r).map(<[_]>::to_vec).unwrap_or_default(),
+                }
+            }
+
             /// Row `i` as CSV fields, in [`Samples::header`] order.
             pub fn csv_fields(&self, i: usize) -> Vec<String> {
                 let mut out = vec![$(self.$name[i].to_string()),*];

@@ -23,6 +23,7 @@
 
 use serde::Serialize;
 
+use super::boxes::BoxIndex;
 pub use super::mask::{coverage_mask, GlyphOutline, MaskCell};
 use super::mask::{coverage_share, signed_area, INSIDE};
 use super::raster::{Bounds, Film, Grid};
@@ -173,12 +174,13 @@ pub fn measure(
     let boxes: Vec<Bounds> = glyphs.iter().map(|gl| gl.bounds()).collect();
     let mut owner_vol = vec![(0.0f64, 0.0f64); glyphs.len()]; // (total, outside)
     if !glyphs.is_empty() {
+        let index = BoxIndex::new(g, &boxes);
         for (k, (&v, &f)) in g.data.iter().zip(&frac).enumerate() {
             if v <= 0.0 {
                 continue;
             }
-            let c = g.centre(k % g.nx, k / g.nx);
-            let best = nearest_box(&boxes, c);
+            let (i, j) = (k % g.nx, k / g.nx);
+            let best = index.nearest(i, j, g.centre(i, j));
             owner_vol[best].0 += v * area;
             owner_vol[best].1 += v * (1.0 - f) * area;
         }
@@ -230,21 +232,6 @@ pub fn measure(
     })
 }
 
-fn nearest_box(boxes: &[Bounds], c: [f64; 2]) -> usize {
-    let d = |b: &Bounds| {
-        let dx = (b.min[0] - c[0]).max(c[0] - b.max[0]).max(0.0);
-        let dy = (b.min[1] - c[1]).max(c[1] - b.max[1]).max(0.0);
-        dx * dx + dy * dy
-    };
-    let mut best = 0;
-    for (k, b) in boxes.iter().enumerate() {
-        if d(b) < d(&boxes[best]) {
-            best = k;
-        }
-    }
-    best
-}
-
 fn merge_u(it: impl Iterator<Item = URange>) -> Option<URange> {
     it.fold(None, |acc: Option<URange>, u| {
         Some(match acc {
@@ -271,6 +258,13 @@ pub fn stroke_u(
 ) -> Result<Vec<StrokeU>, PaintError> {
     let mut out: Vec<StrokeU> = Vec::new();
     let mut votes: Vec<Vec<usize>> = Vec::new();
+    // A point outside a glyph's box is outside its outline: the box is
+    // tried first (the outline test over every glyph grew with the square
+    // of a long job's letters, issue 28).
+    let boxes: Vec<Bounds> = glyphs.iter().map(GlyphOutline::bounds).collect();
+    let in_box = |b: &Bounds, p: [f64; 2]| {
+        b.min[0] <= p[0] && p[0] <= b.max[0] && b.min[1] <= p[1] && p[1] <= b.max[1]
+    };
     for k in 0..poses.len().saturating_sub(1) {
         let (a, b) = (&poses[k], &poses[k + 1]);
         let s = stroke_of.get(k).copied().unwrap_or(-1);
@@ -300,9 +294,11 @@ pub fn stroke_u(
             votes.push(vec![0; glyphs.len()]);
         }
         let last = out.len() - 1;
+        let centre = fa.at(0.5 * (fa.r_minus + fa.r_plus));
         if let Some(gi) = glyphs
             .iter()
-            .position(|g| g.contains(fa.at(0.5 * (fa.r_minus + fa.r_plus))))
+            .zip(&boxes)
+            .position(|(g, b)| in_box(b, centre) && g.contains(centre))
         {
             votes[last][gi] += 1;
         }

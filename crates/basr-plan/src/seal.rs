@@ -27,6 +27,14 @@ pub struct Planned<'a> {
 
 /// The job document, its totals computed and its hashes filled.
 pub fn seal(p: Planned<'_>) -> Job {
+    let mut job = assemble(p);
+    job.seal();
+    job
+}
+
+/// The job document with its totals, not yet hashed (what the verifying
+/// rounds simulate; [`seal`] hashes it).
+pub fn assemble(p: Planned<'_>) -> Job {
     let n = p.samples.len();
     let paint_samples = p.samples.paint.iter().filter(|&&g| g == 1).count();
     let duration_s = job::tick_time(n.saturating_sub(1), p.period_s);
@@ -63,7 +71,7 @@ pub fn seal(p: Planned<'_>) -> Job {
         // Measured on the sealed job by `plan::film` (compile_strokes).
         film: None,
     };
-    let mut job = Job {
+    Job {
         format: job::FORMAT.into(),
         version: job::VERSION,
         message: p.marking.message(),
@@ -87,7 +95,5 @@ pub fn seal(p: Planned<'_>) -> Job {
         outputs: Default::default(),
         sha256: String::new(),
         signature: None,
-    };
-    job.seal();
-    job
+    }
 }

@@ -33,22 +33,67 @@ pub fn time_law(
     robot: &AnyRobot,
     law: &TimeLaw,
 ) -> Result<TimedTrajectory, CompileError> {
+    let paces = vec![law.pace.clone(); paths.stations.len()];
+    let mut cache = StationTimings::default();
+    time_law_paced(strokes, plan, paths, robot, law, &paces, &mut cache)
+}
+
+/// Each station's timing as last computed and the pace it was computed
+/// at: a station whose pace did not change is not timed again.
+#[derive(Default)]
+pub struct StationTimings(Vec<Option<(Pace, StationTiming)>>);
+
+/// [`time_law`] with a pace per station (`paces[s]`; `law.pace` is not
+/// used): the stations whose pace changed since `cache` last saw them are
+/// timed again (in parallel: a station's timing depends on its own runs
+/// alone), the others reused.
+pub fn time_law_paced(
+    strokes: &PlacedStrokes,
+    plan: &StationPlan,
+    paths: &JointPaths,
+    robot: &AnyRobot,
+    law: &TimeLaw,
+    paces: &[Pace],
+    cache: &mut StationTimings,
+) -> Result<TimedTrajectory, CompileError> {
+    use rayon::prelude::*;
     let TimeLaw {
         period_s,
         gun_lead_s,
         gun_lag_s,
-        ref pace,
+        ..
     } = *law;
     let stow = stow_joints(robot);
+    let n = paths.stations.len();
+    cache.0.resize_with(n, || None);
+    let stale: Vec<usize> = (0..n)
+        .filter(|&si| !matches!(&cache.0[si], Some((p, _)) if *p == paces[si]))
+        .collect();
+    let fresh: Vec<Result<StationTiming, CompileError>> = stale
+        .par_iter()
+        .map(|&si| {
+            let runs = &paths.stations[si];
+            time_station(
+                robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, &paces[si],
+            )
+        })
+        .collect();
+    for (si, timing) in stale.into_iter().zip(fresh) {
+        cache.0[si] = Some((paces[si].clone(), timing?));
+    }
+    let timings = cache
+        .0
+        .iter()
+        .map(|c| c.as_ref().map(|(_, t)| t))
+        .collect::<Option<Vec<_>>>()
+        .ok_or_else(|| CompileError::Timing("a station was left untimed".into()))?;
     let mut out = TimedTrajectory::default();
     let mut rows = 0usize;
-    for (si, runs) in paths.stations.iter().enumerate() {
+    for ((si, runs), (timed, slows, stops)) in paths.stations.iter().enumerate().zip(timings) {
         if si > 0 {
             rows += truck_rows(robot, &plan.stations[si - 1], &plan.stations[si], period_s);
         }
         let t0 = rows as f64 * period_s;
-        let (timed, slows, stops) =
-            time_station(robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, pace)?;
         let at = |q: &Q| {
             let p = robot.fk(q);
             let st = &plan.stations[si];
@@ -61,8 +106,8 @@ pub fn time_law(
             at_m: at(&stow),
             why: StopWhy::LeaveStow,
         });
-        for (t_s, q, ri, why) in stops {
-            let StopReason::JointRange { joint } = why;
+        for &(t_s, q, ri, ref why) in stops {
+            let StopReason::JointRange { joint } = *why;
             let stroke = runs[ri].stroke;
             out.notes.push(Note::Stop {
                 station: si,
@@ -94,7 +139,7 @@ pub fn time_law(
             why: StopWhy::BackToStow,
         });
         rows += timed.len();
-        out.stations.push(timed);
+        out.stations.push(timed.clone());
     }
     Ok(out)
 }

@@ -77,27 +77,108 @@ pub struct MassMatrix {
 
 /// A(x) of the arm (see module docs).
 pub fn mass_matrix(m: &SimModel, x: f64) -> MassMatrix {
-    let arm = &m.arm;
-    let k = arm.k;
-    let d2 = arm.d_m * arm.d_m;
-    let ml = arm.link_mass_kg();
-    let il = arm.link_inertia_kgm2();
-    let me = arm.ee_mass_kg;
-    let e = arm.r_min_m - k * arm.x_min_m;
-    let s2 = (4.0 * d2 - x * x).max(1e-6);
-    let rr = k * x + e;
+    mass_matrix_of(&ArmConsts::of(m), x)
+}
+
+/// The arm's and the linkage's numbers that do not change during a run,
+/// each computed as [`mass_matrix`] and the derivative always computed it
+/// (the same operations in the same order, so the same bits), once per
+/// RK4 step rather than once per stage (issue 28: `--plants 100` time).
+#[derive(Clone, Copy, Debug)]
+pub struct ArmConsts {
+    k: f64,
+    me: f64,
+    e: f64,
+    il: f64,
+    d2: f64,
+    two_d2: f64,
+    four_d2: f64,
+    /// (10/16)·m·k², (20/16)·m·k², 2·m_e·k, c = m·k²/16, 2c, 9c, m_e·k², 2·I_l.
+    c10: f64,
+    c20: f64,
+    two_me_k: f64,
+    c: f64,
+    two_c: f64,
+    nine_c: f64,
+    me_kk: f64,
+    two_il: f64,
+    ee_inertia: f64,
+    base_inertia: f64,
+    /// 4·d·d of the holding force F(x), B.
+    four_dd: f64,
+    holding_b: f64,
+    /// The hoses' stiffness per volume.
+    kl: f64,
+    /// The linkage's γ, 2ζω and ω².
+    g: f64,
+    z2w: f64,
+    ww: f64,
+    /// Each main link's 2ζω_b and ω_b².
+    boom_z2w: [f64; 2],
+    boom_ww: [f64; 2],
+}
+
+impl ArmConsts {
+    pub fn of(m: &SimModel) -> ArmConsts {
+        let arm = &m.arm;
+        let k = arm.k;
+        let d2 = arm.d_m * arm.d_m;
+        let ml = arm.link_mass_kg();
+        let il = arm.link_inertia_kgm2();
+        let me = arm.ee_mass_kg;
+        let c = ml * k * k / 16.0;
+        let lc = &m.compliance;
+        let w = lc.omega();
+        let b = &m.boom;
+        ArmConsts {
+            k,
+            me,
+            e: arm.r_min_m - k * arm.x_min_m,
+            il,
+            d2,
+            two_d2: 2.0 * d2,
+            four_d2: 4.0 * d2,
+            c10: 10.0 / 16.0 * ml * k * k,
+            c20: 20.0 / 16.0 * ml * k * k,
+            two_me_k: 2.0 * me * k,
+            c,
+            two_c: 2.0 * c,
+            nine_c: 9.0 * c,
+            me_kk: me * k * k,
+            two_il: 2.0 * il,
+            ee_inertia: arm.ee_inertia_kgm2,
+            base_inertia: arm.base_inertia_kgm2,
+            four_dd: 4.0 * arm.d_m * arm.d_m,
+            holding_b: arm.holding_b_n,
+            kl: m.circuit.line_bulk_pa / m.circuit.line_volume_m3,
+            g: lc.gamma(),
+            z2w: 2.0 * lc.damping_ratio * w,
+            ww: w * w,
+            boom_z2w: std::array::from_fn(|i| 2.0 * b.damping_ratio * b.omega[i]),
+            boom_ww: std::array::from_fn(|i| b.omega[i] * b.omega[i]),
+        }
+    }
+
+    /// The holding force F(x) as `Arm::holding_force_n` computes it.
+    #[inline]
+    fn holding_force_n(&self, x: f64) -> f64 {
+        let s2 = (self.four_dd - x * x).max(1e-6);
+        self.holding_b * x / s2.sqrt()
+    }
+}
+
+#[inline]
+fn mass_matrix_of(a: &ArmConsts, x: f64) -> MassMatrix {
+    let s2 = (a.four_d2 - x * x).max(1e-6);
+    let rr = a.k * x + a.e;
     // links: m(kx/4)² + m(3kx/4)² = (10/16)·m·k²·x²; rotation I·cos²φ each, cos φ = x/2d
-    let a11 = 10.0 / 16.0 * ml * k * k * x * x
-        + me * rr * rr
-        + il * x * x / (2.0 * d2)
-        + arm.ee_inertia_kgm2
-        + arm.base_inertia_kgm2;
-    let a11_dx = 20.0 / 16.0 * ml * k * k * x + 2.0 * me * k * rr + il * x / d2;
+    let a11 =
+        a.c10 * x * x + a.me * rr * rr + a.il * x * x / a.two_d2 + a.ee_inertia + a.base_inertia;
+    let a11_dx = a.c20 * x + a.two_me_k * rr + a.il * x / a.d2;
     // links: c·(4d² + x²)/s² + 9c with c = m·k²/16; pitch rate ẋ/s for each rod
-    let c = ml * k * k / 16.0;
-    let num = c * (4.0 * d2 + x * x) + 2.0 * il;
-    let a22 = num / s2 + 9.0 * c + me * k * k;
-    let a22_dx = (2.0 * c * x * s2 + 2.0 * x * num) / (s2 * s2);
+    let num = a.c * (a.four_d2 + x * x) + a.two_il;
+    let a22 = num / s2 + a.nine_c + a.me_kk;
+    let a22_dx = (a.two_c * x * s2 + 2.0 * x * num) / (s2 * s2);
     MassMatrix {
         a11,
         a11_dx,
@@ -228,7 +309,7 @@ pub fn actuator_efforts(m: &SimModel, s: &State) -> (f64, f64) {
 /// Time derivative of the state for held inputs `u`; also returns the arm's
 /// tip acceleration in the base frame (for the linkage mode and reports).
 pub fn derivative(m: &SimModel, s: &State, u: &Inputs) -> (State, [f64; 2]) {
-    derivative_near(m, s, u, Trig::at(s[TH]))
+    derivative_near(m, s, u, Trig::at(s[TH]), &ArmConsts::of(m))
 }
 
 /// sin and cos of θ1 near a reference angle: one `sin_cos` per RK4 step
@@ -262,14 +343,20 @@ impl Trig {
     }
 }
 
-fn derivative_near(m: &SimModel, s: &State, u: &Inputs, trig: Trig) -> (State, [f64; 2]) {
+fn derivative_near(
+    m: &SimModel,
+    s: &State,
+    u: &Inputs,
+    trig: Trig,
+    a: &ArmConsts,
+) -> (State, [f64; 2]) {
     let mut ds = [0.0; N];
-    let mm = mass_matrix(m, s[X]);
+    let mm = mass_matrix_of(a, s[X]);
     let (tau1, tau2) = actuator_efforts(m, s);
     let (th, thd, x, xd) = (s[TH], s[THD], s[X], s[XD]);
     let thdd = (tau1 - mm.a11_dx * xd * thd) / mm.a11;
     let xdd =
-        (tau2 - 0.5 * mm.a22_dx * xd * xd + 0.5 * mm.a11_dx * thd * thd + m.arm.holding_force_n(x))
+        (tau2 - 0.5 * mm.a22_dx * xd * xd + 0.5 * mm.a11_dx * thd * thd + a.holding_force_n(x))
             / mm.a22;
     ds[TH] = thd;
     ds[THD] = thdd;
@@ -290,7 +377,7 @@ fn derivative_near(m: &SimModel, s: &State, u: &Inputs, trig: Trig) -> (State, [
     // the hoses: compliance at the valve end, inertance and friction along
     let valve_q = [va1, vb1, va2, vb2];
     let chamber = [s[PA1], s[PB1], s[PA2], s[PB2]];
-    let kl = c.line_bulk_pa / c.line_volume_m3;
+    let kl = a.kl;
     for j in 0..4 {
         ds[LP + j] = kl * (valve_q[j] - s[LQ + j]);
         ds[LQ + j] = (s[LP + j] - chamber[j] - c.line_resistance * s[LQ + j]) / c.line_inertance;
@@ -347,30 +434,26 @@ fn derivative_near(m: &SimModel, s: &State, u: &Inputs, trig: Trig) -> (State, [
     };
     ds[Y2] = spool(s[Y2], u.u_cyl, m.cylinder.valve_tau_s);
     // tip acceleration of W(θ1, R) (a2's contribution, 1 cm, is neglected here)
-    let k = m.arm.k;
+    let k = a.k;
     let r = m.arm.r_of_x(x);
     let (rd, rdd) = (k * xd, k * xdd);
     let (sn, cs) = trig.near(th);
     let ar = rdd - r * thd * thd;
     let at = r * thdd + 2.0 * rd * thd;
     let acc = [ar * cs - at * sn, ar * sn + at * cs];
-    let c = &m.compliance;
-    let (w, g) = (c.omega(), c.gamma());
-    let z2w = 2.0 * c.damping_ratio * w;
+    let (g, z2w, ww) = (a.g, a.z2w, a.ww);
     ds[DX] = s[DXD];
-    ds[DXD] = -g * acc[0] - z2w * s[DXD] - w * w * s[DX];
+    ds[DXD] = -g * acc[0] - z2w * s[DXD] - ww * s[DX];
     ds[DY] = s[DYD];
-    ds[DYD] = -g * acc[1] - z2w * s[DYD] - w * w * s[DY];
+    ds[DYD] = -g * acc[1] - z2w * s[DYD] - ww * s[DY];
     // each main link's lateral mode, driven by the tangential acceleration
     // of its outer end: link 1 at the pantograph's apex (k·x/2 from the
     // axis, 000 eq. 1), link 2 at the nozzle (R)
-    let b = &m.boom;
     let r_apex = 0.5 * k * x;
     let tangential = [r_apex * thdd + k * xd * thd, at];
     for (i, (p, v)) in [(B1, B1D), (B2, B2D)].into_iter().enumerate() {
-        let wb = b.omega[i];
         ds[p] = s[v];
-        ds[v] = -tangential[i] - 2.0 * b.damping_ratio * wb * s[v] - wb * wb * s[p];
+        ds[v] = -tangential[i] - a.boom_z2w[i] * s[v] - a.boom_ww[i] * s[p];
     }
     (ds, acc)
 }
@@ -388,20 +471,22 @@ pub fn boom_offset(s: &State) -> [f64; 2] {
 /// One classical RK4 step of length `h`.
 pub fn rk4_step(m: &SimModel, s: &mut State, u: &Inputs, h: f64) {
     let trig = Trig::at(s[TH]);
-    let (k1, _) = derivative_near(m, s, u, trig);
+    let a = ArmConsts::of(m);
+    let a = &a;
+    let (k1, _) = derivative_near(m, s, u, trig, a);
     let mut t = *s;
     for i in 0..N {
         t[i] = s[i] + 0.5 * h * k1[i];
     }
-    let (k2, _) = derivative_near(m, &t, u, trig);
+    let (k2, _) = derivative_near(m, &t, u, trig, a);
     for i in 0..N {
         t[i] = s[i] + 0.5 * h * k2[i];
     }
-    let (k3, _) = derivative_near(m, &t, u, trig);
+    let (k3, _) = derivative_near(m, &t, u, trig, a);
     for i in 0..N {
         t[i] = s[i] + h * k3[i];
     }
-    let (k4, _) = derivative_near(m, &t, u, trig);
+    let (k4, _) = derivative_near(m, &t, u, trig, a);
     for i in 0..N {
         s[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     }

@@ -103,10 +103,8 @@ pub struct PlantsSummary {
 impl PlantsSummary {
     pub fn human(&self, tolerance_m: f64) -> String {
         let mut s = format!(
-            "  {} plants within ±{:.0} % (seed {}): max error p50 {:.3} mm, p95 {:.3} mm, worst {:.3} mm; {:.0} % pass (verdict on p95 against {:.3} mm)\n",
+            "  the {} plants' max error while painting: p50 {:.3} mm, p95 {:.3} mm, worst {:.3} mm; {:.0} % of the plants within the {:.3} mm tolerance and the limits\n",
             self.n,
-            self.spread * 100.0,
-            self.seed,
             self.p50_max_error_m * 1e3,
             self.p95_max_error_m * 1e3,
             self.worst_max_error_m * 1e3,

@@ -6,7 +6,7 @@ use super::control::Command;
 use super::plant;
 use super::report::{
     self, AxisErrors, LimitViolation, PeakPressures, Place, Report, Saturation, StrokeError,
-    TraceRow, Unit, Waviness,
+    TraceRow, Unit, Waviness, VERDICT_ON_NOMINAL,
 };
 use super::run::{Arm, Refs, ServoLimited, Setup};
 use super::{safety, Outcome};
@@ -452,6 +452,7 @@ impl Tally {
             controller: opts.controller.name().into(),
             tolerance_m: opts.tolerance_m,
             verdict: if reasons.is_empty() { "pass" } else { "fail" }.into(),
+            verdict_on: VERDICT_ON_NOMINAL.into(),
             reasons,
             max_error_m: verdict_stats.max,
             rms_error_m: verdict_stats.rms(),
