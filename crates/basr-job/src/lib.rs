@@ -334,8 +334,17 @@ impl SampleRow {
     /// This row with BASR's joint, actuator and encoder columns written
     /// from `j` by `robot`'s kinematics; the nozzle columns stay as they are.
     pub fn with_basr_joints(self, robot: &basr_robot::Robot, j: &basr_robot::Joints) -> Self {
-        let act = robot.actuators(j);
-        let enc = robot.encoders(j);
+        self.with_spec_joints(j, &robot.actuators(j), &robot.encoders(j))
+    }
+
+    /// This row with the job's joint, actuator and encoder columns written
+    /// from `j`, `act` and `enc`; the nozzle columns stay as they are.
+    fn with_spec_joints(
+        self,
+        j: &basr_robot::Joints,
+        act: &basr_robot::Actuators,
+        enc: &basr_robot::Encoders,
+    ) -> Self {
         SampleRow {
             tilt_rad: j.tilt_rad,
             base_rot_rad: j.base_rot_rad,
@@ -458,6 +467,40 @@ impl Samples {
         let mut h: Vec<&str> = COLUMNS.to_vec();
         h.extend(self.kind_columns.iter().map(String::as_str));
         h
+    }
+
+    /// Append a row: the nozzle columns of `nozzle` and the joints as the
+    /// robot's kind writes them ([`basr_robot::ArmKind::row_joints`]):
+    /// BASR's in the job's joint, actuator and encoder columns, another
+    /// kind's in its own columns after them (the job's joint columns of
+    /// `nozzle` are then written as they are, 0 when left at default).
+    ///
+    /// ```
+    /// use basr_job::{SampleRow, Samples};
+    /// use basr_robot::{AnyRobot, Robot};
+    /// let robot = AnyRobot::Basr(Robot::basr());
+    /// let q = robot.stow();
+    /// let mut samples = Samples::default();
+    /// samples.kind_columns = robot.own_sample_columns();
+    /// samples.push_joints(&SampleRow::default(), &robot.row_joints(&q));
+    /// let row = samples.row(0).unwrap();
+    /// // BASR's joints are the job's own columns.
+    /// assert_eq!(row.base_rot_rad, q[0]);
+    /// assert!(samples.kind_joints.is_empty());
+    /// assert_eq!(samples.check_lengths(), Ok(1));
+    /// ```
+    pub fn push_joints(&mut self, nozzle: &SampleRow, joints: &basr_robot::RowJoints) {
+        match joints {
+            basr_robot::RowJoints::Spec {
+                joints,
+                actuators,
+                encoders,
+            } => self.push(&nozzle.clone().with_spec_joints(joints, actuators, encoders)),
+            basr_robot::RowJoints::Own { q, encoders } => {
+                self.push(nozzle);
+                self.push_kind(*q, *encoders);
+            }
+        }
     }
 
     /// Append the kind's joints and encoder counts of the last row pushed.

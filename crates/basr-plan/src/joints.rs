@@ -379,12 +379,13 @@ fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
 const MAX_KNOT_YAW_STEP_RAD: f64 = std::f64::consts::FRAC_PI_2;
 
 /// The joint whose step between knots `p` → `j` is a jump (see
-/// `MAX_KNOT_YAW_STEP_RAD`): only BASR's yaw joint for BASR (its other
-/// joints have one solution), any joint for the electric kinds.
+/// `MAX_KNOT_YAW_STEP_RAD`): only the fan joint for a kind whose other
+/// joints have one solution per pose (`fan_joint_alone_jumps`), any joint
+/// for the rest, the fan joint first.
 fn jump(robot: &AnyRobot, p: &Q, j: &Q) -> Option<usize> {
     let fan = robot.fan_joint();
     let step = |k: usize| (j[k] - p[k]).abs() > MAX_KNOT_YAW_STEP_RAD;
-    if robot.basr().is_some() {
+    if robot.fan_joint_alone_jumps() {
         return step(fan).then_some(fan);
     }
     std::iter::once(fan).chain(0..5).find(|&k| step(k))

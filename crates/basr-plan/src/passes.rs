@@ -6,7 +6,7 @@ use crate::knots::{self, HeightLaw, Knot, PaintLaw, PlanError, TiltMethod};
 use crate::rungs::Rung;
 use basr_job::StrokeBalance;
 use basr_robot::paint_law::paint_law;
-use basr_robot::{AnyRobot, Robot};
+use basr_robot::AnyRobot;
 
 use super::error::CompileError;
 use super::placed::PlacedStrokes;
@@ -105,10 +105,7 @@ pub fn passes(
                 }
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
             }
-            let raised = match robot.basr() {
-                Some(b) => lift_for_tilt(b, &law, &mut kp.knots),
-                None => vec![],
-            };
+            let raised = lift_for_tilt(robot, &law, &mut kp.knots);
             // The height, too, within what the vertical joint follows.
             let lifted =
                 height_follow.is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
@@ -306,17 +303,18 @@ pub fn turn_budget(robot: &AnyRobot) -> super::pairing::TurnBudget {
 }
 
 /// Raise knots whose tilted tip would need the vertical joint below its
-/// stroke: the tilt four-bar lifts the tip by rise(β), so the lowest tip
-/// height at tilt ±β is `law.min_height_m + max(rise(β), rise(−β))`. The fan then covers
+/// stroke: a tilt lifts the tip by the kind's `tilt_lift_m` (BASR's tilt
+/// four-bar, by the larger of rise(β) and rise(−β)), so the lowest tip
+/// height at tilt ±β is `law.min_height_m` plus that lift. The fan then covers
 /// more than the rung, and the speed follows the covered width (as
 /// `knots::knots` does for its own clamp). Returns the knots raised.
-fn lift_for_tilt(robot: &Robot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
+fn lift_for_tilt(robot: &AnyRobot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize> {
     let mut raised = vec![];
     for (i, k) in ks.iter_mut().enumerate() {
         // The fan's other branch (ψ+π, −β) paints the same rung; the four-bar
         // lifts the tip differently at −β, so the height suits both and the
         // tour may pick either branch (`joints`).
-        let rise = robot.tilt_tip_offset(k.tilt_rad)[1].max(robot.tilt_tip_offset(-k.tilt_rad)[1]);
+        let rise = robot.tilt_lift_m(k.tilt_rad);
         if !(rise.is_finite() && rise > 0.0) {
             continue;
         }

@@ -138,33 +138,14 @@ pub fn step_times(ks: &[Knot]) -> Vec<f64> {
 }
 
 /// The tilt joint's speed (rad/s) and acceleration (rad/s²) the tilt may
-/// take while painting: `TILT_SHARE` and `TILT_ACC_SHARE` of its limits, the speed for BASR also
-/// the ball nut's (SPEC §4: 0.11 m/s) at the steepest nut travel per radian
-/// of the tilt range; None for a kind that paints untilted.
+/// take while painting: `TILT_SHARE` and `TILT_ACC_SHARE` of its limits,
+/// the speed as its drive allows (`AnyRobot::tilt_speed_limit`: for BASR
+/// also the ball nut's, SPEC §4: 0.11 m/s); None for a kind that paints
+/// untilted.
 pub fn tilt_follow(robot: &AnyRobot) -> Option<[f64; 2]> {
     let own = robot.tilt_limit()?;
-    let vel = match robot.basr() {
-        Some(b) => own.max_vel.min(nut_limited_tilt_rate(b)),
-        None => own.max_vel,
-    };
+    let vel = robot.tilt_speed_limit()?;
     Some([vel * TILT_SHARE, own.max_acc * TILT_ACC_SHARE])
-}
-
-/// BASR's tilt-rate limit from its ball nut's (infinite when the four-bar
-/// gives no nut rate).
-pub fn nut_limited_tilt_rate(robot: &basr_robot::Robot) -> f64 {
-    let t = &robot.limits.tilt_rad;
-    let fb = &robot.end_effector.fourbar;
-    let steepest = (0..=60)
-        .filter_map(|k| fb.nut_rate_m_per_rad(t.min + (t.max - t.min) * k as f64 / 60.0))
-        .map(f64::abs)
-        .fold(0.0, f64::max);
-    if steepest > 0.0 {
-        // 1 % below, for the nut rate between the sampled tilts.
-        robot.end_effector.tilt_nut_max_speed_mps / (steepest * 1.01)
-    } else {
-        f64::INFINITY
-    }
 }
 
 /// Limit the tilt's change between knots to `max_rate_rps` at each knot's

@@ -8,13 +8,13 @@ use std::f64::consts::FRAC_PI_2;
 use crate::knots::Knot;
 use basr_job::{self as job, SampleRow, Samples, Station};
 use basr_robot::kinematics::wrap_pi;
-use basr_robot::{AnyRobot, Joints, NozzlePose, Robot, Q};
+use basr_robot::{AnyRobot, NozzlePose, Q};
 
 use super::error::CompileError;
 use super::joints::{JointPaths, Run};
 use super::stations::StationPlan;
 use super::stow::{stow_joints, truck_rows};
-use super::trajectory::{arc_lengths, joints_of, Timed, TimedTrajectory};
+use super::trajectory::{arc_lengths, Timed, TimedTrajectory};
 
 /// Largest joint overshoot `clamp_to_range` absorbs (m or rad); anything
 /// larger is a planning error.
@@ -28,11 +28,10 @@ pub fn sample(
     robot: &AnyRobot,
     period_s: f64,
 ) -> Result<Samples, CompileError> {
-    let mut samples = Samples::default();
-    if robot.basr().is_none() {
-        samples.kind_columns = robot.joint_names().map(String::from).to_vec();
-        samples.kind_columns.extend(robot.encoder_names());
-    }
+    let mut samples = Samples {
+        kind_columns: robot.own_sample_columns(),
+        ..Samples::default()
+    };
     for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
         if si > 0 {
             // The truck drives to this station with the arm stowed: rows of
@@ -49,10 +48,7 @@ pub fn sample(
             rows.splice(0..0, std::iter::repeat_n(hold, n));
         }
         clamp_to_range(robot, &mut rows)?;
-        match robot.basr() {
-            Some(b) => check_basr(b, &rows, si + 1, period_s)?,
-            None => check_servo(robot, &rows, si + 1, period_s)?,
-        }
+        check_sampled(robot, &rows, si + 1, period_s)?;
         append_samples(
             &mut samples,
             robot,
@@ -66,68 +62,22 @@ pub fn sample(
     Ok(samples)
 }
 
-/// BASR's own check of the sampled joints (speeds, accelerations, ball-nut
-/// speed, ranges); `si` is the station's number from 1, as messages count.
-fn check_basr(robot: &Robot, rows: &[Timed], si: usize, period_s: f64) -> Result<(), CompileError> {
-    let js: Vec<Joints> = rows.iter().map(|p| joints_of(&p.q)).collect();
-    robot
-        .check_rates(&js, period_s)
-        .map_err(|e| CompileError::Timing(format!("station {si}: {e}")))?;
-    for (k, j) in js.iter().enumerate() {
-        robot.check_joints(j).map_err(|e| {
-            CompileError::Timing(format!(
-                "station {si}, setpoint {k}: the joint path between knots leaves a joint's \
-                 range ({e})"
-            ))
-        })?;
-    }
-    Ok(())
-}
-
-/// An electric kind's check of the sampled joints: each joint's range, and
-/// its speed and acceleration by finite differences (as `basr check`
-/// measures them), up to a relative 1e-9 (rounding); `si` counts from 1.
-fn check_servo(
+/// The robot's own check of the sampled joints (ranges, speeds,
+/// accelerations; BASR's ball-nut speed too); `si` is the station's number
+/// from 1, as messages count.
+fn check_sampled(
     robot: &AnyRobot,
     rows: &[Timed],
     si: usize,
     period_s: f64,
 ) -> Result<(), CompileError> {
-    let over = |v: f64, lim: f64| v.abs() > lim * (1.0 + 1e-9);
-    let names = robot.joint_names();
-    let fail = |k: usize, what: String| {
-        Err(CompileError::Timing(format!(
-            "station {si}, setpoint {k}: {what}"
-        )))
-    };
-    for (j, l) in robot.limits().iter().enumerate() {
-        let name = names[j];
-        let q: Vec<f64> = rows.iter().map(|p| p.q[j]).collect();
-        for (k, &v) in q.iter().enumerate() {
-            if !(v.is_finite() && l.contains(v)) {
-                return fail(
-                    k,
-                    format!("{name} = {v} leaves its range [{}, {}]", l.min, l.max),
-                );
-            }
-        }
-        for k in 1..q.len() {
-            let v = (q[k] - q[k - 1]) / period_s;
-            if over(v, l.max_vel) {
-                return fail(k, format!("{name} moves at {v}/s, over its {}", l.max_vel));
-            }
-            if k + 1 < q.len() {
-                let a = (q[k + 1] - 2.0 * q[k] + q[k - 1]) / (period_s * period_s);
-                if over(a, l.max_acc) {
-                    return fail(
-                        k,
-                        format!("{name} accelerates at {a}/s², over its {}", l.max_acc),
-                    );
-                }
-            }
-        }
-    }
-    Ok(())
+    let qs: Vec<Q> = rows.iter().map(|p| p.q).collect();
+    robot.check_sampled(&qs, period_s).map_err(|f| {
+        CompileError::Timing(match f.setpoint {
+            Some(k) => format!("station {si}, setpoint {k}: {}", f.what),
+            None => format!("station {si}: {}", f.what),
+        })
+    })
 }
 
 /// Clamp setpoints that the smooth joint curves carry a hair past a joint's
@@ -213,21 +163,11 @@ fn append_samples(
             width_m: width,
             ..SampleRow::default()
         };
-        match robot.basr() {
-            Some(b) => samples.push(&basr_row(b, nozzle, &p.q)),
-            None => {
-                // BASR's joint, actuator and encoder columns stay 0 (not
-                // applicable); the kind's own follow (docs/robot-kinds.md).
-                samples.push(&nozzle);
-                samples.push_kind(p.q, robot.encoders(&p.q));
-            }
-        }
+        // BASR's joints in the job's own columns; another kind's in its
+        // own after them, the job's joint columns left 0 (not applicable,
+        // docs/robot-kinds.md).
+        samples.push_joints(&nozzle, &robot.row_joints(&p.q));
     }
-}
-
-/// A BASR row: the nozzle columns with BASR's joints, actuators and encoders.
-fn basr_row(robot: &Robot, nozzle: SampleRow, q: &Q) -> SampleRow {
-    nozzle.with_basr_joints(robot, &joints_of(q))
 }
 
 /// Rung width and painting speed at arc length `s`, linear between knots.

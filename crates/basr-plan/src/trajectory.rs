@@ -205,16 +205,15 @@ pub struct TimeLaw {
 }
 
 /// `pace` (0–1] scales every acceleration and jerk limit, and the speed
-/// limits by its square root.
+/// limits by its square root; the drives' own speed caps (BASR's tilt
+/// ball nut) hold at every pace.
 pub(super) fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
+    let caps = robot.drive_speed_caps();
     for (j, l) in robot.limits().iter().enumerate() {
-        vel[j] = l.max_vel * pace.sqrt();
+        vel[j] = (l.max_vel * pace.sqrt()).min(caps[j]);
         acc[j] = l.max_acc * pace;
-    }
-    if let Some(b) = robot.basr() {
-        vel[4] = vel[4].min(super::rate::nut_limited_tilt_rate(b));
     }
     timing::JointLimits {
         vel,

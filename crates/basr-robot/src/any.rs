@@ -174,13 +174,7 @@ impl AnyRobot {
     /// Encoder column names of the kind's joints: `enc_` and the joint name
     /// without its unit (`boom_rad` → `enc_boom`).
     pub fn encoder_names(&self) -> [String; 5] {
-        self.joint_names().map(|n| {
-            let stem = n
-                .strip_suffix("_rad")
-                .or_else(|| n.strip_suffix("_m"))
-                .unwrap_or(n);
-            format!("enc_{stem}")
-        })
+        self.joint_names().map(super::facts::encoder_name)
     }
 }
 

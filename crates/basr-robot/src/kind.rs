@@ -13,8 +13,11 @@ use std::f64::consts::TAU;
 use serde::{Deserialize, Serialize};
 
 use super::{
-    articulated::Articulated, describe, telescopic::Telescopic, Control, JointLimit, Joints,
-    NozzlePose, Paint, Robot, RobotError, Unreachable,
+    articulated::Articulated,
+    describe,
+    facts::{RowJoints, SampledFault},
+    telescopic::Telescopic,
+    Control, JointLimit, Joints, NozzlePose, Paint, Robot, RobotError, Unreachable,
 };
 
 /// A joint set of any kind, in its [`ArmKind::joint_names`] order.
@@ -161,6 +164,64 @@ pub trait ArmKind {
     /// The solution with the shortest travel from `prev` (seed 003).
     fn nearest(&self, all: &[Q], prev: &Q) -> Option<Q> {
         shortest_travel(all, prev, &self.limits()).map(|i| all[i])
+    }
+
+    /// Speed caps (per joint, in [`Q`] order) that a joint's drive puts on
+    /// top of the joint's own `max_vel` and that a slower pace does not
+    /// lower; infinite where the joint's limit is all. BASR holds its tilt
+    /// to what its ball nut allows ([`Robot::nut_limited_tilt_rate`]); the
+    /// electric kinds' servos are their joints' limits.
+    fn drive_speed_caps(&self) -> [f64; 5] {
+        [f64::INFINITY; 5]
+    }
+
+    /// Whether the fan joint is the only one that can jump to another IK
+    /// solution between two nearby poses: BASR's solutions differ only in
+    /// the fan's branch (ψ or ψ+π) and yaw turn, so its other joints have
+    /// one value per pose; an electric arm's other joints can flip (the
+    /// articulated elbow, say).
+    fn fan_joint_alone_jumps(&self) -> bool {
+        false
+    }
+
+    /// How far (m) a tilt of ±`tilt_rad` lifts the tip above where the
+    /// untilted tip is at the same vertical joint: the lowest tip height
+    /// the kind paints at with that tilt is the lowest untilted one plus
+    /// this (the larger of +β and −β, as either fan branch may paint the
+    /// rung). BASR's tilt four-bar lifts it; 0 for a kind whose tilt does
+    /// not. Not positive (or NaN): no lift.
+    fn tilt_lift_m(&self, tilt_rad: f64) -> f64 {
+        let _ = tilt_rad;
+        0.0
+    }
+
+    /// Names of the setpoint columns the kind writes after the job's own:
+    /// its five joints, then their encoders (`enc_` and the joint name
+    /// without its unit); empty for a kind whose joints are the job's own
+    /// columns (BASR).
+    fn own_sample_columns(&self) -> Vec<String> {
+        let names = self.joint_names();
+        let mut out: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+        out.extend(names.iter().map(|n| super::facts::encoder_name(n)));
+        out
+    }
+
+    /// What a setpoint row holds of the joints `q`: the kind's own joint
+    /// and encoder columns, or (BASR) the job's joint, actuator and
+    /// encoder columns.
+    fn row_joints(&self, q: &Q) -> RowJoints {
+        RowJoints::Own {
+            q: *q,
+            encoders: self.encoders(q),
+        }
+    }
+
+    /// The kind's own check of a sampled joint path `qs` (one joint set
+    /// every `period_s`): each joint's range, speed and acceleration by
+    /// finite differences, up to a relative 1e-9 (rounding); BASR's also
+    /// its ball nut's speed. The first fault, with its setpoint.
+    fn check_sampled(&self, qs: &[Q], period_s: f64) -> Result<(), SampledFault> {
+        super::facts::check_servo_path(&self.joint_names(), &self.limits(), qs, period_s)
     }
 }
 
@@ -415,6 +476,46 @@ impl ArmKind for Robot {
     }
     fn problems(&self) -> Vec<(String, String)> {
         describe::validate(self)
+    }
+    fn drive_speed_caps(&self) -> [f64; 5] {
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::INFINITY,
+            self.nut_limited_tilt_rate(),
+        ]
+    }
+    fn fan_joint_alone_jumps(&self) -> bool {
+        true
+    }
+    fn tilt_lift_m(&self, tilt_rad: f64) -> f64 {
+        self.tilt_tip_offset(tilt_rad)[1].max(self.tilt_tip_offset(-tilt_rad)[1])
+    }
+    fn own_sample_columns(&self) -> Vec<String> {
+        vec![]
+    }
+    fn row_joints(&self, q: &Q) -> RowJoints {
+        let joints = joints_of(q);
+        RowJoints::Spec {
+            joints,
+            actuators: self.actuators(&joints),
+            encoders: Robot::encoders(self, &joints),
+        }
+    }
+    fn check_sampled(&self, qs: &[Q], period_s: f64) -> Result<(), SampledFault> {
+        let js: Vec<Joints> = qs.iter().map(joints_of).collect();
+        self.check_rates(&js, period_s).map_err(|e| SampledFault {
+            setpoint: None,
+            what: e.to_string(),
+        })?;
+        for (k, j) in js.iter().enumerate() {
+            self.check_joints(j).map_err(|e| SampledFault {
+                setpoint: Some(k),
+                what: format!("the joint path between knots leaves a joint's range ({e})"),
+            })?;
+        }
+        Ok(())
     }
 }
 

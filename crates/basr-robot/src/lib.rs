@@ -25,6 +25,7 @@ pub mod articulated;
 pub mod design;
 pub mod dynamics;
 pub mod envelope;
+pub mod facts;
 pub mod fourbar;
 pub mod kind;
 pub mod kinematics;
@@ -39,6 +40,7 @@ mod ranges;
 
 pub use describe::{check_source, RobotError};
 pub use dynamics::Dynamics;
+pub use facts::{AirEnd, RowJoints, SampledFault};
 pub use fourbar::FourBar;
 pub use kind::{AnyRobot, ArmKind, Kind, ServoJoint, Q};
 pub use kinematics::{Actuators, Encoders, Joints, NozzlePose, RateViolation, Unreachable};
