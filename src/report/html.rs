@@ -5,6 +5,7 @@
 use std::fmt::Write as _;
 
 use super::{Sheet, SimVerdict};
+use crate::job::Severity;
 
 /// Text for HTML: `&`, `<`, `>`, `"` escaped.
 pub fn escape(s: &str) -> String {
@@ -192,15 +193,16 @@ fn warnings(out: &mut String, s: &Sheet) {
     if s.notes.is_empty() {
         out.push_str("<p>None.</p>");
     }
-    for (sev, heading) in [
-        ("problem", "Problems: fix before painting"),
+    for (severity, heading) in [
+        (Severity::Problem, "Problems: fix before painting"),
         (
-            "notice",
+            Severity::Notice,
             "Notices: the marking comes out, slightly off the target here",
         ),
-        ("info", "For information"),
+        (Severity::Info, "For information"),
     ] {
-        let list: Vec<_> = s.notes.iter().filter(|n| n.severity == sev).collect();
+        let sev = severity.name();
+        let list: Vec<_> = s.notes.iter().filter(|n| n.severity == severity).collect();
         if list.is_empty() {
             continue;
         }

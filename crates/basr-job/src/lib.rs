@@ -19,6 +19,9 @@ pub mod csv;
 mod read;
 pub mod trust;
 pub mod verify;
+mod warning;
+
+pub use warning::{Owner, OwnerKind, Severity, Warning, WarningKind};
 
 use std::collections::BTreeMap;
 
@@ -134,26 +137,6 @@ impl Station {
 pub struct FontRef {
     pub name: String,
     pub sha256: String,
-}
-
-/// A note the planner wants a person to read (e.g. a slowed stroke).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Warning {
-    /// Short machine-readable kind, e.g. `"slowed"`, `"height_clamped"`.
-    pub kind: String,
-    /// How much it matters to the crew: `"info"` (nothing to do),
-    /// `"notice"` (paints, slightly off somewhere), `"problem"` (visibly off
-    /// target). Empty in jobs written before severities existed.
-    #[serde(default, skip_serializing_if = "String::is_empty")]
-    pub severity: String,
-    /// Stroke index, or -1 when not about one stroke.
-    pub stroke: i64,
-    /// Time in the job where it applies (s), when known.
-    pub t_s: Option<f64>,
-    /// Dimensionless factor (e.g. film excess = planned / actual speed).
-    pub factor: Option<f64>,
-    /// One sentence for a person.
-    pub message: String,
 }
 
 /// Totals of a job (SPEC §3).
