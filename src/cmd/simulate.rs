@@ -259,7 +259,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 ),
             );
         }
-        r.verdict = if r.reasons.is_empty() { "pass" } else { "fail" }.into();
+        r.verdict = basr::sim::report::Verdict::of(&r.reasons);
         r.plants = Some(summary);
     }
     let report = &outcome.report;

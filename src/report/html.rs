@@ -124,7 +124,7 @@ fn sim_text(sim: Option<&SimVerdict>) -> String {
             let mut t = format!(
                 "{}: nozzle within {:.2} mm of the plan (RMS {:.2} mm) against {:.2} mm, \
                  controller {}",
-                pass_fail(v.verdict == "pass"),
+                pass_fail(v.verdict == crate::sim::report::Verdict::Pass),
                 v.max_error_m * 1e3,
                 v.rms_error_m * 1e3,
                 v.tolerance_m * 1e3,

@@ -21,8 +21,7 @@ pub const TRUCK_MOVE_S: f64 = 60.0;
 #[derive(Clone, Debug, PartialEq, serde::Deserialize)]
 pub struct SimVerdict {
     pub controller: String,
-    /// `"pass"` or `"fail"`.
-    pub verdict: String,
+    pub verdict: crate::sim::report::Verdict,
     #[serde(default)]
     pub reasons: Vec<String>,
     pub max_error_m: f64,
@@ -34,7 +33,7 @@ impl SimVerdict {
     pub fn from_report(r: &crate::sim::report::Report) -> SimVerdict {
         SimVerdict {
             controller: r.controller.clone(),
-            verdict: r.verdict.clone(),
+            verdict: r.verdict,
             reasons: r.reasons.clone(),
             max_error_m: r.max_error_m,
             rms_error_m: r.rms_error_m,
@@ -46,7 +45,7 @@ impl SimVerdict {
     pub fn from_servo(r: &crate::sim::servo_job::ServoJobReport) -> SimVerdict {
         SimVerdict {
             controller: r.controller.clone(),
-            verdict: r.verdict.clone(),
+            verdict: r.verdict,
             reasons: r.reasons.clone(),
             max_error_m: r.max_error_m,
             rms_error_m: r.rms_error_m,
@@ -281,7 +280,9 @@ pub fn build(input: &Input) -> Sheet {
             text: w.message.clone(),
         })
         .collect();
-    let sim_fails = input.sim.is_some_and(|s| s.verdict != "pass");
+    let sim_fails = input
+        .sim
+        .is_some_and(|s| s.verdict != crate::sim::report::Verdict::Pass);
     let severities: Vec<Severity> = notes.iter().map(|n| n.severity).collect();
     let overall = overall(&severities, sim_fails || !input.film_verdict.pass());
     let m = input.film;

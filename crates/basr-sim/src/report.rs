@@ -2,7 +2,7 @@
 //! (overall, while painting, per stroke), waviness, saturation, peak
 //! pressures, limits violated, and the verdict against the tolerance.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Where something happened.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -122,13 +122,48 @@ pub struct LimitViolation {
     pub message: String,
 }
 
+/// The simulator's verdict on a job: `"pass"` or `"fail"` in
+/// `basr simulate --json`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// Within the tolerance, no limit broken.
+    Pass,
+    /// Why is in the report's `reasons`.
+    Fail,
+}
+
+impl Verdict {
+    /// Pass when nothing failed: `reasons` lists why it fails.
+    pub fn of(reasons: &[String]) -> Verdict {
+        if reasons.is_empty() {
+            Verdict::Pass
+        } else {
+            Verdict::Fail
+        }
+    }
+
+    /// The word: `pass` or `fail`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Pass => "pass",
+            Verdict::Fail => "fail",
+        }
+    }
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The result of `basr simulate`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
     pub controller: String,
     pub tolerance_m: f64,
-    /// `"pass"` or `"fail"`.
-    pub verdict: String,
+    pub verdict: Verdict,
     /// Why it failed (empty on pass).
     pub reasons: Vec<String>,
     /// Verdict error: while painting (or the whole job if it never paints).
@@ -160,7 +195,7 @@ pub struct Report {
 
 impl Report {
     pub fn passed(&self) -> bool {
-        self.verdict == "pass"
+        self.verdict == Verdict::Pass
     }
 
     /// A few lines for a person.
@@ -169,7 +204,7 @@ impl Report {
         let mut s = format!(
             "simulate ({}): {} — max error {:.3} mm, RMS {:.3} mm while painting (tolerance {:.3} mm)\n",
             self.controller,
-            self.verdict.to_uppercase(),
+            self.verdict.name().to_uppercase(),
             mm(self.max_error_m),
             mm(self.rms_error_m),
             mm(self.tolerance_m)
@@ -331,5 +366,15 @@ mod tests {
             .map(|i| (sum[i] - fast[i]).abs())
             .fold(0.0, f64::max);
         assert!(worst < 1e-3, "{worst}");
+    }
+
+    #[test]
+    fn the_verdict_is_pass_without_reasons_and_keeps_its_word() {
+        assert_eq!(Verdict::of(&[]), Verdict::Pass);
+        assert_eq!(Verdict::of(&["limit".to_string()]), Verdict::Fail);
+        assert_eq!(serde_json::to_value(Verdict::Fail).unwrap(), "fail");
+        let back: Verdict = serde_json::from_value(serde_json::json!("pass")).unwrap();
+        assert_eq!(back, Verdict::Pass);
+        assert!(serde_json::from_value::<Verdict>(serde_json::json!("PASS")).is_err());
     }
 }

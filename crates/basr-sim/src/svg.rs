@@ -135,7 +135,7 @@ pub fn render(trace: &[TraceRow], report: &Report) -> String {
     let title = format!(
         "basr simulate ({}): {} — max {:.2} mm, RMS {:.2} mm while painting (tolerance {:.2} mm)",
         report.controller,
-        report.verdict.to_uppercase(),
+        report.verdict.name().to_uppercase(),
         report.max_error_m * 1e3,
         report.rms_error_m * 1e3,
         report.tolerance_m * 1e3,

@@ -451,7 +451,7 @@ impl Tally {
         let report = Report {
             controller: opts.controller.name().into(),
             tolerance_m: opts.tolerance_m,
-            verdict: if reasons.is_empty() { "pass" } else { "fail" }.into(),
+            verdict: report::Verdict::of(&reasons),
             reasons,
             max_error_m: verdict_stats.max,
             rms_error_m: verdict_stats.rms(),
