@@ -117,7 +117,7 @@ pub struct Args {
     pub substeps: Option<u32>,
 }
 
-fn parse_fault(s: &str) -> Result<sim::fault::Fault, String> {
+fn parse_fault(s: &str) -> Result<sim::fault::Fault, sim::fault::FaultError> {
     s.parse()
 }
 

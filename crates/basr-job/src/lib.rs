@@ -92,6 +92,24 @@ pub enum JobError {
     BadSignature { path: String, key_id: String },
 }
 
+/// Columns of a job's samples that are not one value per row.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SamplesError {
+    #[error("samples column {column} has {len} values but t_s has {t_s}")]
+    Column {
+        column: &'static str,
+        len: usize,
+        t_s: usize,
+    },
+    #[error("samples kind_columns has {columns} names (10 expected), kind_joints {joints} rows and kind_encoders {encoders} rows, but t_s has {t_s}")]
+    KindColumns {
+        columns: usize,
+        joints: usize,
+        encoders: usize,
+        t_s: usize,
+    },
+}
+
 /// Paint settings the job was planned for (SPEC §3).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Paint {
@@ -347,13 +365,14 @@ macro_rules! samples_struct {
             }
 
             /// Length of every column, or the first column whose length differs.
-            pub fn check_lengths(&self) -> Result<usize, String> {
+            pub fn check_lengths(&self) -> Result<usize, SamplesError> {
                 let n = self.t_s.len();
                 $(if self.$name.len() != n {
-                    return Err(format!(
-                        "samples column {} has {} values but t_s has {}",
-                        stringify!($name), self.$name.len(), n
-                    ));
+                    return Err(SamplesError::Column {
+                        column: stringify!($name),
+                        len: self.$name.len(),
+                        t_s: n,
+                    });
                 })*
                 self.check_kind_lengths(n)?;
                 Ok(n)
@@ -412,7 +431,7 @@ impl Samples {
     }
 
     /// The kind's columns are all there or all absent, one value per row.
-    fn check_kind_lengths(&self, n: usize) -> Result<(), String> {
+    fn check_kind_lengths(&self, n: usize) -> Result<(), SamplesError> {
         let (c, q, e) = (
             self.kind_columns.len(),
             self.kind_joints.len(),
@@ -422,10 +441,12 @@ impl Samples {
             return Ok(());
         }
         if c != 10 || q != n || e != n {
-            return Err(format!(
-                "samples kind_columns has {c} names (10 expected), kind_joints {q} rows and \
-                 kind_encoders {e} rows, but t_s has {n}"
-            ));
+            return Err(SamplesError::KindColumns {
+                columns: c,
+                joints: q,
+                encoders: e,
+                t_s: n,
+            });
         }
         Ok(())
     }

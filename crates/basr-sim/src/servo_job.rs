@@ -127,7 +127,9 @@ fn setup(job: &Job) -> Result<([ServoJoint; 5], f64), SimError> {
         ));
     };
     let s = &job.samples;
-    let n = s.check_lengths().map_err(SimError::Job)?;
+    let n = s
+        .check_lengths()
+        .map_err(|e| SimError::Job(e.to_string()))?;
     if n < 2 || s.kind_joints.len() != n {
         return Err(SimError::Job(format!(
             "it has {n} setpoint rows and {} rows of the {} kind's joints; at least 2 of each, \
