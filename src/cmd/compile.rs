@@ -569,9 +569,13 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
 fn film_line(f: &basr::job::FilmSummary) -> String {
     let n = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.3}"));
     let verdict = if f.failed.is_empty() {
-        f.verdict.clone()
+        f.verdict.name().to_string()
     } else {
-        format!("{} ({})", f.verdict.to_uppercase(), f.failed.join("; "))
+        format!(
+            "{} ({})",
+            f.verdict.name().to_uppercase(),
+            f.failed.join("; ")
+        )
     };
     format!(
         "  film (as `basr preview` measures it): cv {}, coverage {}, overspray {}, mean {} \

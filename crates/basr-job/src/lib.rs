@@ -193,6 +193,24 @@ pub struct Summary {
     pub film: Option<FilmSummary>,
 }
 
+/// Whether a job's film meets the preview's bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FilmVerdict {
+    Pass,
+    Fail,
+}
+
+impl FilmVerdict {
+    /// The file's word: `pass` or `fail`.
+    pub fn name(self) -> &'static str {
+        match self {
+            FilmVerdict::Pass => "pass",
+            FilmVerdict::Fail => "fail",
+        }
+    }
+}
+
 /// The film figures of a job as `basr preview JOB` gives them at its
 /// defaults (docs/preview.md: metrics and verdict).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -209,8 +227,8 @@ pub struct FilmSummary {
     pub target_film_m: f64,
     /// Raster cell the film was measured on (m).
     pub resolution_m: f64,
-    /// `"pass"` or `"fail"` against the preview's default bounds.
-    pub verdict: String,
+    /// Against the preview's default bounds (`"pass"` or `"fail"` in the file).
+    pub verdict: FilmVerdict,
     /// Each failed bound in words (`cv 0.051 over the 0.050 limit`); empty
     /// on a pass.
     pub failed: Vec<String>,
