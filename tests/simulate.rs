@@ -75,7 +75,7 @@ fn a_step_in_the_setpoints_is_refused_by_simulate_and_fails_in_the_library() {
     )
     .unwrap()
     .report;
-    assert_eq!(r.verdict, "fail");
+    assert_eq!(r.verdict, basr::sim::report::Verdict::Fail);
     // the step is halfway through stroke 0
     assert_eq!(r.worst.stroke, 0);
     assert!(r.max_error_m > 0.01);

@@ -3,7 +3,7 @@
 //! what the gun's latency forces, and the report says what, when and where.
 
 use assert_cmd::Command;
-use basr::sim::{self, fault::Fault, safety, synthetic, SimModel};
+use basr::sim::{self, fault::Fault, report::Verdict, safety, synthetic, SimModel};
 
 /// A time in the middle of the first painting stroke of `job`.
 fn mid_stroke(job: &basr::job::Job) -> f64 {
@@ -35,7 +35,7 @@ fn every_fault_mid_stroke_stops_the_arm_and_keeps_paint_on_the_path() {
         ("valve-stuck", "following_error"),
     ] {
         let r = run(&job, &format!("{kind}@{t}"));
-        assert_eq!(r.verdict, "fail", "{kind}");
+        assert_eq!(r.verdict, Verdict::Fail, "{kind}");
         let s = r.safety.as_ref().expect("a safety report");
         assert_eq!(s.faults.len(), 1);
         assert_eq!(s.faults[0].kind, kind);
@@ -91,7 +91,7 @@ fn without_a_fault_the_monitor_stays_silent() {
         .unwrap()
         .report;
     assert!(r.safety.is_none());
-    assert_eq!(r.verdict, "pass");
+    assert_eq!(r.verdict, Verdict::Pass);
 }
 
 #[test]

@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use basr::job::{Owner, Severity, Warning};
 use basr::layout::Overrides;
 use basr::pipeline::compile::{compile_job, CompileRequest, Source, Tilt};
 use basr::units::Length;
@@ -407,16 +408,16 @@ const MAX_STOP_LINES: usize = 3;
 /// What a group of like problems adds to its first one's line: the other
 /// strokes it names, each once and in order ("the same on strokes 5, 6,
 /// 8"), and how many more places the first one's own stroke has.
-fn same_on(g: &[&basr::job::Warning]) -> String {
-    let mut others: Vec<i64> = g[1..]
+fn same_on(g: &[&Warning]) -> String {
+    let mut others: Vec<usize> = g[1..]
         .iter()
-        .map(|w| w.stroke)
-        .filter(|&s| s != g[0].stroke)
+        .filter_map(|w| w.stroke)
+        .filter(|&s| Some(s) != g[0].stroke)
         .collect();
     let again = g.len() - 1 - others.len();
     others.sort_unstable();
     others.dedup();
-    let list: Vec<String> = others.iter().map(i64::to_string).collect();
+    let list: Vec<String> = others.iter().map(usize::to_string).collect();
     let places = |n: usize| format!("{n} more place{}", if n == 1 { "" } else { "s" });
     match (list.len(), again) {
         (0, 0) => String::new(),
@@ -434,16 +435,26 @@ fn same_on(g: &[&basr::job::Warning]) -> String {
     }
 }
 
-/// The warnings of one kind on one item, worst first: printed as one line.
-fn grouped(warnings: &[basr::job::Warning]) -> Vec<Vec<&basr::job::Warning>> {
-    // The owner is the message's text before ", stroke" ("letter P of line 1").
-    let owner =
-        |w: &basr::job::Warning| w.message.split(", stroke").next().unwrap_or("").to_string();
-    let mut groups: Vec<Vec<&basr::job::Warning>> = Vec::new();
-    for w in warnings {
+/// The warnings of one kind and severity on one item, worst first: printed
+/// as one line. A note about a stroke of an item (it has an owner) joins
+/// the like notes on that item; any other stands alone, joined only by
+/// the same sentence again.
+fn grouped<'w>(warnings: &[&'w Warning]) -> Vec<Vec<&'w Warning>> {
+    /// What a warning is on, for grouping.
+    #[derive(PartialEq)]
+    enum On<'a> {
+        Item(&'a Owner),
+        Alone(&'a str),
+    }
+    let on = |w: &'w Warning| match &w.owner {
+        Some(o) => On::Item(o),
+        None => On::Alone(&w.message),
+    };
+    let mut groups: Vec<Vec<&Warning>> = Vec::new();
+    for &w in warnings {
         match groups
             .iter_mut()
-            .find(|g| g[0].kind == w.kind && g[0].severity == w.severity && owner(g[0]) == owner(w))
+            .find(|g| g[0].kind == w.kind && g[0].severity == w.severity && on(g[0]) == on(w))
         {
             Some(g) => g.push(w),
             None => groups.push(vec![w]),
@@ -498,9 +509,18 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     if let Some(f) = &s.film {
         lines.push(film_line(f));
     }
-    let count = |sev: &str| s.warnings.iter().filter(|w| w.severity == sev).count();
-    let (problems, notices, infos) = (count("problem"), count("notice"), count("info"));
-    let severities: Vec<&str> = s.warnings.iter().map(|w| w.severity.as_str()).collect();
+    let count = |sev| {
+        s.warnings
+            .iter()
+            .filter(|w| w.severity == Some(sev))
+            .count()
+    };
+    let (problems, notices, infos) = (
+        count(Severity::Problem),
+        count(Severity::Notice),
+        count(Severity::Info),
+    );
+    let severities: Vec<Severity> = s.warnings.iter().map(Warning::graded).collect();
     let verdict = basr::report::overall(&severities, false).to_uppercase();
     let more = if args.verbose || s.warnings.is_empty() {
         String::new()
@@ -513,18 +533,19 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         if problems == 1 { "" } else { "s" },
         if notices == 1 { "" } else { "s" },
     ));
-    let shown: Vec<&basr::job::Warning> = s
+    let shown: Vec<&Warning> = s
         .warnings
         .iter()
-        .filter(|w| args.verbose || w.severity == "problem")
+        .filter(|w| args.verbose || w.severity == Some(Severity::Problem))
         .collect();
     if args.verbose {
         for w in shown {
-            lines.push(format!("  {}: {}", w.severity, w.message));
+            let sev = w.severity.map_or("", Severity::name);
+            lines.push(format!("  {sev}: {}", w.message));
         }
         return lines;
     }
-    let groups = grouped(&shown.into_iter().cloned().collect::<Vec<_>>())
+    let groups = grouped(&shown)
         .into_iter()
         .map(|g| format!("  problem: {}{}", g[0].message, same_on(&g)))
         .collect::<Vec<_>>();
@@ -548,9 +569,13 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
 fn film_line(f: &basr::job::FilmSummary) -> String {
     let n = |v: Option<f64>| v.map_or("–".to_string(), |v| format!("{v:.3}"));
     let verdict = if f.failed.is_empty() {
-        f.verdict.clone()
+        f.verdict.name().to_string()
     } else {
-        format!("{} ({})", f.verdict.to_uppercase(), f.failed.join("; "))
+        format!(
+            "{} ({})",
+            f.verdict.name().to_uppercase(),
+            f.failed.join("; ")
+        )
     };
     format!(
         "  film (as `basr preview` measures it): cv {}, coverage {}, overspray {}, mean {} \
@@ -566,17 +591,18 @@ fn film_line(f: &basr::job::FilmSummary) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::same_on;
-    use basr::job::Warning;
+    use super::{grouped, same_on};
+    use basr::job::{Owner, OwnerKind, Severity, Warning, WarningKind};
 
-    fn on(stroke: i64) -> Warning {
+    fn on(stroke: usize) -> Warning {
         Warning {
-            kind: "slowed".into(),
-            severity: "problem".into(),
-            stroke,
+            kind: WarningKind::Slowed,
+            severity: Some(Severity::Problem),
+            stroke: Some(stroke),
             t_s: None,
             factor: None,
             message: String::new(),
+            owner: None,
         }
     }
 
@@ -595,5 +621,41 @@ mod tests {
         let two = [on(3), on(4)];
         let refs: Vec<&Warning> = two.iter().collect();
         assert_eq!(same_on(&refs), " (the same on stroke 4)");
+    }
+
+    #[test]
+    fn notes_group_by_their_typed_owner_not_by_their_words() {
+        let letter = |label: &str, stroke, factor, message: &str| Warning {
+            owner: Some(Owner {
+                kind: OwnerKind::Letter,
+                label: label.into(),
+                line: 0,
+            }),
+            factor: Some(factor),
+            message: message.into(),
+            ..on(stroke)
+        };
+        // The same words on two letters stay apart; different words on one
+        // letter join, worst first; an owner-less note stands alone.
+        let ws = [
+            letter("S", 1, 1.2, "same words"),
+            letter("T", 2, 1.9, "same words"),
+            letter("S", 3, 1.7, "other words"),
+            Warning {
+                kind: WarningKind::Film,
+                message: "same words".into(),
+                ..on(4)
+            },
+        ];
+        let refs: Vec<&Warning> = ws.iter().collect();
+        let g = grouped(&refs);
+        let strokes: Vec<Vec<Option<usize>>> = g
+            .iter()
+            .map(|g| g.iter().map(|w| w.stroke).collect())
+            .collect();
+        assert_eq!(
+            strokes,
+            vec![vec![Some(3), Some(1)], vec![Some(2)], vec![Some(4)]]
+        );
     }
 }

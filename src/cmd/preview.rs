@@ -139,7 +139,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         coverage_min: args.min_coverage,
         overspray_max: args.max_overspray,
     };
-    verdict::validate(&thresholds).map_err(anyhow::Error::msg)?;
+    verdict::validate(&thresholds)?;
     if !(r.is_finite() && r > 0.0) {
         anyhow::bail!(
             "--resolution-mm {r}: give a cell size in millimetres above zero, \

@@ -117,7 +117,7 @@ pub struct Args {
     pub substeps: Option<u32>,
 }
 
-fn parse_fault(s: &str) -> Result<sim::fault::Fault, String> {
+fn parse_fault(s: &str) -> Result<sim::fault::Fault, sim::fault::FaultError> {
     s.parse()
 }
 
@@ -259,8 +259,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 ),
             );
         }
-        r.verdict = if r.reasons.is_empty() { "pass" } else { "fail" }.into();
-        r.verdict_on = sim::report::VERDICT_ON_PLANTS_P95.into();
+        r.verdict = basr::sim::report::Verdict::of(&r.reasons);
+        r.verdict_on = basr::sim::report::VerdictOn::PlantsP95;
         r.plants = Some(summary);
     }
     let report = &outcome.report;

@@ -215,9 +215,11 @@ fn slower(
         // brings the others in).
         let far = FAR_OVER * verify::VERIFY_SHARE * crate::sim::Options::default().tolerance_m;
         let worst = (si, stroke, verdict.worst_t_s);
-        let others = verdict.failing.iter().filter(|f| f.1 != stroke);
-        let others = others.filter(|f| f.3 > far);
-        for (fs, fstroke, ft) in std::iter::once(worst).chain(others.map(|f| (f.0, f.1, f.2))) {
+        let others = verdict.failing.iter().filter(|f| f.stroke != stroke);
+        let others = others.filter(|f| f.error_m > far);
+        for (fs, fstroke, ft) in
+            std::iter::once(worst).chain(others.map(|f| (f.station, f.stroke, f.t_s)))
+        {
             let arrival = !first_of(fs, fstroke)
                 && paint_start(samples, rows.clone(), fstroke)
                     .is_some_and(|t0| ft - t0 < ARRIVAL_S);

@@ -10,7 +10,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::job::{Job, Warning};
+use crate::job::{Job, OwnerKind, Severity, Warning, WarningKind};
 use crate::layout::{ShapeSize, ShapeStrokes};
 use crate::paint::preview::{preview_job, Options};
 use crate::pipeline::compile::{compile_strokes, CompileError, CompileRequest, Source};
@@ -76,7 +76,7 @@ pub fn compile_shape(
     marking.lines = vec![message_of(label)];
     for it in &mut strokes.items {
         it.owner = Owner {
-            kind: "shape",
+            kind: OwnerKind::Shape,
             label: label.to_string(),
             line: 0,
         };
@@ -87,14 +87,15 @@ pub fn compile_shape(
     let lines = report_lines(&imported.decomposition, bands);
     for l in lines.iter().chain(&imported.notes) {
         let severity = if l.starts_with(UNEVEN) {
-            "problem"
+            Severity::Problem
         } else {
-            "info"
+            Severity::Info
         };
         job.summary.warnings.push(Warning {
-            kind: "shape".into(),
-            severity: severity.into(),
-            stroke: -1,
+            kind: WarningKind::Shape,
+            severity: Some(severity),
+            stroke: None,
+            owner: None,
             t_s: None,
             factor: None,
             message: format!("shape {l}"),
@@ -165,7 +166,7 @@ fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Opt
             .summary
             .warnings
             .iter()
-            .filter(|w| w.severity == "problem")
+            .filter(|w| w.severity == Some(Severity::Problem))
             .count(),
     })
 }

@@ -25,9 +25,21 @@ pub struct Verdict {
     pub worst: (u32, i64),
     /// Job time of the worst error (s).
     pub worst_t_s: f64,
-    /// Every stroke whose error is over the bound: (station, stroke, job
-    /// time of its worst error, the error in m).
-    pub failing: Vec<(u32, i64, f64, f64)>,
+    /// Every stroke whose error is over the bound.
+    pub failing: Vec<Failing>,
+}
+
+/// A stroke whose simulated error is over the verify bound.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Failing {
+    /// Station the stroke is painted from.
+    pub station: u32,
+    /// The stroke (a job's `samples.stroke`).
+    pub stroke: i64,
+    /// Job time of the stroke's worst error (s).
+    pub t_s: f64,
+    /// The stroke's largest error (m).
+    pub error_m: f64,
 }
 
 /// Simulate `job` with the default options and judge it.
@@ -78,7 +90,12 @@ pub fn simulated(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
         .strokes
         .iter()
         .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
-        .map(|s| (s.worst.station, s.stroke, s.worst.t_s, s.max_error_m))
+        .map(|s| Failing {
+            station: s.worst.station,
+            stroke: s.stroke,
+            t_s: s.worst.t_s,
+            error_m: s.max_error_m,
+        })
         .collect();
     Ok(judge(
         r.max_error_m,
@@ -97,7 +114,7 @@ fn judge(
     worst: &sim::report::Place,
     broken: &[impl AsRef<str>],
     tolerance_m: f64,
-    failing: Vec<(u32, i64, f64, f64)>,
+    failing: Vec<Failing>,
 ) -> Verdict {
     let bound = VERIFY_SHARE * tolerance_m;
     let ok = max_error_m <= bound && broken.is_empty();

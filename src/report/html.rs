@@ -5,6 +5,7 @@
 use std::fmt::Write as _;
 
 use super::{Sheet, SimVerdict};
+use crate::job::Severity;
 
 /// Text for HTML: `&`, `<`, `>`, `"` escaped.
 pub fn escape(s: &str) -> String {
@@ -123,7 +124,7 @@ fn sim_text(sim: Option<&SimVerdict>) -> String {
             let mut t = format!(
                 "{}: nozzle within {:.2} mm of the plan (RMS {:.2} mm) against {:.2} mm, \
                  controller {}",
-                pass_fail(v.verdict == "pass"),
+                pass_fail(v.verdict == crate::sim::report::Verdict::Pass),
                 v.max_error_m * 1e3,
                 v.rms_error_m * 1e3,
                 v.tolerance_m * 1e3,
@@ -192,15 +193,16 @@ fn warnings(out: &mut String, s: &Sheet) {
     if s.notes.is_empty() {
         out.push_str("<p>None.</p>");
     }
-    for (sev, heading) in [
-        ("problem", "Problems: fix before painting"),
+    for (severity, heading) in [
+        (Severity::Problem, "Problems: fix before painting"),
         (
-            "notice",
+            Severity::Notice,
             "Notices: the marking comes out, slightly off the target here",
         ),
-        ("info", "For information"),
+        (Severity::Info, "For information"),
     ] {
-        let list: Vec<_> = s.notes.iter().filter(|n| n.severity == sev).collect();
+        let sev = severity.name();
+        let list: Vec<_> = s.notes.iter().filter(|n| n.severity == severity).collect();
         if list.is_empty() {
             continue;
         }

@@ -7,7 +7,7 @@
 pub mod html;
 pub mod tally;
 
-use crate::job::{Job, Station};
+use crate::job::{Job, Severity, Station};
 use crate::paint::metrics::Metrics;
 use crate::paint::verdict::Verdict;
 
@@ -21,8 +21,7 @@ pub const TRUCK_MOVE_S: f64 = 60.0;
 #[derive(Clone, Debug, PartialEq, serde::Deserialize)]
 pub struct SimVerdict {
     pub controller: String,
-    /// `"pass"` or `"fail"`.
-    pub verdict: String,
+    pub verdict: crate::sim::report::Verdict,
     #[serde(default)]
     pub reasons: Vec<String>,
     pub max_error_m: f64,
@@ -34,7 +33,7 @@ impl SimVerdict {
     pub fn from_report(r: &crate::sim::report::Report) -> SimVerdict {
         SimVerdict {
             controller: r.controller.clone(),
-            verdict: r.verdict.clone(),
+            verdict: r.verdict,
             reasons: r.reasons.clone(),
             max_error_m: r.max_error_m,
             rms_error_m: r.rms_error_m,
@@ -46,7 +45,7 @@ impl SimVerdict {
     pub fn from_servo(r: &crate::sim::servo_job::ServoJobReport) -> SimVerdict {
         SimVerdict {
             controller: r.controller.clone(),
-            verdict: r.verdict.clone(),
+            verdict: r.verdict,
             reasons: r.reasons.clone(),
             max_error_m: r.max_error_m,
             rms_error_m: r.rms_error_m,
@@ -97,8 +96,8 @@ pub struct Letter {
 /// A warning as the sheet lists it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Note {
-    /// `problem`, `notice` or `info`.
-    pub severity: &'static str,
+    /// A job written before severities existed has its notes as notices.
+    pub severity: Severity,
     pub text: String,
 }
 
@@ -140,10 +139,10 @@ pub fn anchor_words(job: &Job) -> String {
 
 /// `ready`, `ready with notes` or `not ready` from the warnings'
 /// severities (and any other failed verdict).
-pub fn overall(severities: &[&str], failed: bool) -> &'static str {
-    if failed || severities.contains(&"problem") {
+pub fn overall(severities: &[Severity], failed: bool) -> &'static str {
+    if failed || severities.contains(&Severity::Problem) {
         "not ready"
-    } else if severities.contains(&"notice") {
+    } else if severities.contains(&Severity::Notice) {
         "ready with notes"
     } else {
         "ready"
@@ -277,17 +276,14 @@ pub fn build(input: &Input) -> Sheet {
         .warnings
         .iter()
         .map(|w| Note {
-            severity: match w.severity.as_str() {
-                "info" => "info",
-                "problem" => "problem",
-                // Jobs written before severities existed.
-                _ => "notice",
-            },
+            severity: w.graded(),
             text: w.message.clone(),
         })
         .collect();
-    let sim_fails = input.sim.is_some_and(|s| s.verdict != "pass");
-    let severities: Vec<&str> = notes.iter().map(|n| n.severity).collect();
+    let sim_fails = input
+        .sim
+        .is_some_and(|s| s.verdict != crate::sim::report::Verdict::Pass);
+    let severities: Vec<Severity> = notes.iter().map(|n| n.severity).collect();
     let overall = overall(&severities, sim_fails || !input.film_verdict.pass());
     let m = input.film;
     let pct = |v: Option<f64>| v.map_or("–".into(), |v| format!("{:.1} %", v * 100.0));

@@ -31,9 +31,22 @@ const UNITS: [(&str, f64); 11] = [
     ("\"", M_PER_IN),
 ];
 
+/// A length that cannot be read: what was typed and what to write.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LengthError {
+    #[error("{text:?} is not a length: give a number with an optional unit, e.g. 2.44, 2.44m, 8ft, 96in or 2440mm")]
+    NotANumber {
+        text: String,
+        #[source]
+        source: std::num::ParseFloatError,
+    },
+    #[error("{text:?}: unknown unit {unit:?}; use m, mm, cm, ft or in (8ft, 96in, 2.44m)")]
+    UnknownUnit { text: String, unit: String },
+}
+
 /// Read `text` as a length; a bare number is in units of `bare_m` metres
 /// (1 for a metre option, 1e-3 for a millimetre one).
-pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
+pub fn parse(text: &str, bare_m: f64) -> Result<Length, LengthError> {
     let t = text.trim();
     // A plain number (also `inf`, `NaN`: the option's own check refuses
     // those with its range).
@@ -54,8 +67,9 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
         .map_or(t.len(), |(i, _)| i);
     let (num, unit) = t.split_at(split);
     let unit = unit.trim();
-    let value: f64 = num.parse().map_err(|_| {
-        format!("{text:?} is not a length: give a number with an optional unit, e.g. 2.44, 2.44m, 8ft, 96in or 2440mm")
+    let value: f64 = num.parse().map_err(|source| LengthError::NotANumber {
+        text: text.to_string(),
+        source,
     })?;
     if unit.is_empty() {
         return Ok(Length {
@@ -67,8 +81,9 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
         .iter()
         .find(|(u, _)| u.eq_ignore_ascii_case(unit))
         .map(|&(_, f)| f)
-        .ok_or_else(|| {
-            format!("{text:?}: unknown unit {unit:?}; use m, mm, cm, ft or in (8ft, 96in, 2.44m)")
+        .ok_or_else(|| LengthError::UnknownUnit {
+            text: text.to_string(),
+            unit: unit.to_string(),
         })?;
     Ok(Length {
         m: value * per,
@@ -77,17 +92,17 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
 }
 
 /// clap value parser for an option in metres.
-pub fn metres(text: &str) -> Result<Length, String> {
+pub fn metres(text: &str) -> Result<Length, LengthError> {
     parse(text, 1.0)
 }
 
 /// clap value parser for an option in millimetres: the value in mm.
-pub fn millimetres(text: &str) -> Result<f64, String> {
+pub fn millimetres(text: &str) -> Result<f64, LengthError> {
     parse(text, 1e-3).map(|l| l.m * 1e3)
 }
 
 /// clap value parser for a plain metre value (no hint wanted): metres.
-pub fn metres_value(text: &str) -> Result<f64, String> {
+pub fn metres_value(text: &str) -> Result<f64, LengthError> {
     parse(text, 1.0).map(|l| l.m)
 }
 
@@ -138,9 +153,17 @@ mod tests {
 
     #[test]
     fn bad_lengths_say_what_to_write() {
-        assert!(metres("8yd").unwrap_err().contains("unknown unit \"yd\""));
-        assert!(metres("ft").unwrap_err().contains("not a length"));
-        assert!(metres("").unwrap_err().contains("not a length"));
+        assert_eq!(
+            metres("8yd").unwrap_err().to_string(),
+            "\"8yd\": unknown unit \"yd\"; use m, mm, cm, ft or in (8ft, 96in, 2.44m)"
+        );
+        let e = metres("ft").unwrap_err();
+        assert!(
+            e.to_string().starts_with("\"ft\" is not a length: give"),
+            "{e}"
+        );
+        assert!(std::error::Error::source(&e).is_some());
+        assert!(metres("").unwrap_err().to_string().contains("not a length"));
     }
 
     #[test]

@@ -19,6 +19,9 @@ pub mod csv;
 mod read;
 pub mod trust;
 pub mod verify;
+mod warning;
+
+pub use warning::{Owner, OwnerKind, Severity, Warning, WarningKind};
 
 use std::collections::BTreeMap;
 
@@ -89,6 +92,24 @@ pub enum JobError {
     BadSignature { path: String, key_id: String },
 }
 
+/// Columns of a job's samples that are not one value per row.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SamplesError {
+    #[error("samples column {column} has {len} values but t_s has {t_s}")]
+    Column {
+        column: &'static str,
+        len: usize,
+        t_s: usize,
+    },
+    #[error("samples kind_columns has {columns} names (10 expected), kind_joints {joints} rows and kind_encoders {encoders} rows, but t_s has {t_s}")]
+    KindColumns {
+        columns: usize,
+        joints: usize,
+        encoders: usize,
+        t_s: usize,
+    },
+}
+
 /// Paint settings the job was planned for (SPEC §3).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Paint {
@@ -134,26 +155,6 @@ impl Station {
 pub struct FontRef {
     pub name: String,
     pub sha256: String,
-}
-
-/// A note the planner wants a person to read (e.g. a slowed stroke).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Warning {
-    /// Short machine-readable kind, e.g. `"slowed"`, `"height_clamped"`.
-    pub kind: String,
-    /// How much it matters to the crew: `"info"` (nothing to do),
-    /// `"notice"` (paints, slightly off somewhere), `"problem"` (visibly off
-    /// target). Empty in jobs written before severities existed.
-    #[serde(default, skip_serializing_if = "String::is_empty")]
-    pub severity: String,
-    /// Stroke index, or -1 when not about one stroke.
-    pub stroke: i64,
-    /// Time in the job where it applies (s), when known.
-    pub t_s: Option<f64>,
-    /// Dimensionless factor (e.g. film excess = planned / actual speed).
-    pub factor: Option<f64>,
-    /// One sentence for a person.
-    pub message: String,
 }
 
 /// Totals of a job (SPEC §3).
@@ -219,6 +220,24 @@ impl Summary {
     }
 }
 
+/// Whether a job's film meets the preview's bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FilmVerdict {
+    Pass,
+    Fail,
+}
+
+impl FilmVerdict {
+    /// The file's word: `pass` or `fail`.
+    pub fn name(self) -> &'static str {
+        match self {
+            FilmVerdict::Pass => "pass",
+            FilmVerdict::Fail => "fail",
+        }
+    }
+}
+
 /// The film figures of a job as `basr preview JOB` gives them at its
 /// defaults (docs/preview.md: metrics and verdict).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -235,8 +254,8 @@ pub struct FilmSummary {
     pub target_film_m: f64,
     /// Raster cell the film was measured on (m).
     pub resolution_m: f64,
-    /// `"pass"` or `"fail"` against the preview's default bounds.
-    pub verdict: String,
+    /// Against the preview's default bounds (`"pass"` or `"fail"` in the file).
+    pub verdict: FilmVerdict,
     /// Each failed bound in words (`cv 0.051 over the 0.050 limit`); empty
     /// on a pass.
     pub failed: Vec<String>,
@@ -400,13 +419,14 @@ macro_rules! samples_struct {
             }
 
             /// Length of every column, or the first column whose length differs.
-            pub fn check_lengths(&self) -> Result<usize, String> {
+            pub fn check_lengths(&self) -> Result<usize, SamplesError> {
                 let n = self.t_s.len();
                 $(if self.$name.len() != n {
-                    return Err(format!(
-                        "samples column {} has {} values but t_s has {}",
-                        stringify!($name), self.$name.len(), n
-                    ));
+                    return Err(SamplesError::Column {
+                        column: stringify!($name),
+                        len: self.$name.len(),
+                        t_s: n,
+                    });
                 })*
                 self.check_kind_lengths(n)?;
                 Ok(n)
@@ -510,7 +530,7 @@ impl Samples {
     }
 
     /// The kind's columns are all there or all absent, one value per row.
-    fn check_kind_lengths(&self, n: usize) -> Result<(), String> {
+    fn check_kind_lengths(&self, n: usize) -> Result<(), SamplesError> {
         let (c, q, e) = (
             self.kind_columns.len(),
             self.kind_joints.len(),
@@ -520,10 +540,12 @@ impl Samples {
             return Ok(());
         }
         if c != 10 || q != n || e != n {
-            return Err(format!(
-                "samples kind_columns has {c} names (10 expected), kind_joints {q} rows and \
-                 kind_encoders {e} rows, but t_s has {n}"
-            ));
+            return Err(SamplesError::KindColumns {
+                columns: c,
+                joints: q,
+                encoders: e,
+                t_s: n,
+            });
         }
         Ok(())
     }

@@ -172,9 +172,10 @@ impl Job {
                 actual: robot_actual,
             });
         }
-        job.samples
-            .check_lengths()
-            .map_err(|what| JobError::Invalid { path: p(), what })?;
+        job.samples.check_lengths().map_err(|e| JobError::Invalid {
+            path: p(),
+            what: e.to_string(),
+        })?;
         Ok(job)
     }
 }

@@ -8,7 +8,7 @@ use super::preview::{self, Options, Preview};
 use super::raster::{Progress, FIT_CELLS};
 use super::verdict::{self, Thresholds, Verdict};
 use super::PaintError;
-use basr_job::{FilmSummary, Job};
+use basr_job::{FilmSummary, FilmVerdict, Job};
 
 /// How to measure the film: the preview's options and the verdict's bounds.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,7 +51,11 @@ impl JobFilm {
             mean_film_m: m.mean_film_m,
             target_film_m: m.target_film_m,
             resolution_m: m.resolution_m,
-            verdict: self.verdict.verdict.to_string(),
+            verdict: if self.verdict.pass() {
+                FilmVerdict::Pass
+            } else {
+                FilmVerdict::Fail
+            },
             failed: self
                 .verdict
                 .checks

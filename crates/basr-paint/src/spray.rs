@@ -51,6 +51,17 @@ pub enum Profile {
     Beta { p: f64, q: f64 },
 }
 
+/// A fan profile that cannot be painted with.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ProfileError {
+    #[error("at least one lobe is needed")]
+    NoLobe,
+    #[error("lobe {0:?}: weight and sigma must be > 0 and |mean| ≤ 1")]
+    Lobe(Lobe),
+    #[error("beta parameters must be ≥ 1 (finite density at the fan edges)")]
+    Beta,
+}
+
 /// One Gaussian lobe of [`Profile::GaussianSum`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lobe {
@@ -144,22 +155,20 @@ impl Profile {
                 ))
             }
         };
-        profile.validate().map_err(|why| bad(&why))?;
+        profile.validate().map_err(|why| bad(&why.to_string()))?;
         Ok(profile)
     }
 
-    fn validate(&self) -> Result<(), String> {
+    fn validate(&self) -> Result<(), ProfileError> {
         match self {
             Profile::Uniform | Profile::UniformAngle => Ok(()),
             Profile::GaussianSum(lobes) => {
                 if lobes.is_empty() {
-                    return Err("at least one lobe is needed".into());
+                    return Err(ProfileError::NoLobe);
                 }
                 for l in lobes {
                     if !(l.weight > 0.0 && l.sigma > 0.0 && l.mean.abs() <= 1.0) {
-                        return Err(format!(
-                            "lobe {l:?}: weight and sigma must be > 0 and |mean| ≤ 1"
-                        ));
+                        return Err(ProfileError::Lobe(l.clone()));
                     }
                 }
                 Ok(())
@@ -168,7 +177,7 @@ impl Profile {
                 if *p >= 1.0 && *q >= 1.0 && p.is_finite() && q.is_finite() {
                     Ok(())
                 } else {
-                    Err("beta parameters must be ≥ 1 (finite density at the fan edges)".into())
+                    Err(ProfileError::Beta)
                 }
             }
         }
@@ -400,7 +409,9 @@ impl SprayModel {
                 2.0 * MAX_RAY_ANGLE_RAD
             )));
         }
-        profile.validate().map_err(PaintError::Model)?;
+        profile
+            .validate()
+            .map_err(|e| PaintError::Model(e.to_string()))?;
         let table = match profile {
             Profile::Uniform | Profile::UniformAngle => Vec::new(),
             _ => {

@@ -146,18 +146,24 @@ pub fn glyph_passes(g: &GlyphMetrics, t: &Thresholds) -> bool {
         .all(|c| c.pass)
 }
 
+/// A user-given threshold that is not a share from 0 to 1.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{flag} {value}: give a share from 0 to 1 (0.05 is 5 %; defaults: --max-cv {CV_MAX}, --min-coverage {COVERAGE_MIN}, --max-overspray {OVERSPRAY_MAX})")]
+pub struct ThresholdError {
+    /// The option (`--max-cv`, `--min-coverage`, `--max-overspray`).
+    pub flag: &'static str,
+    pub value: f64,
+}
+
 /// Check that user-given thresholds make sense; the message names the flag.
-pub fn validate(t: &Thresholds) -> Result<(), String> {
+pub fn validate(t: &Thresholds) -> Result<(), ThresholdError> {
     for (flag, v) in [
         ("--max-cv", t.cv_max),
         ("--min-coverage", t.coverage_min),
         ("--max-overspray", t.overspray_max),
     ] {
         if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
-            return Err(format!(
-                "{flag} {v}: give a share from 0 to 1 (0.05 is 5 %; defaults: --max-cv \
-                 {CV_MAX}, --min-coverage {COVERAGE_MIN}, --max-overspray {OVERSPRAY_MAX})"
-            ));
+            return Err(ThresholdError { flag, value: v });
         }
     }
     Ok(())
@@ -219,7 +225,10 @@ mod tests {
         let mut t = Thresholds::default();
         assert!(validate(&t).is_ok());
         t.cv_max = 5.0;
-        assert!(validate(&t).unwrap_err().starts_with("--max-cv 5"));
+        assert!(validate(&t)
+            .unwrap_err()
+            .to_string()
+            .starts_with("--max-cv 5"));
         t.cv_max = f64::NAN;
         assert!(validate(&t).is_err());
     }

@@ -13,7 +13,7 @@ use basr_job::{PlacedGlyph, PlacedStroke as OutlineStroke};
 use basr_shape::font::{Font, Stroke};
 use basr_shape::layout::{Laid, Placed};
 
-use super::warnings::{Note, Owner};
+use super::warnings::{Note, Owner, OwnerKind};
 
 /// Outline samples of `layout.glyphs` are at most this far apart (m).
 const OUTLINE_STEP_M: f64 = 0.01;
@@ -93,7 +93,7 @@ impl PlacedStrokes {
             let item = out.items.len();
             out.items.push(PlacedItem {
                 owner: Owner {
-                    kind: "letter",
+                    kind: OwnerKind::Letter,
                     label: letter.ch.to_string(),
                     line: letter.line,
                 },

@@ -5,46 +5,9 @@
 //! `summary.warnings` entries (kind, stroke, time, factor, sentence), so the
 //! wording lives here and nowhere else.
 
-use basr_job::{self as job, Warning};
+use basr_job::{self as job, Warning, WarningKind};
 
-/// How much a note matters to the crew (issue 15 sorts and colours by it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Severity {
-    /// For the record: the job paints as planned.
-    Info,
-    /// Worth a look before painting: the job paints, but not as asked.
-    Notice,
-    /// The paint will be off target somewhere.
-    Problem,
-}
-
-impl Severity {
-    pub fn name(self) -> &'static str {
-        match self {
-            Severity::Info => "info",
-            Severity::Notice => "notice",
-            Severity::Problem => "problem",
-        }
-    }
-}
-
-/// Which painted item a stroke belongs to, for messages: a letter's
-/// character (or a symbol's name) and its line.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Owner {
-    /// What the item is, for a person: `"letter"`, `"symbol"`, `"shape"`.
-    pub kind: &'static str,
-    /// The character or name (`"S"`, `"arrow_left"`); `layout.glyphs[].char`.
-    pub label: String,
-    /// Line index (0 = nearest the approaching driver).
-    pub line: usize,
-}
-
-impl std::fmt::Display for Owner {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} {} of line {}", self.kind, self.label, self.line + 1)
-    }
-}
+pub use basr_job::{Owner, OwnerKind, Severity};
 
 /// Which limit slowed the nozzle below the painting speed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -250,22 +213,24 @@ impl Note {
 
     /// The job's entry for this note: the one place a note becomes text.
     pub fn render(&self) -> Warning {
-        let severity = self.severity().name().to_string();
+        let severity = Some(self.severity());
         let todo = self.todo();
         match self {
             Note::Layout { text } => Warning {
-                kind: "layout".into(),
+                kind: WarningKind::Layout,
+                owner: None,
                 severity,
-                stroke: -1,
+                stroke: None,
                 t_s: None,
                 factor: None,
                 message: format!("{text}. {todo}"),
             },
             // As `plan::shapes::compile_shape` writes a `--shape` job's lines.
             Note::Shape { label, text } => Warning {
-                kind: "shape".into(),
+                kind: WarningKind::Shape,
+                owner: None,
                 severity,
-                stroke: -1,
+                stroke: None,
                 t_s: None,
                 factor: None,
                 message: format!("shape {label}: {text}"),
@@ -276,9 +241,10 @@ impl Note {
                 passes,
                 max_width_m,
             } => Warning {
-                kind: "passes".into(),
+                kind: WarningKind::Passes,
+                owner: Some(owner.clone()),
                 severity,
-                stroke: *stroke as i64,
+                stroke: Some(*stroke),
                 t_s: None,
                 factor: Some(*passes as f64),
                 message: format!(
@@ -297,9 +263,10 @@ impl Note {
                 outside_share,
                 job_outside_share,
             } => Warning {
-                kind: "height_clamped".into(),
+                kind: WarningKind::HeightClamped,
+                owner: Some(owner.clone()),
                 severity,
-                stroke: *stroke as i64,
+                stroke: Some(*stroke),
                 t_s: None,
                 factor: Some(*worst_ratio),
                 message: format!(
@@ -324,9 +291,10 @@ impl Note {
                 t_s,
                 film_ratio,
             } => Warning {
-                kind: "slowed".into(),
+                kind: WarningKind::Slowed,
+                owner: Some(owner.clone()),
                 severity,
-                stroke: *stroke as i64,
+                stroke: Some(*stroke),
                 t_s: Some(job::round_ns(*t_s)),
                 factor: Some(*film_ratio),
                 message: format!(
@@ -343,9 +311,10 @@ impl Note {
                 worst,
                 hot,
             } => Warning {
-                kind: "film".into(),
+                kind: WarningKind::Film,
+                owner: None,
                 severity,
-                stroke: hot.as_ref().and_then(|h| h.stroke).map_or(-1, |s| s as i64),
+                stroke: hot.as_ref().and_then(|h| h.stroke),
                 t_s: None,
                 factor: *factor,
                 message: format!(
@@ -369,21 +338,22 @@ impl Note {
                 why,
             } => {
                 let (stroke, reason) = match why {
-                    StopWhy::LeaveStow => (-1, "the station starts from the stow pose".to_string()),
-                    StopWhy::BackToStow => (-1, "the station ends in the stow pose".to_string()),
+                    StopWhy::LeaveStow => (None, "the station starts from the stow pose".to_string()),
+                    StopWhy::BackToStow => (None, "the station ends in the stow pose".to_string()),
                     StopWhy::JointRange {
                         stroke,
                         owner,
                         joint,
                     } => (
-                        *stroke as i64,
+                        Some(*stroke),
                         format!(
                             "flying into stroke {stroke} ({owner}) would carry {joint} past its range"
                         ),
                     ),
                 };
                 Warning {
-                    kind: "stop".into(),
+                    kind: WarningKind::Stop,
+                    owner: None,
                     severity,
                     stroke,
                     t_s: Some(job::round_ns(*t_s)),
@@ -412,7 +382,7 @@ mod tests {
 
     fn owner() -> Owner {
         Owner {
-            kind: "letter",
+            kind: OwnerKind::Letter,
             label: "S".into(),
             line: 0,
         }
@@ -431,8 +401,9 @@ mod tests {
             film_ratio: 1.05,
         };
         let w = slowed.render();
-        assert_eq!(w.kind, "slowed");
-        assert_eq!(w.stroke, 4);
+        assert_eq!(w.kind, WarningKind::Slowed);
+        assert_eq!(w.stroke, Some(4));
+        assert_eq!(w.owner, Some(owner()));
         assert_eq!(w.factor, Some(1.05));
         assert!(
             w.message
@@ -445,10 +416,11 @@ mod tests {
             .contains("(the ee_yaw_rad acceleration limit holds it back, 19.3 s"));
         // 1.05× is inside the ±10 % band: information, nothing to do.
         assert_eq!(slowed.severity(), Severity::Info);
-        assert_eq!(w.severity, "info");
+        assert_eq!(w.severity, Some(Severity::Info));
         assert!(w.message.ends_with("Nothing to do."), "{}", w.message);
         let layout = Note::Layout { text: "gap".into() };
-        assert_eq!(layout.render().stroke, -1);
+        assert_eq!(layout.render().stroke, None);
+        assert_eq!(layout.render().owner, None);
         assert_eq!(layout.severity(), Severity::Notice);
         let passes = Note::Passes {
             stroke: 2,
@@ -475,8 +447,11 @@ mod tests {
         };
         assert_eq!(film.severity(), Severity::Problem);
         let w = film.render();
-        assert_eq!((w.kind.as_str(), w.severity.as_str()), ("film", "problem"));
-        assert_eq!(w.stroke, 7);
+        assert_eq!(
+            (w.kind, w.severity),
+            (WarningKind::Film, Some(Severity::Problem))
+        );
+        assert_eq!(w.stroke, Some(7));
         assert!(
             w.message.starts_with(
                 "the film fails the preview's check: cv 0.051 over the 0.050 limit, worst on \
@@ -521,7 +496,7 @@ mod tests {
         assert_eq!(clamped(1.297, 0.02).severity(), Severity::Problem);
         let w = clamped(1.297, 0.02).render();
         assert!(!w.message.contains("rung"), "jargon: {}", w.message);
-        assert_eq!(w.severity, "problem");
+        assert_eq!(w.severity, Some(Severity::Problem));
         assert!(
             w.message.contains("0.40 % of the job's paint"),
             "{}",
@@ -532,7 +507,7 @@ mod tests {
             .contains("2.00 % over the whole job (budget 1.1 %)"));
         // Within the budget over the whole job: a notice that says why.
         let w = clamped(1.297, 0.008).render();
-        assert_eq!(w.severity, "notice");
+        assert_eq!(w.severity, Some(Severity::Notice));
         assert!(
             w.message.contains("within the preview's overspray bound"),
             "{}",

@@ -98,13 +98,18 @@ impl ControllerKind {
     }
 }
 
+/// A controller name that is not one of [`ControllerKind::ALL`].
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown controller {0:?}: use pid, sjct, scct or dyninv")]
+pub struct UnknownController(pub String);
+
 impl std::str::FromStr for ControllerKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownController;
+    fn from_str(s: &str) -> Result<Self, UnknownController> {
         ControllerKind::ALL
             .into_iter()
             .find(|k| k.name() == s)
-            .ok_or_else(|| format!("unknown controller {s:?}: use pid, sjct, scct or dyninv"))
+            .ok_or_else(|| UnknownController(s.to_string()))
     }
 }
 

@@ -77,24 +77,43 @@ pub struct Fault {
 pub const FORMS: &str = "KIND@SECONDS with KIND one of supply-drop, encoder-glitch, \
      valve-stuck and SECONDS the time from the job's start (e.g. --fault valve-stuck@12.5)";
 
+/// A `--fault` that cannot be used: what was given and the forms accepted.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FaultError {
+    #[error("{0:?} has no @: use {FORMS}")]
+    NoAt(String),
+    #[error("unknown fault {0:?}: use {FORMS}")]
+    UnknownKind(String),
+    #[error("{text:?} is not a number of seconds: use {FORMS}")]
+    NotSeconds {
+        text: String,
+        #[source]
+        source: std::num::ParseFloatError,
+    },
+    #[error("the time {0} must be a finite number of seconds from 0: use {FORMS}")]
+    BadTime(f64),
+    #[error("{0} --fault flags: at most {MAX_FAULTS}")]
+    TooMany(usize),
+    #[error("--fault {}@{}: the job ends at {duration_s:.3} s; give a time within it", .fault.kind.name(), .fault.at_s)]
+    AfterEnd { fault: Fault, duration_s: f64 },
+}
+
 impl std::str::FromStr for Fault {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Fault, String> {
+    type Err = FaultError;
+    fn from_str(s: &str) -> Result<Fault, FaultError> {
         let Some((kind, at)) = s.split_once('@') else {
-            return Err(format!("{s:?} has no @: use {FORMS}"));
+            return Err(FaultError::NoAt(s.to_string()));
         };
         let kind = FaultKind::ALL
             .into_iter()
             .find(|k| k.name() == kind.trim())
-            .ok_or_else(|| format!("unknown fault {kind:?}: use {FORMS}"))?;
-        let at_s: f64 = at
-            .trim()
-            .parse()
-            .map_err(|_| format!("{at:?} is not a number of seconds: use {FORMS}"))?;
+            .ok_or_else(|| FaultError::UnknownKind(kind.to_string()))?;
+        let at_s: f64 = at.trim().parse().map_err(|source| FaultError::NotSeconds {
+            text: at.to_string(),
+            source,
+        })?;
         if !(at_s.is_finite() && at_s >= 0.0) {
-            return Err(format!(
-                "the time {at_s} must be a finite number of seconds from 0: use {FORMS}"
-            ));
+            return Err(FaultError::BadTime(at_s));
         }
         Ok(Fault { kind, at_s })
     }
@@ -130,19 +149,15 @@ impl Active {
 }
 
 /// Check `faults` against a job of `duration_s` (bad input: the message).
-pub fn check(faults: &[Fault], duration_s: f64) -> Result<(), String> {
+pub fn check(faults: &[Fault], duration_s: f64) -> Result<(), FaultError> {
     if faults.len() > MAX_FAULTS {
-        return Err(format!(
-            "{} --fault flags: at most {MAX_FAULTS}",
-            faults.len()
-        ));
+        return Err(FaultError::TooMany(faults.len()));
     }
     if let Some(f) = faults.iter().find(|f| f.at_s > duration_s) {
-        return Err(format!(
-            "--fault {}@{}: the job ends at {duration_s:.3} s; give a time within it",
-            f.kind.name(),
-            f.at_s
-        ));
+        return Err(FaultError::AfterEnd {
+            fault: *f,
+            duration_s,
+        });
     }
     Ok(())
 }
@@ -170,7 +185,10 @@ mod tests {
             "@3",
         ] {
             let e = bad.parse::<Fault>().unwrap_err();
-            assert!(e.contains("supply-drop, encoder-glitch"), "{bad}: {e}");
+            assert!(
+                e.to_string().contains("supply-drop, encoder-glitch"),
+                "{bad}: {e}"
+            );
         }
     }
 
@@ -190,7 +208,10 @@ mod tests {
         let a = Active::at(&f, 3.0, 88000.0);
         assert!(!a.supply_lost && (a.encoder_offset_rad - 0.0714).abs() < 1e-3);
         assert!(Active::at(&f, 5.0, 88000.0).supply_lost);
-        assert!(check(&f, 4.0).unwrap_err().contains("ends at 4.000 s"));
+        assert_eq!(
+            check(&f, 4.0).unwrap_err().to_string(),
+            "--fault supply-drop@5: the job ends at 4.000 s; give a time within it"
+        );
         assert!(check(&f, 6.0).is_ok());
     }
 }

@@ -92,7 +92,9 @@ pub fn nozzle_base(model: &SimModel, theta: f64, r: f64) -> [f64; 2] {
 /// Check the job's numbers before running (bad input → exit 2).
 fn validate_job(job: &Job) -> Result<(), SimError> {
     let s = &job.samples;
-    let n = s.check_lengths().map_err(SimError::Job)?;
+    let n = s
+        .check_lengths()
+        .map_err(|e| SimError::Job(e.to_string()))?;
     if n < 2 {
         return Err(SimError::Job(format!(
             "it has {n} setpoint rows; at least 2 are needed"

@@ -280,7 +280,7 @@ impl SimModel {
     /// limits and control timing from their tables, the rest from its
     /// `[dynamics]` table.
     /// A job's robot of another kind than BASR has no hydraulic model (Err).
-    pub fn from_robot(robot: &impl HydraulicRobot) -> Result<SimModel, String> {
+    pub fn from_robot(robot: &impl HydraulicRobot) -> Result<SimModel, ModelError> {
         let robot = robot.hydraulic_robot()?;
         let h = &robot.hydraulics;
         let arm = &robot.arm;
@@ -302,7 +302,7 @@ impl SimModel {
         let fb = &ee.fourbar;
         let (nut_lo, nut_hi) = match (fb.nut_m(l.tilt_rad.min), fb.nut_m(l.tilt_rad.max)) {
             (Some(a), Some(b)) => (a.min(b), a.max(b)),
-            _ => return Err("the tilt four-bar cannot reach the tilt limits".into()),
+            _ => return Err(ModelError::TiltUnreachable),
         };
         // nut speed and acceleration from the tilt's, at the linkage's mean ratio
         let nut_per_rad = (nut_hi - nut_lo) / (l.tilt_rad.max - l.tilt_rad.min).max(1e-9);
@@ -456,7 +456,7 @@ impl SimModel {
     }
 
     /// Check every number is finite and in its physical range.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), ModelError> {
         let checks: &[(&str, f64, bool)] = &[
             ("arm.k", self.arm.k, self.arm.k > 0.0),
             ("arm.d_m", self.arm.d_m, self.arm.d_m > 0.0),
@@ -524,37 +524,47 @@ impl SimModel {
         ];
         for (name, v, ok) in checks {
             if !v.is_finite() || !ok {
-                return Err(format!("{name} = {v} is outside its physical range"));
+                return Err(ModelError::OutOfRange { name, value: *v });
             }
         }
         if self.substeps == 0 || self.substeps > 100 {
-            return Err(format!("substeps = {} must be 1–100", self.substeps));
+            return Err(ModelError::Substeps(self.substeps));
         }
         Ok(())
     }
+}
+
+/// A robot the hydraulic model cannot be built from, or a model with a
+/// number outside its physical range.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    #[error("the robot is of the {kind} kind, which has no hydraulic plant: `basr simulate` runs its servo plant")]
+    NoHydraulicPlant { kind: String },
+    #[error("the tilt four-bar cannot reach the tilt limits")]
+    TiltUnreachable,
+    #[error("{name} = {value} is outside its physical range")]
+    OutOfRange { name: &'static str, value: f64 },
+    #[error("substeps = {0} must be 1–100")]
+    Substeps(u32),
 }
 
 /// What a hydraulic model is built from: BASR's description, or a job's
 /// robot of any kind (`AnyRobot`), which is refused unless it is BASR's:
 /// the electric kinds have their servo plant (`sim::servo_job`).
 pub trait HydraulicRobot {
-    fn hydraulic_robot(&self) -> Result<&basr_robot::Robot, String>;
+    fn hydraulic_robot(&self) -> Result<&basr_robot::Robot, ModelError>;
 }
 
 impl HydraulicRobot for basr_robot::Robot {
-    fn hydraulic_robot(&self) -> Result<&basr_robot::Robot, String> {
+    fn hydraulic_robot(&self) -> Result<&basr_robot::Robot, ModelError> {
         Ok(self)
     }
 }
 
 impl HydraulicRobot for basr_robot::AnyRobot {
-    fn hydraulic_robot(&self) -> Result<&basr_robot::Robot, String> {
-        self.basr().ok_or_else(|| {
-            format!(
-                "the robot is of the {} kind, which has no hydraulic plant: `basr simulate` \
-                 runs its servo plant",
-                self.kind().name()
-            )
+    fn hydraulic_robot(&self) -> Result<&basr_robot::Robot, ModelError> {
+        self.basr().ok_or_else(|| ModelError::NoHydraulicPlant {
+            kind: self.kind().name().to_string(),
         })
     }
 }

@@ -2,7 +2,7 @@
 //! (overall, while painting, per stroke), waviness, saturation, peak
 //! pressures, limits violated, and the verdict against the tolerance.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Where something happened.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -122,18 +122,53 @@ pub struct LimitViolation {
     pub message: String,
 }
 
+/// The simulator's verdict on a job: `"pass"` or `"fail"` in
+/// `basr simulate --json`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// Within the tolerance, no limit broken.
+    Pass,
+    /// Why is in the report's `reasons`.
+    Fail,
+}
+
+impl Verdict {
+    /// Pass when nothing failed: `reasons` lists why it fails.
+    pub fn of(reasons: &[String]) -> Verdict {
+        if reasons.is_empty() {
+            Verdict::Pass
+        } else {
+            Verdict::Fail
+        }
+    }
+
+    /// The word: `pass` or `fail`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Pass => "pass",
+            Verdict::Fail => "fail",
+        }
+    }
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The result of `basr simulate`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
     pub controller: String,
     pub tolerance_m: f64,
-    /// `"pass"` or `"fail"`.
-    pub verdict: String,
-    /// What the verdict is judged on: [`VERDICT_ON_NOMINAL`] (this run, on
+    pub verdict: Verdict,
+    /// What the verdict is judged on: [`VerdictOn::Nominal`] (this run, on
     /// the plant the robot description describes) or
-    /// [`VERDICT_ON_PLANTS_P95`] (the 95th percentile of `plants`; every
+    /// [`VerdictOn::PlantsP95`] (the 95th percentile of `plants`; every
     /// other figure here is still the nominal run's).
-    pub verdict_on: String,
+    pub verdict_on: VerdictOn,
     /// Why it failed (empty on pass).
     pub reasons: Vec<String>,
     /// Verdict error: while painting (or the whole job if it never paints).
@@ -163,14 +198,20 @@ pub struct Report {
     pub safety: Option<super::safety::SafetyReport>,
 }
 
-/// `verdict_on` of a run judged on itself, the description's plant.
-pub const VERDICT_ON_NOMINAL: &str = "nominal";
-/// `verdict_on` of `--plants N`: the 95th percentile of the plants' errors.
-pub const VERDICT_ON_PLANTS_P95: &str = "plants_p95";
+/// What a report's verdict is judged on: `"nominal"` or `"plants_p95"` in
+/// `basr simulate --json`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VerdictOn {
+    /// The run itself, on the plant the robot description describes.
+    Nominal,
+    /// `--plants N`: the 95th percentile of the plants' errors.
+    PlantsP95,
+}
 
 impl Report {
     pub fn passed(&self) -> bool {
-        self.verdict == "pass"
+        self.verdict == Verdict::Pass
     }
 
     /// The verdict and what it is judged on, in words: `PASS on the
@@ -178,7 +219,7 @@ impl Report {
     /// percentile of 40 plants drawn within ±10 % (seed 7)`.
     pub fn verdict_words(&self) -> String {
         let on = match &self.plants {
-            Some(p) if self.verdict_on == VERDICT_ON_PLANTS_P95 => format!(
+            Some(p) if self.verdict_on == VerdictOn::PlantsP95 => format!(
                 "the 95th percentile of {} plants drawn within ±{:.0} % of the robot description (seed {})",
                 p.n,
                 p.spread * 100.0,
@@ -186,7 +227,7 @@ impl Report {
             ),
             _ => "the nominal plant (the robot description)".into(),
         };
-        format!("{} on {on}", self.verdict.to_uppercase())
+        format!("{} on {on}", self.verdict.name().to_uppercase())
     }
 
     /// A few lines for a person.
@@ -198,7 +239,7 @@ impl Report {
             mm(self.rms_error_m),
         );
         let mut s = match &self.plants {
-            Some(p) if self.verdict_on == VERDICT_ON_PLANTS_P95 => {
+            Some(p) if self.verdict_on == VerdictOn::PlantsP95 => {
                 let mut s = format!(
                     "simulate ({}): {} — p95 max error {:.3} mm (tolerance {:.3} mm)\n",
                     self.controller,
@@ -381,5 +422,15 @@ mod tests {
             .map(|i| (sum[i] - fast[i]).abs())
             .fold(0.0, f64::max);
         assert!(worst < 1e-3, "{worst}");
+    }
+
+    #[test]
+    fn the_verdict_is_pass_without_reasons_and_keeps_its_word() {
+        assert_eq!(Verdict::of(&[]), Verdict::Pass);
+        assert_eq!(Verdict::of(&["limit".to_string()]), Verdict::Fail);
+        assert_eq!(serde_json::to_value(Verdict::Fail).unwrap(), "fail");
+        let back: Verdict = serde_json::from_value(serde_json::json!("pass")).unwrap();
+        assert_eq!(back, Verdict::Pass);
+        assert!(serde_json::from_value::<Verdict>(serde_json::json!("PASS")).is_err());
     }
 }

@@ -62,8 +62,12 @@ pub(super) fn prepare<'a>(
             job.robot.kind().name()
         ))
     })?;
-    nominal.validate().map_err(SimError::Model)?;
-    model.validate().map_err(SimError::Model)?;
+    nominal
+        .validate()
+        .map_err(|e| SimError::Model(e.to_string()))?;
+    model
+        .validate()
+        .map_err(|e| SimError::Model(e.to_string()))?;
     if !(opts.tolerance_m.is_finite() && opts.tolerance_m > 0.0) {
         return Err(SimError::Option(format!(
             "tolerance {} m must be positive",
@@ -80,7 +84,7 @@ pub(super) fn prepare<'a>(
         faults,
         (job.samples.len().saturating_sub(1)) as f64 * job.control_period_s,
     )
-    .map_err(SimError::Option)?;
+    .map_err(|e| SimError::Option(e.to_string()))?;
     let s = &job.samples;
     let n = s.len();
     let dt_job = job.control_period_s;

@@ -7,7 +7,7 @@
 
 use serde::Serialize;
 
-use super::report::Place;
+use super::report::{Place, Verdict};
 use super::servo::{self, Tick};
 use super::SimError;
 use basr_job::Job;
@@ -33,8 +33,7 @@ pub struct ServoJobReport {
     pub kind: String,
     pub controller: String,
     pub tolerance_m: f64,
-    /// `"pass"` or `"fail"`.
-    pub verdict: String,
+    pub verdict: Verdict,
     pub reasons: Vec<String>,
     /// Tip error while painting (the whole job if it never paints).
     pub max_error_m: f64,
@@ -54,7 +53,7 @@ const RANGE_SLACK: f64 = 1e-3;
 
 impl ServoJobReport {
     pub fn passed(&self) -> bool {
-        self.verdict == "pass"
+        self.verdict == Verdict::Pass
     }
 
     /// Whether a joint left its range (a limit the plan must not break).
@@ -79,7 +78,7 @@ impl ServoJobReport {
              (tolerance {:.3} mm)\n",
             self.controller,
             self.kind,
-            self.verdict.to_uppercase(),
+            self.verdict.name().to_uppercase(),
             mm(self.max_error_m),
             mm(self.rms_error_m),
             mm(self.tolerance_m)
@@ -128,7 +127,9 @@ fn setup(job: &Job) -> Result<([ServoJoint; 5], f64), SimError> {
         ));
     };
     let s = &job.samples;
-    let n = s.check_lengths().map_err(SimError::Job)?;
+    let n = s
+        .check_lengths()
+        .map_err(|e| SimError::Job(e.to_string()))?;
     if n < 2 || s.kind_joints.len() != n {
         return Err(SimError::Job(format!(
             "it has {n} setpoint rows and {} rows of the {} kind's joints; at least 2 of each, \
@@ -210,7 +211,8 @@ pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimEr
         kind: robot.kind().name().into(),
         controller: "servo PID + feed-forward".into(),
         tolerance_m,
-        verdict: String::new(),
+        // Judged below, once every reason is in.
+        verdict: Verdict::Pass,
         reasons: vec![],
         max_error_m: judged.max,
         rms_error_m: judged.rms(),
@@ -230,12 +232,7 @@ pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimEr
         ));
     }
     report.reasons.extend(report.broken_limits());
-    report.verdict = if report.reasons.is_empty() {
-        "pass"
-    } else {
-        "fail"
-    }
-    .into();
+    report.verdict = Verdict::of(&report.reasons);
     Ok(report)
 }
 

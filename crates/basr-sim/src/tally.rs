@@ -6,7 +6,7 @@ use super::control::Command;
 use super::plant;
 use super::report::{
     self, AxisErrors, LimitViolation, PeakPressures, Place, Report, Saturation, StrokeError,
-    TraceRow, Unit, Waviness, VERDICT_ON_NOMINAL,
+    TraceRow, Unit, Waviness, VerdictOn,
 };
 use super::run::{Arm, Refs, ServoLimited, Setup};
 use super::{safety, Outcome};
@@ -451,8 +451,8 @@ impl Tally {
         let report = Report {
             controller: opts.controller.name().into(),
             tolerance_m: opts.tolerance_m,
-            verdict: if reasons.is_empty() { "pass" } else { "fail" }.into(),
-            verdict_on: VERDICT_ON_NOMINAL.into(),
+            verdict: report::Verdict::of(&reasons),
+            verdict_on: VerdictOn::Nominal,
             reasons,
             max_error_m: verdict_stats.max,
             rms_error_m: verdict_stats.rms(),

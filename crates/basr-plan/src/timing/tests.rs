@@ -12,29 +12,52 @@ fn limits3() -> JointLimits<3> {
     }
 }
 
+/// A sample whose finite-difference rate is over its joint's limit.
+#[derive(Debug, thiserror::Error)]
+enum Over {
+    #[error("sample {k} joint {j}: velocity {v} > {limit}")]
+    Velocity {
+        k: usize,
+        j: usize,
+        v: f64,
+        limit: f64,
+    },
+    #[error("sample {k} joint {j}: acceleration {a} > {limit}")]
+    Acceleration {
+        k: usize,
+        j: usize,
+        a: f64,
+        limit: f64,
+    },
+}
+
 /// Every finite-difference velocity and acceleration of the samples is within the limits.
 fn check_limits<const N: usize>(
     s: &Samples<N>,
     lim: &JointLimits<N>,
     period: f64,
-) -> Result<(), String> {
+) -> Result<(), Over> {
     let tol = 1e-9;
     for k in 1..s.len() {
         for j in 0..N {
             let v = (s.q[k][j] - s.q[k - 1][j]) / period;
             if v.abs() > lim.vel[j] * (1.0 + 1e-6) + tol {
-                return Err(format!(
-                    "sample {k} joint {j}: velocity {v} > {}",
-                    lim.vel[j]
-                ));
+                return Err(Over::Velocity {
+                    k,
+                    j,
+                    v,
+                    limit: lim.vel[j],
+                });
             }
             if k + 1 < s.len() {
                 let a = (s.q[k + 1][j] - 2.0 * s.q[k][j] + s.q[k - 1][j]) / (period * period);
                 if a.abs() > lim.acc[j] * (1.0 + 1e-6) + tol {
-                    return Err(format!(
-                        "sample {k} joint {j}: acceleration {a} > {}",
-                        lim.acc[j]
-                    ));
+                    return Err(Over::Acceleration {
+                        k,
+                        j,
+                        a,
+                        limit: lim.acc[j],
+                    });
                 }
             }
         }
@@ -308,7 +331,7 @@ proptest! {
         // No stalls: these paths are at most 3 m long at ≥ 0.02 m/s.
         prop_assert!(tr.duration_s() < 1000.0, "duration {}", tr.duration_s());
         let s = resample(std::slice::from_ref(&tr), period).unwrap();
-        check_limits(&s, &lim, period).map_err(TestCaseError::fail)?;
+        check_limits(&s, &lim, period).map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert_eq!(s.q[s.len() - 1], pts[pts.len() - 1].q);
         // Never faster than requested at a waypoint.
         for p in &pts {
@@ -327,7 +350,7 @@ proptest! {
         let period = if fine { 0.005 } else { 0.032 };
         let tr = air_move(a, b, &lim, DEFAULT_MARGIN).unwrap();
         let s = resample(std::slice::from_ref(&tr), period).unwrap();
-        check_limits(&s, &lim, period).map_err(TestCaseError::fail)?;
+        check_limits(&s, &lim, period).map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert_eq!(s.q[0], a);
         prop_assert_eq!(s.q[s.len() - 1], b);
     }

@@ -9,6 +9,7 @@
 
 use std::path::Path;
 
+use basr_job::OwnerKind;
 use kurbo::{Affine, Point};
 
 use super::rules::{self, RuleItem};
@@ -26,8 +27,8 @@ pub struct PlacedMark {
     pub label: String,
     /// Message line (lines) or item index (scenes), 0 first.
     pub line: usize,
-    /// `"letter"`, `"symbol"` or `"shape"`, for messages.
-    pub kind: &'static str,
+    /// A letter, a symbol or a shape, for messages.
+    pub kind: OwnerKind,
     /// Road frame, metres.
     pub strokes: Vec<Stroke>,
 }
@@ -58,7 +59,7 @@ pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, La
         marks.push(PlacedMark {
             label: l.ch.to_string(),
             line: l.line,
-            kind: "letter",
+            kind: OwnerKind::Letter,
             strokes: g
                 .strokes
                 .iter()
@@ -220,7 +221,7 @@ fn item_marks(
                 .marks
                 .into_iter()
                 .map(|mk| PlacedMark {
-                    kind: "letter",
+                    kind: OwnerKind::Letter,
                     line: i,
                     strokes: mk.strokes.iter().map(|s| s.transformed(&to_road)).collect(),
                     label: mk.label,
@@ -237,7 +238,7 @@ fn item_marks(
             Ok(vec![PlacedMark {
                 label: name.clone(),
                 line: i,
-                kind: "symbol",
+                kind: OwnerKind::Symbol,
                 strokes: sym.strokes.iter().map(|s| s.transformed(&m)).collect(),
             }])
         }
@@ -256,7 +257,7 @@ fn item_marks(
             Ok(vec![PlacedMark {
                 label,
                 line: i,
-                kind: "shape",
+                kind: OwnerKind::Shape,
                 strokes: s.strokes.iter().map(|st| st.transformed(&m)).collect(),
             }])
         }

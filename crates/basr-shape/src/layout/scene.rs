@@ -122,9 +122,9 @@ impl Scene {
             low_speed: o.low_speed,
             turn_lane: false,
         };
-        check_lane(s.lane_width_m).map_err(|m| LayoutError::Marking {
+        check_lane(s.lane_width_m).map_err(|e| LayoutError::Marking {
             origin: "--lane-width".into(),
-            message: m,
+            message: e.to_string(),
         })?;
         Ok(s)
     }
@@ -144,12 +144,13 @@ impl Scene {
                     .into(),
             ));
         }
-        let h_file = height(m.letter_height_m, m.letter_height_ft).map_err(&err)?;
+        let h_file =
+            height(m.letter_height_m, m.letter_height_ft).map_err(|e| err(e.to_string()))?;
         let lane = o
             .lane_width_m
             .or(m.lane_width_m)
             .unwrap_or(DEFAULT_LANE_WIDTH_M);
-        check_lane(lane).map_err(&err)?;
+        check_lane(lane).map_err(|e| err(e.to_string()))?;
         let default_h = o
             .letter_height_m
             .or(h_file)
@@ -178,22 +179,50 @@ pub fn is_scene(text: &str) -> bool {
     text.lines().any(|l| l.trim() == "[[item]]")
 }
 
-fn check_lane(lane: f64) -> Result<(), String> {
+/// A scene's setting or item that cannot be laid out: what is wrong and
+/// what to write (the file's origin and item number are added by
+/// [`Scene::from_toml`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    #[error("lane width {} m must be above 0 and at most {MAX_LANE_WIDTH_M} m (a marking is laid in one lane, 3.66 m by default)", basr_io::show_num(*.0))]
+    LaneWidth(f64),
+    #[error("give letter_height_m or letter_height_ft, not both")]
+    BothHeights,
+    #[error("letter height {} m is outside {}..{} m: road letters are 1.8–2.4 m (6–8 ft); give metres in letter_height_m or feet in letter_height_ft", basr_io::show_num(*.0), LETTER_HEIGHT_RANGE_M.0, LETTER_HEIGHT_RANGE_M.1)]
+    LetterHeight(f64),
+    #[error("an item is exactly one of `word = \"STOP\"`, `symbol = \"arrow-left\"` or `shape = \"logo.svg\"`")]
+    NotOneKind,
+    #[error("needs `at_m = [x, y]`: the centre of its near edge in the lane")]
+    NoAt,
+    #[error("at_m = [{}, {}] must be finite and within {MAX_OFFSET_M} m of the anchor", basr_io::show_num(.0[0]), basr_io::show_num(.0[1]))]
+    At([f64; 2]),
+    #[error("rotate_deg = {} must be within ±{MAX_ROTATE_DEG}", basr_io::show_num(*.0))]
+    Rotate(f64),
+    #[error("{keys} belong to a {what} item")]
+    Misplaced {
+        keys: &'static str,
+        what: &'static str,
+    },
+    #[error("word = {0:?}: one word of the letters A–Z and digits (one item per line)")]
+    Word(String),
+    #[error("scale = {} is outside {}..{} (1 is the library's standard size)", basr_io::show_num(*.0), SYMBOL_SCALE_RANGE.0, SYMBOL_SCALE_RANGE.1)]
+    Scale(f64),
+    #[error("a shape needs exactly one of `height_m` or `width_m`")]
+    ShapeSize,
+    #[error("a shape's size {} m is outside {}..{} m", basr_io::show_num(*.0), SHAPE_SIZE_RANGE_M.0, SHAPE_SIZE_RANGE_M.1)]
+    ShapeSizeRange(f64),
+}
+
+fn check_lane(lane: f64) -> Result<(), SceneError> {
     if !(lane.is_finite() && lane > 0.0 && lane <= MAX_LANE_WIDTH_M) {
-        return Err(format!(
-            "lane width {} m must be above 0 and at most {MAX_LANE_WIDTH_M} m \
-             (a marking is laid in one lane, 3.66 m by default)",
-            basr_io::show_num(lane)
-        ));
+        return Err(SceneError::LaneWidth(lane));
     }
     Ok(())
 }
 
-fn height(m: Option<f64>, ft: Option<f64>) -> Result<Option<f64>, String> {
+fn height(m: Option<f64>, ft: Option<f64>) -> Result<Option<f64>, SceneError> {
     let h = match (m, ft) {
-        (Some(_), Some(_)) => {
-            return Err("give letter_height_m or letter_height_ft, not both".into())
-        }
+        (Some(_), Some(_)) => return Err(SceneError::BothHeights),
         (Some(m), None) => Some(m),
         (None, Some(ft)) => Some(ft * M_PER_FT),
         (None, None) => None,
@@ -201,47 +230,30 @@ fn height(m: Option<f64>, ft: Option<f64>) -> Result<Option<f64>, String> {
     if let Some(h) = h {
         let (lo, hi) = LETTER_HEIGHT_RANGE_M;
         if !(h.is_finite() && (lo..=hi).contains(&h)) {
-            return Err(format!(
-                "letter height {} m is outside {lo}..{hi} m: road letters are 1.8–2.4 m \
-                 (6–8 ft); give metres in letter_height_m or feet in letter_height_ft",
-                basr_io::show_num(h)
-            ));
+            return Err(SceneError::LetterHeight(h));
         }
     }
     Ok(h)
 }
 
-fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, String> {
+fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, SceneError> {
     let given = [t.word.is_some(), t.symbol.is_some(), t.shape.is_some()];
     if given.iter().filter(|&&g| g).count() != 1 {
-        return Err(
-            "an item is exactly one of `word = \"STOP\"`, `symbol = \"arrow-left\"` \
-                    or `shape = \"logo.svg\"`"
-                .into(),
-        );
+        return Err(SceneError::NotOneKind);
     }
-    let at = t
-        .at_m
-        .ok_or("needs `at_m = [x, y]`: the centre of its near edge in the lane")?;
+    let at = t.at_m.ok_or(SceneError::NoAt)?;
     if at.iter().any(|v| !v.is_finite() || v.abs() > MAX_OFFSET_M) {
-        return Err(format!(
-            "at_m = [{}, {}] must be finite and within {MAX_OFFSET_M} m of the anchor",
-            basr_io::show_num(at[0]),
-            basr_io::show_num(at[1])
-        ));
+        return Err(SceneError::At(at));
     }
     let rot = t.rotate_deg.unwrap_or(0.0);
     if !(rot.is_finite() && rot.abs() <= MAX_ROTATE_DEG) {
-        return Err(format!(
-            "rotate_deg = {} must be within ±{MAX_ROTATE_DEG}",
-            basr_io::show_num(rot)
-        ));
+        return Err(SceneError::Rotate(rot));
     }
-    let only = |what: &str, ok: bool, keys: &str| -> Result<(), String> {
+    let only = |what: &'static str, ok: bool, keys: &'static str| -> Result<(), SceneError> {
         if ok {
             Ok(())
         } else {
-            Err(format!("{keys} belong to a {what} item"))
+            Err(SceneError::Misplaced { keys, what })
         }
     };
     let has_h = t.letter_height_m.is_some() || t.letter_height_ft.is_some();
@@ -251,9 +263,7 @@ fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, String> {
         only("symbol", t.scale.is_none(), "`scale`")?;
         let text = w.trim().to_ascii_uppercase();
         if text.is_empty() || !text.chars().all(|c| c.is_ascii_alphanumeric()) {
-            return Err(format!(
-                "word = {w:?}: one word of the letters A–Z and digits (one item per line)"
-            ));
+            return Err(SceneError::Word(w.clone()));
         }
         let h = o
             .letter_height_m
@@ -269,10 +279,7 @@ fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, String> {
         let scale = t.scale.unwrap_or(1.0);
         let (lo, hi) = SYMBOL_SCALE_RANGE;
         if !(scale.is_finite() && (lo..=hi).contains(&scale)) {
-            return Err(format!(
-                "scale = {} is outside {lo}..{hi} (1 is the library's standard size)",
-                basr_io::show_num(scale)
-            ));
+            return Err(SceneError::Scale(scale));
         }
         ItemKind::Symbol {
             name: name.clone(),
@@ -284,17 +291,14 @@ fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, String> {
         let size = match (t.height_m, t.width_m) {
             (Some(h), None) => ShapeSize::HeightM(h),
             (None, Some(w)) => ShapeSize::WidthM(w),
-            _ => return Err("a shape needs exactly one of `height_m` or `width_m`".into()),
+            _ => return Err(SceneError::ShapeSize),
         };
         let v = match size {
             ShapeSize::HeightM(v) | ShapeSize::WidthM(v) => v,
         };
         let (lo, hi) = SHAPE_SIZE_RANGE_M;
         if !(v.is_finite() && (lo..=hi).contains(&v)) {
-            return Err(format!(
-                "a shape's size {} m is outside {lo}..{hi} m",
-                basr_io::show_num(v)
-            ));
+            return Err(SceneError::ShapeSizeRange(v));
         }
         ItemKind::Shape {
             path: PathBuf::from(t.shape.clone().unwrap_or_default()),
