@@ -222,7 +222,15 @@ fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, String> {
     }
     let at = t
         .at_m
+        .as_deref()
         .ok_or("needs `at_m = [x, y]`: the centre of its near edge in the lane")?;
+    let at: [f64; 2] = at.try_into().map_err(|_| {
+        format!(
+            "at_m holds {} numbers; give two, `at_m = [x, y]` (m across and along the lane: \
+             items lie on the road)",
+            at.len()
+        )
+    })?;
     if at.iter().any(|v| !v.is_finite() || v.abs() > MAX_OFFSET_M) {
         return Err(format!(
             "at_m = [{}, {}] must be finite and within {MAX_OFFSET_M} m of the anchor",
@@ -335,7 +343,9 @@ struct ItemToml {
     word: Option<String>,
     symbol: Option<String>,
     shape: Option<String>,
-    at_m: Option<[f64; 2]>,
+    /// Read as a list so a third number is refused, not dropped: the TOML
+    /// reader filled `[f64; 2]` from `[0, 0, 5]` (issue 31, R13).
+    at_m: Option<Vec<f64>>,
     rotate_deg: Option<f64>,
     letter_height_m: Option<f64>,
     letter_height_ft: Option<f64>,

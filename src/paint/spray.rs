@@ -155,10 +155,18 @@ impl Profile {
                 if lobes.is_empty() {
                     return Err("at least one lobe is needed".into());
                 }
-                for l in lobes {
+                for (i, l) in lobes.iter().enumerate() {
                     if !(l.weight > 0.0 && l.sigma > 0.0 && l.mean.abs() <= 1.0) {
+                        // In the option's own words, not Rust's Debug text
+                        // (`Lobe { weight: … }`, issue 31 D14).
+                        use crate::io::show_num;
                         return Err(format!(
-                            "lobe {l:?}: weight and sigma must be > 0 and |mean| ≤ 1"
+                            "lobe {} ({},{},{} as weight,mean,sigma): weight and sigma must \
+                             be > 0 and |mean| ≤ 1",
+                            i + 1,
+                            show_num(l.weight),
+                            show_num(l.mean),
+                            show_num(l.sigma)
                         ));
                     }
                 }
@@ -201,6 +209,12 @@ impl Profile {
     }
 }
 
+/// The widest `gauss:MM` accepted: σ with 3σ = [`MAX_DEPTH_REACH_M`], to
+/// the tenth of a millimetre the messages print (66.7).
+fn gauss_max_mm() -> f64 {
+    (MAX_DEPTH_REACH_M / 3.0 * 1e4).round() / 10.0
+}
+
 impl Depth {
     /// Parse `gauss:MM` (standard deviation) or `tophat:MM` (full width).
     pub fn parse(text: &str) -> Result<Depth, PaintError> {
@@ -227,14 +241,21 @@ impl Depth {
             },
             _ => return Err(bad("expected gauss:MM or tophat:MM")),
         };
-        if depth.reach_m() > MAX_DEPTH_REACH_M {
+        // Each kind's bound as the message below prints it (gauss:66.7, a
+        // tenth of a millimetre): 66.7 was refused though the message offered
+        // it (its reach, 200.1 mm, is past 200 by the rounding; issue 31 D11).
+        let within = match depth {
+            Depth::Gaussian { .. } => mm <= gauss_max_mm(),
+            Depth::TopHat { .. } => depth.reach_m() <= MAX_DEPTH_REACH_M,
+        };
+        if !within {
             return Err(bad(&format!(
                 "the sheet would reach {} mm either side of the fan; a flat fan's sheet \
                  reaches at most {:.0} mm (tophat:{:.0}, gauss:{:.1} at most; default gauss:{})",
                 super::mm_text(depth.reach_m()),
                 MAX_DEPTH_REACH_M * 1000.0,
                 2.0 * MAX_DEPTH_REACH_M * 1000.0,
-                MAX_DEPTH_REACH_M / 3.0 * 1000.0,
+                gauss_max_mm(),
                 DEFAULT_DEPTH_SIGMA_M * 1000.0,
             )));
         }
@@ -659,6 +680,8 @@ mod tests {
         let vast = Depth::parse("tophat:1e9").unwrap_err().to_string();
         assert!(vast.contains("500000000 mm either side") && !vast.contains("resolution"));
         assert!(Depth::parse("gauss:66.6").is_ok() && Depth::parse("gauss:67").is_err());
+        // The bound the message prints is accepted, a hair past it is not.
+        assert!(Depth::parse("gauss:66.7").is_ok() && Depth::parse("gauss:66.71").is_err());
         assert_eq!(
             Depth::parse("tophat:20").unwrap(),
             Depth::TopHat { width_m: 0.02 }

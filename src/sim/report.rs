@@ -166,14 +166,30 @@ impl Report {
     /// A few lines for a person.
     pub fn human(&self) -> String {
         let mm = |m: f64| m * 1000.0;
-        let mut s = format!(
-            "simulate ({}): {} — max error {:.3} mm, RMS {:.3} mm while painting (tolerance {:.3} mm)\n",
-            self.controller,
-            self.verdict.to_uppercase(),
-            mm(self.max_error_m),
-            mm(self.rms_error_m),
-            mm(self.tolerance_m)
-        );
+        // With plants the verdict is theirs: the headline gives the p95 it
+        // was decided on, not the nominal plant's max beside a FAIL it did
+        // not cause (issue 31, R12); the nominal figures follow.
+        let mut s = match &self.plants {
+            Some(p) => format!(
+                "simulate ({}): {} — p95 of the max error over {} plants {:.3} mm (tolerance \
+                 {:.3} mm); nominal plant: max {:.3} mm, RMS {:.3} mm while painting\n",
+                self.controller,
+                self.verdict.to_uppercase(),
+                p.n,
+                mm(p.p95_max_error_m),
+                mm(self.tolerance_m),
+                mm(self.max_error_m),
+                mm(self.rms_error_m)
+            ),
+            None => format!(
+                "simulate ({}): {} — max error {:.3} mm, RMS {:.3} mm while painting (tolerance {:.3} mm)\n",
+                self.controller,
+                self.verdict.to_uppercase(),
+                mm(self.max_error_m),
+                mm(self.rms_error_m),
+                mm(self.tolerance_m)
+            ),
+        };
         s += &format!("  worst at {}\n", self.worst.describe());
         if let Some(p) = &self.plants {
             s += &p.human(self.tolerance_m);
