@@ -721,7 +721,7 @@ fn d13_the_lane_width_error_names_the_words_width() {
     let s = Site::new();
     let text = |anchor: f64| {
         format!(
-            "[marking]\nlines = [\"STOP\"]\nletter_height_m = 0.6\nlane_width_m = 3.0\nanchor_x_m = {anchor}\n"
+            "[marking]\nlines = [\"STOP\"]\nletter_height_m = 1.2\nlane_width_m = 3.0\nanchor_x_m = {anchor}\n"
         )
     };
     s.write("c.toml", text(0.0));
@@ -740,7 +740,7 @@ fn d13_the_lane_width_error_names_the_words_width() {
         1,
         &["anchored 1 m off the centre", "has 1 m"],
     );
-    // "\"STOP\" is W m wide": W is under the 3 m lane (it once added 2.6 m).
+    // "\"STOP\" is W m wide": W is under the 3 m lane (it once added 2 m).
     let w: f64 = err
         .split("\"STOP\" is ")
         .nth(1)

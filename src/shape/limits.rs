@@ -251,7 +251,7 @@ pub fn check_outline(outline: &Outline) -> Result<(), ShapeError> {
 pub fn check_scaled(outline: &Outline, scale: f64, width_m: f64) -> Result<(), ShapeError> {
     use kurbo::ParamCurve;
     let origin = &outline.origin;
-    if !(width_m <= super::MAX_SIZE_M) {
+    if width_m.is_nan() || width_m > super::MAX_SIZE_M {
         return Err(ShapeError::invalid(
             origin,
             format!(

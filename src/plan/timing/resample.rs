@@ -57,7 +57,8 @@ pub fn resample<const N: usize>(
     let count = (total / period_s - 1e-9).ceil().max(0.0) + 1.0;
     // Sized by the robot's limits: bounded before it is allocated (a
     // telescopic joint at 1e-12 rad/s asked 84 TB here, issue 31 R3).
-    if !(count <= MAX_SAMPLES as f64) {
+    // NaN (an infinite total over a period) is refused with the rest.
+    if count.is_nan() || count > MAX_SAMPLES as f64 {
         return Err(TimingError::TooLong {
             duration_s: total,
             samples: count,
