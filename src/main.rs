@@ -122,6 +122,12 @@ fn usage_error(e: clap::Error) -> ExitCode {
 }
 
 fn main() -> ExitCode {
+    // An empty BASR_TRUST is no trusted key (docs/signed-jobs.md); clap
+    // reads a set but empty variable as `--trust` with no value and refused
+    // every command (issue 31, R9). First, while the process has one thread.
+    if std::env::var_os(basr::job::trust::TRUST_ENV).is_some_and(|v| v.is_empty()) {
+        std::env::remove_var(basr::job::trust::TRUST_ENV);
+    }
     basr::io::install_interrupt_cleanup();
     basr::io::stage_outputs();
     let cli = match Cli::try_parse() {

@@ -302,7 +302,7 @@ fn bad_input_exits_2_and_leaves_nothing() {
     refused(&["ST*P"], "unsupported character '*'");
     refused(&["ST*P"], "at position 3");
     refused(&["   "], "empty");
-    refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.660 m");
+    refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.66 m");
     refused(
         &["STOP", "--letter-height", "7", "--lane-width", "20"],
         "cannot be reached",

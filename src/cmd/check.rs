@@ -5,6 +5,8 @@
 
 use std::path::PathBuf;
 
+use basr::job::trust::Seal;
+
 use super::{Global, Outcome};
 
 /// Validate job, setpoint CSV, font, robot and marking files, listing every
@@ -71,7 +73,8 @@ fn kind_of(text: &str) -> Option<Kind> {
 
 /// A checked file kept for pairing a CSV with its job.
 enum Kept {
-    Job(Box<basr::job::Job>),
+    /// A job and what its signature proves.
+    Job(Box<basr::job::Job>, Seal),
     Csv(String),
     Adept(String),
     Other,
@@ -82,13 +85,36 @@ fn problems(
     bytes: Vec<u8>,
     origin: &str,
     trusted: Option<&basr::job::trust::PublicKey>,
+    trusted_path: Option<&std::path::Path>,
 ) -> (Vec<String>, Kept) {
     if bytes.trim_ascii_start().first() == Some(&b'{') {
+        // Without --trust the signature is checked with the key its id names
+        // in the key folder, when there is one (issue 31, R1: a forged
+        // signature was reported "signed by key …").
+        let signed = match trusted {
+            None => basr::job::signed_bytes(&bytes),
+            Some(_) => None,
+        };
         return match basr::job::Job::from_bytes(bytes, origin, trusted) {
-            Ok(job) => (
-                basr::job::verify::problems(&job, origin),
-                Kept::Job(Box::new(job)),
-            ),
+            Ok(job) => {
+                let mut found = basr::job::verify::problems(&job, origin);
+                let seal = match trusted {
+                    Some(key) => Ok(Seal::Verified {
+                        key_id: key.id(),
+                        key: trusted_path.map(Into::into).unwrap_or_default(),
+                    }),
+                    None => basr::job::trust::examine(
+                        job.signature.as_ref(),
+                        signed.as_deref(),
+                        basr::job::trust::key_folder().as_deref(),
+                    ),
+                };
+                let seal = seal.unwrap_or_else(|e| {
+                    found.push(format!("{origin}: {e}"));
+                    Seal::Unsigned
+                });
+                (found, Kept::Job(Box::new(job), seal))
+            }
             Err(e) => (vec![e.to_string()], Kept::Other),
         };
     }
@@ -186,6 +212,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let mut csvs: Vec<(String, String, bool)> = vec![];
     let mut programs: Vec<(String, String)> = vec![];
     let mut report: Vec<(String, Vec<String>)> = vec![];
+    let mut seals: Vec<(String, Seal)> = vec![];
     for path in &args.files {
         let origin = path.display().to_string();
         let bytes = match basr::io::read_bytes(path) {
@@ -203,9 +230,17 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             note!("{e}");
             continue;
         }
-        let (found, kept) = problems(bytes, &origin, trusted.as_ref());
+        let (found, kept) = problems(
+            bytes,
+            &origin,
+            trusted.as_ref(),
+            args.trust.trust.as_deref(),
+        );
         match kept {
-            Kept::Job(j) => jobs.push((origin.clone(), j)),
+            Kept::Job(j, seal) => {
+                seals.push((origin.clone(), seal));
+                jobs.push((origin.clone(), j));
+            }
             Kept::Csv(text) => csvs.push((origin.clone(), text, found.is_empty())),
             Kept::Adept(text) => programs.push((origin.clone(), text)),
             Kept::Other => {}
@@ -237,12 +272,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for (origin, found) in report {
         if found.is_empty() {
             if !global.quiet {
-                let signed = jobs
-                    .iter()
-                    .find(|(o, _)| *o == origin)
-                    .and_then(|(_, j)| j.signature.as_ref())
-                    .map(|s| format!(" (signed by key {})", s.key_id))
-                    .unwrap_or_default();
+                let signed = match seals.iter().find(|(o, _)| *o == origin) {
+                    Some((_, Seal::Unsigned)) | None => String::new(),
+                    Some((_, seal)) => format!(" ({})", seal.describe()),
+                };
                 note!("{origin}: ok{signed}");
             }
         } else {

@@ -66,7 +66,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     anyhow::ensure!(
         args.margin_m.is_finite() && (0.0..=1.0).contains(&args.margin_m),
         "--margin-m must be between 0 and 1 m (got {})",
-        args.margin_m
+        basr::io::show_num(args.margin_m)
     );
     let mut inputs = vec![("the points file (--points)", args.points.as_path())];
     if let Some(t) = &args.template {

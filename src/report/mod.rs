@@ -67,6 +67,9 @@ pub struct Input<'a> {
     /// Paint through the current tip before this job, m³, when the crew
     /// keeps a tally.
     pub tip_used_before_m3: Option<f64>,
+    /// Whether the job is signed, by which key and whether that was
+    /// verified (`basr::job::trust::Seal::describe`).
+    pub signature: &'a str,
 }
 
 /// One truck stop in words.
@@ -301,6 +304,7 @@ pub fn build(input: &Input) -> Sheet {
     let facts = vec![
         ("job file".into(), input.job_name.to_string()),
         ("job sha256".into(), job.sha256.chars().take(16).collect()),
+        ("signature".into(), input.signature.to_string()),
         ("robot".into(), job.robot.name().to_string()),
         (
             "lane".into(),

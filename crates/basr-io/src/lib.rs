@@ -436,7 +436,16 @@ pub fn print_stdout(text: &str) -> std::io::Result<()> {
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        r => r,
+        // Say where the write went: "No space left on device" alone named
+        // no file (issue 31, D15).
+        Err(e) => Err(std::io::Error::new(
+            e.kind(),
+            format!(
+                "cannot write to standard output ({e}): free space where it is sent, or send it \
+                 elsewhere"
+            ),
+        )),
+        Ok(()) => Ok(()),
     }
 }
 
@@ -519,15 +528,52 @@ pub fn fixed(v: f64, decimals: usize) -> String {
     }
 }
 
-/// A number for a message: as written for everyday magnitudes (`-2`,
-/// `2.44`), in scientific notation when plain digits would run long
-/// (`1e300`, not three hundred digits; `1e-12`, not `0.000000000001`).
+/// A number for a message, at most six significant digits (issue 31: a
+/// message printed 300 digits of 1e300): as written for everyday
+/// magnitudes (`-2`, `2.44`, `9.76` for 9.7600000001), in scientific
+/// notation when plain digits would run long (`1e300`, `1e-12`).
 pub fn show_num(v: f64) -> String {
+    // Six digits tell every bound of a range table from its neighbours and
+    // a measured value from its limit within a micrometre per metre.
+    show_digits(v, 6)
+}
+
+/// Two numbers a message sets against each other (a value and the limit it
+/// misses), each with [`show_num`]'s six significant digits, or more
+/// where six would print them the same ("9.760 m but must be at least
+/// 9.760 m"); at most 17, which tell any two f64 apart.
+pub fn show_apart(a: f64, b: f64) -> (String, String) {
+    let mut pair = (show_num(a), show_num(b));
+    for digits in 7..=17 {
+        if pair.0 != pair.1 || a == b {
+            break;
+        }
+        pair = (show_digits(a, digits), show_digits(b, digits));
+    }
+    pair
+}
+
+/// `v` with at most `digits` significant digits (see [`show_num`]).
+fn show_digits(v: f64, digits: i32) -> String {
+    let sig = digits.max(1);
     let a = v.abs();
-    if v.is_finite() && a != 0.0 && !(1e-4..1e6).contains(&a) {
-        format!("{v:e}")
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    if a == 0.0 {
+        return "0".into();
+    }
+    if (1e-4..1e6).contains(&a) {
+        let decimals = (sig - 1 - a.log10().floor() as i32).max(0) as usize;
+        fixed(v, decimals)
     } else {
-        format!("{v}")
+        let s = format!("{v:.prec$e}", prec = (sig - 1) as usize);
+        match s.split_once('e') {
+            Some((m, e)) if m.contains('.') => {
+                format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+            }
+            _ => s,
+        }
     }
 }
 
@@ -572,7 +618,24 @@ pub fn read_bytes(path: &Path) -> anyhow::Result<Vec<u8>> {
         )
     };
     let file = std::fs::File::open(path).with_context(why)?;
-    let size = file.metadata().map(|m| m.len()).unwrap_or(0);
+    let meta = file.metadata().ok();
+    // A device never ends or is no file at all: `basr check /dev/zero` read
+    // 2 GB before it refused (issue 31, D15). Pipes (and `-`) stay bounded
+    // by the limit below.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if let Some(t) = meta.as_ref().map(std::fs::Metadata::file_type) {
+            if t.is_char_device() || t.is_block_device() {
+                anyhow::bail!(
+                    "{} is a device, not a file: give a font, robot, marking or job file (or `-` \
+                     to read standard input)",
+                    path.display()
+                );
+            }
+        }
+    }
+    let size = meta.map(|m| m.len()).unwrap_or(0);
     if size > MAX_INPUT_BYTES {
         return Err(too_big(&path.display().to_string()));
     }
@@ -662,6 +725,18 @@ mod tests {
         assert_eq!(show_num(1e-12), "1e-12");
         assert_eq!(show_num(f64::NAN), "NaN");
         assert_eq!(show_num(f64::NEG_INFINITY), "-inf");
+        assert_eq!(show_num(9.7600000001), "9.76");
+        assert_eq!(show_num(1.0 / 3.0), "0.333333");
+        assert_eq!(show_num(123456.789), "123457");
+        assert_eq!(show_num(-1.23456789e300), "-1.23457e300");
+        assert_eq!(show_num(0.000123456789), "0.000123457");
+        assert_eq!(show_num(-0.0), "0");
+        // Told apart where six digits would print them the same.
+        assert_eq!(
+            show_apart(9.7600000001, 9.76),
+            ("9.7600000001".to_string(), "9.76".to_string())
+        );
+        assert_eq!(show_apart(2.5, 3.0), ("2.5".to_string(), "3".to_string()));
     }
 
     #[test]

@@ -17,6 +17,7 @@ pub mod adept;
 pub mod canonical;
 pub mod csv;
 mod read;
+pub use read::signed_bytes;
 pub mod trust;
 pub mod verify;
 mod warning;

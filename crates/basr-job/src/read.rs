@@ -180,6 +180,17 @@ impl Job {
     }
 }
 
+/// The bytes a job's signature signs: the file's bytes without its
+/// `signature` member; `None` when the bytes are not a canonical job or
+/// carry no signature.
+pub fn signed_bytes(bytes: &[u8]) -> Option<Vec<u8>> {
+    let members = canonical::check(bytes).ok()?;
+    let k = members.iter().position(|m| m.key == "signature")?;
+    let mut out = bytes.to_vec();
+    remove_member(&mut out, &members, k);
+    Some(out)
+}
+
 /// A small top-level member's value, parsed alone.
 fn member_value(bytes: &[u8], members: &[Member], key: &str) -> Option<serde_json::Value> {
     member(members, key).and_then(|m| serde_json::from_slice(&bytes[m.value.clone()]).ok())

@@ -108,6 +108,16 @@ impl SecretKey {
     /// Read a secret key file; one that others may read is refused (its
     /// signatures would prove nothing).
     pub fn load(path: &Path) -> anyhow::Result<SecretKey> {
+        let text = basr_io::read_text(path)?;
+        // A public key is no secret: say so before its mode (it was told to
+        // `chmod 600` a .pub file, issue 31 R10).
+        if text.trim_start().starts_with(PUBLIC_TAG) {
+            anyhow::bail!(
+                "{}: this is a public key; give the secret key (the file `basr keygen -o NAME` \
+                 wrote as NAME, without .pub)",
+                path.display()
+            );
+        }
         #[cfg(unix)]
         {
             use std::os::unix::fs::PermissionsExt;
@@ -123,7 +133,6 @@ impl SecretKey {
                 );
             }
         }
-        let text = basr_io::read_text(path)?;
         SecretKey::from_text(&text, &path.display().to_string())
     }
 
@@ -216,6 +225,134 @@ impl TrustOptions {
     pub fn read_job(&self, path: &Path) -> anyhow::Result<Job> {
         let key = self.key()?;
         Job::read_trusted(path, key.as_ref())
+    }
+}
+
+/// Environment variable naming the folder of public keys `check` and
+/// `report` verify a signature with when no `--trust` is given.
+pub const KEYS_ENV: &str = "BASR_KEYS";
+
+/// The folder of known public keys: `BASR_KEYS` when set (and not empty),
+/// else `$XDG_CONFIG_HOME/basr/keys`, else `$HOME/.config/basr/keys`.
+pub fn key_folder() -> Option<PathBuf> {
+    let var = |k: &str| {
+        std::env::var_os(k)
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+    };
+    var(KEYS_ENV)
+        .or_else(|| var("XDG_CONFIG_HOME").map(|c| c.join("basr").join("keys")))
+        .or_else(|| var("HOME").map(|h| h.join(".config").join("basr").join("keys")))
+}
+
+/// The public key with id `key_id` among the `*.pub` files of `folder`;
+/// files that are not basr public keys are passed over (the folder may
+/// hold anything).
+pub fn find_key(folder: &Path, key_id: &str) -> Option<(PathBuf, PublicKey)> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(folder)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "pub") && p.is_file())
+        .collect();
+    // The same key found first whatever order the folder lists.
+    paths.sort();
+    paths
+        .into_iter()
+        .filter_map(|p| PublicKey::load(&p).ok().map(|k| (p, k)))
+        .find(|(_, k)| k.id() == key_id)
+}
+
+/// What a reader can say of a job's signature.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Seal {
+    Unsigned,
+    /// Verified with this key file (a `--trust` key or one of [`key_folder`]).
+    Verified {
+        key_id: String,
+        key: PathBuf,
+    },
+    /// Well formed, but no key with its id was at hand: anyone could have
+    /// written it (a copied or forged signature looks the same).
+    Unverified {
+        key_id: String,
+    },
+}
+
+impl Seal {
+    /// For messages and the job sheet; never "signed by" unverified.
+    pub fn describe(&self) -> String {
+        match self {
+            Seal::Unsigned => "not signed".into(),
+            Seal::Verified { key_id, key } => {
+                format!("signed by key {key_id}, verified with {}", key.display())
+            }
+            Seal::Unverified { key_id } => format!(
+                "signed, not verified (give --trust KEY.pub); the signature names key {key_id}"
+            ),
+        }
+    }
+}
+
+/// Why a signature cannot be anyone's, read without a key: its key id is not
+/// 16 lowercase hex digits, or its `ed25519` is not the strict base64 of 64
+/// bytes (an empty or garbage signature).
+pub fn malformed(sig: &Signature) -> Option<String> {
+    let hex = |c: char| c.is_ascii_digit() || ('a'..='f').contains(&c);
+    if sig.key_id.len() != 16 || !sig.key_id.chars().all(hex) {
+        return Some(format!(
+            "its key_id {:?} is not a key id (16 lowercase hex digits)",
+            basr_io::one_line(&sig.key_id.chars().take(40).collect::<String>())
+        ));
+    }
+    match b64().decode(&sig.ed25519) {
+        Ok(b) if b.len() == 64 => None,
+        Ok(b) => Some(format!(
+            "its ed25519 holds {} bytes, not the 64 of an Ed25519 signature",
+            b.len()
+        )),
+        Err(_) => Some("its ed25519 is not base64".into()),
+    }
+}
+
+/// The seal of a job read without `--trust`: `signature` as read from the
+/// job, `signed` the bytes it signs ([`super::signed_bytes`]), checked
+/// against the key with its id in [`key_folder`]. Err says why it is no
+/// signature of this job: malformed, or the key at hand refuses it.
+pub fn examine(
+    signature: Option<&Signature>,
+    signed: Option<&[u8]>,
+    folder: Option<&Path>,
+) -> Result<Seal, String> {
+    let Some(sig) = signature else {
+        return Ok(Seal::Unsigned);
+    };
+    if let Some(why) = malformed(sig) {
+        return Err(format!(
+            "the signature is malformed ({why}): it is no one's signature; compile the job \
+             again with --sign"
+        ));
+    }
+    let found = folder.and_then(|f| find_key(f, &sig.key_id));
+    match (found, signed) {
+        (Some((path, key)), Some(bytes)) => {
+            if key.verifies(bytes, sig) {
+                Ok(Seal::Verified {
+                    key_id: sig.key_id.clone(),
+                    key: path,
+                })
+            } else {
+                Err(format!(
+                    "integrity check failed: the signature does not verify with key {} ({}): \
+                     the job was edited after it was signed or the signature was copied from \
+                     another job; compile it again",
+                    sig.key_id,
+                    path.display()
+                ))
+            }
+        }
+        _ => Ok(Seal::Unverified {
+            key_id: sig.key_id.clone(),
+        }),
     }
 }
 

@@ -56,8 +56,15 @@ pub enum Profile {
 pub enum ProfileError {
     #[error("at least one lobe is needed")]
     NoLobe,
-    #[error("lobe {0:?}: weight and sigma must be > 0 and |mean| ≤ 1")]
-    Lobe(Lobe),
+    /// In the option's own words, not Rust's Debug text (`Lobe { weight: … }`).
+    #[error(
+        "lobe {} ({},{},{} as weight,mean,sigma): weight and sigma must be > 0 and |mean| ≤ 1",
+        .index + 1,
+        basr_io::show_num(.lobe.weight),
+        basr_io::show_num(.lobe.mean),
+        basr_io::show_num(.lobe.sigma)
+    )]
+    Lobe { index: usize, lobe: Lobe },
     #[error("beta parameters must be ≥ 1 (finite density at the fan edges)")]
     Beta,
 }
@@ -166,9 +173,9 @@ impl Profile {
                 if lobes.is_empty() {
                     return Err(ProfileError::NoLobe);
                 }
-                for l in lobes {
+                for (i, l) in lobes.iter().enumerate() {
                     if !(l.weight > 0.0 && l.sigma > 0.0 && l.mean.abs() <= 1.0) {
-                        return Err(ProfileError::Lobe(l.clone()));
+                        return Err(ProfileError::Lobe { index: i, lobe: l.clone() });
                     }
                 }
                 Ok(())
@@ -210,6 +217,12 @@ impl Profile {
     }
 }
 
+/// The widest `gauss:MM` accepted: σ with 3σ = [`MAX_DEPTH_REACH_M`], to
+/// the tenth of a millimetre the messages print (66.7).
+fn gauss_max_mm() -> f64 {
+    (MAX_DEPTH_REACH_M / 3.0 * 1e4).round() / 10.0
+}
+
 impl Depth {
     /// Parse `gauss:MM` (standard deviation) or `tophat:MM` (full width).
     pub fn parse(text: &str) -> Result<Depth, PaintError> {
@@ -236,14 +249,21 @@ impl Depth {
             },
             _ => return Err(bad("expected gauss:MM or tophat:MM")),
         };
-        if depth.reach_m() > MAX_DEPTH_REACH_M {
+        // Each kind's bound as the message below prints it (gauss:66.7, a
+        // tenth of a millimetre): 66.7 was refused though the message offered
+        // it (its reach, 200.1 mm, is past 200 by the rounding; issue 31 D11).
+        let within = match depth {
+            Depth::Gaussian { .. } => mm <= gauss_max_mm(),
+            Depth::TopHat { .. } => depth.reach_m() <= MAX_DEPTH_REACH_M,
+        };
+        if !within {
             return Err(bad(&format!(
                 "the sheet would reach {} mm either side of the fan; a flat fan's sheet \
                  reaches at most {:.0} mm (tophat:{:.0}, gauss:{:.1} at most; default gauss:{})",
                 super::mm_text(depth.reach_m()),
                 MAX_DEPTH_REACH_M * 1000.0,
                 2.0 * MAX_DEPTH_REACH_M * 1000.0,
-                MAX_DEPTH_REACH_M / 3.0 * 1000.0,
+                gauss_max_mm(),
                 DEFAULT_DEPTH_SIGMA_M * 1000.0,
             )));
         }
@@ -670,6 +690,8 @@ mod tests {
         let vast = Depth::parse("tophat:1e9").unwrap_err().to_string();
         assert!(vast.contains("500000000 mm either side") && !vast.contains("resolution"));
         assert!(Depth::parse("gauss:66.6").is_ok() && Depth::parse("gauss:67").is_err());
+        // The bound the message prints is accepted, a hair past it is not.
+        assert!(Depth::parse("gauss:66.7").is_ok() && Depth::parse("gauss:66.71").is_err());
         assert_eq!(
             Depth::parse("tophat:20").unwrap(),
             Depth::TopHat { width_m: 0.02 }

@@ -217,17 +217,11 @@ impl Articulated {
         if self.kind != Kind::Articulated {
             out.push(("kind".into(), "must be \"articulated\" here".into()));
         }
-        for (k, v) in [
-            ("shoulder_height_m", a.shoulder_height_m),
-            ("upper_arm_m", a.upper_arm_m),
-            ("forearm_m", a.forearm_m),
-            ("gun_m", a.gun_m),
-            ("tip_height_min_m", a.tip_height_min_m),
-        ] {
-            if v <= 0.0 {
-                out.push((format!("arm.{k}"), format!("must be positive (got {v})")));
-            }
-        }
+        out.extend(super::ranges::outside(super::ranges::rows(
+            "arm",
+            a,
+            super::ranges::ARTICULATED_ARM,
+        )));
         out
     }
 }

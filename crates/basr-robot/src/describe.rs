@@ -276,7 +276,10 @@ pub(crate) fn validate(r: &Robot) -> Vec<(String, String)> {
     let mut positive = |path: &str, v: f64| {
         // Values are finite here (checked before deserialising).
         if v <= 0.0 {
-            out.push((path.into(), format!("must be positive (got {v})")));
+            out.push((
+                path.into(),
+                format!("must be positive (got {})", basr_io::show_num(v)),
+            ));
         }
     };
     let a = &r.arm;
@@ -408,14 +411,17 @@ pub(crate) fn validate(r: &Robot) -> Vec<(String, String)> {
             "paint.fan_angle_rad",
             format!(
                 "must be between 0 and π (got {}); give the fan angle in radians, e.g. 1.1083 for 63.5°",
-                p.fan_angle_rad
+                basr_io::show_num(p.fan_angle_rad)
             ),
         );
     }
     if p.transfer_efficiency > 1.0 {
         push(
             "paint.transfer_efficiency",
-            format!("must be at most 1 (got {})", p.transfer_efficiency),
+            format!(
+                "must be at most 1 (got {})",
+                basr_io::show_num(p.transfer_efficiency)
+            ),
         );
     }
     if p.tip_life_min_m3 > p.tip_life_max_m3 {

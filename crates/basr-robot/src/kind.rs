@@ -90,20 +90,12 @@ impl ServoJoint {
         }
     }
 
-    /// (dotted field, problem) of one joint table `joints.NAME`.
+    /// (dotted field, problem) of one joint table `joints.NAME` beyond its
+    /// numbers' ranges.
     pub(crate) fn problems(&self, path: &str) -> Vec<(String, String)> {
+        // Each number's own range is in `ranges::SERVO_RANGES`; these are the
+        // checks between them.
         let mut out = Vec::new();
-        for (k, v) in [
-            ("max_vel", self.max_vel),
-            ("max_acc", self.max_acc),
-            ("counts_per_unit", self.counts_per_unit),
-            ("inertia", self.inertia),
-            ("max_effort", self.max_effort),
-        ] {
-            if v <= 0.0 {
-                out.push((format!("{path}.{k}"), format!("must be positive (got {v})")));
-            }
-        }
         if self.min >= self.max {
             out.push((
                 format!("{path}.min"),
@@ -343,40 +335,8 @@ pub(crate) fn sort_dedup(found: &mut Vec<Q>) {
     found.dedup_by(|a, b| a.iter().zip(b.iter()).all(|(x, y)| (x - y).abs() < 1e-9));
 }
 
-/// The paint and control checks every electric kind shares with BASR's.
-pub(crate) fn paint_control_problems(p: &Paint, c: &Control) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    for (k, v) in [
-        ("paint.flow_m3ps", p.flow_m3ps),
-        ("paint.transfer_efficiency", p.transfer_efficiency),
-        ("paint.film_m", p.film_m),
-        ("paint.tip_life_min_m3", p.tip_life_min_m3),
-        ("paint.tip_life_max_m3", p.tip_life_max_m3),
-        ("control.period_s", c.period_s),
-        ("control.controller_sample_s", c.controller_sample_s),
-        ("control.delay_estimate_s", c.delay_estimate_s),
-        ("control.accuracy_m", c.accuracy_m),
-    ] {
-        if v <= 0.0 {
-            out.push((k.to_string(), format!("must be positive (got {v})")));
-        }
-    }
-    if !(p.fan_angle_rad > 0.0 && p.fan_angle_rad < std::f64::consts::PI) {
-        out.push((
-            "paint.fan_angle_rad".into(),
-            format!("must be between 0 and π (got {})", p.fan_angle_rad),
-        ));
-    }
-    if p.transfer_efficiency > 1.0 {
-        out.push((
-            "paint.transfer_efficiency".into(),
-            format!("must be at most 1 (got {})", p.transfer_efficiency),
-        ));
-    }
-    out
-}
-
-/// The checks every electric kind shares: paint and control, the painting
+/// The checks every electric kind shares: paint, control and every joint
+/// number in its range (`ranges::electric`), the painting
 /// heights, each joint table, and a span of at least π for the joint that
 /// turns the fan (`fan_joint`).
 pub(crate) fn electric_problems(
@@ -387,7 +347,7 @@ pub(crate) fn electric_problems(
     joints: [&ServoJoint; 5],
     fan_joint: usize,
 ) -> Vec<(String, String)> {
-    let mut out = paint_control_problems(paint, control);
+    let mut out = super::ranges::electric(paint, control, names, joints);
     if heights[0] >= heights[1] {
         out.push((
             "arm.tip_height_min_m".into(),

@@ -35,11 +35,21 @@ pub(crate) fn outside(ranges: Vec<Range>) -> Vec<(String, String)> {
         .into_iter()
         .filter(|r| !(r.value >= r.lo && r.value <= r.hi))
         .map(|r| {
+            use basr_io::{show_apart, show_num};
+            // The bound it misses with enough digits to tell them apart.
+            let (value, lo, hi) = if r.value < r.lo {
+                let (v, lo) = show_apart(r.value, r.lo);
+                (v, lo, show_num(r.hi))
+            } else {
+                let (v, hi) = show_apart(r.value, r.hi);
+                (v, show_num(r.lo), hi)
+            };
             (
                 r.path,
                 format!(
-                    "{} is outside its valid range {}..={} ({}); use a value in that range",
-                    r.value, r.lo, r.hi, r.why
+                    "{value} is outside its valid range {lo}..={hi} ({}); use a value in that \
+                     range",
+                    r.why
                 ),
             )
         })
@@ -55,265 +65,357 @@ const ENC: &str = "an encoder or transducer of a real arm";
 const PAINT: &str = "airless road paint (SPEC §4)";
 const LIM: &str = "a joint of a truck-mounted arm";
 
+/// BASR's numbers outside `[dynamics]` with constant bounds, as data
+/// (`[dynamics]`'s sit with its fields in `dynamics.rs`).
+static BASR: &[Bound<Robot>] = &[
+    Bound {
+        field: "arm.a2_m",
+        get: |r| r.arm.a2_m,
+        lo: -0.5,
+        hi: 0.5,
+        why: ARM,
+    },
+    Bound {
+        field: "arm.pantograph_ratio",
+        get: |r| r.arm.pantograph_ratio,
+        lo: 1.0,
+        hi: 20.0,
+        why: ARM,
+    },
+    Bound {
+        field: "arm.retracted_extension_m",
+        get: |r| r.arm.retracted_extension_m,
+        lo: 0.2,
+        hi: 10.0,
+        why: ARM,
+    },
+    Bound {
+        field: "arm.cylinder_stroke_m",
+        get: |r| r.arm.cylinder_stroke_m,
+        lo: 0.01,
+        hi: 2.0,
+        why: ARM,
+    },
+    // assumed: up to 5 cm of cylinder; the check against the stroke
+    // itself follows in `problems`.
+    Bound {
+        field: "arm.cylinder_stroke_margin_m",
+        get: |r| r.arm.cylinder_stroke_margin_m,
+        lo: 0.0,
+        hi: 0.05,
+        why: ARM,
+    },
+    Bound {
+        field: "arm.base_motor_ratio",
+        get: |r| r.arm.base_motor_ratio,
+        lo: 0.01,
+        hi: 100.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.mass_kg",
+        get: |r| r.end_effector.mass_kg,
+        lo: 1.0,
+        hi: 500.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.vertical_stroke_m",
+        get: |r| r.end_effector.vertical_stroke_m,
+        lo: 0.01,
+        hi: 2.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.vertical_disturbance_m",
+        get: |r| r.end_effector.vertical_disturbance_m,
+        lo: 1e-4,
+        hi: 0.2,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.vertical_disturbance_hz",
+        get: |r| r.end_effector.vertical_disturbance_hz,
+        lo: 0.1,
+        hi: 100.0,
+        why: SERVO,
+    },
+    Bound {
+        field: "end_effector.tip_height_top_m",
+        get: |r| r.end_effector.tip_height_top_m,
+        lo: 0.01,
+        hi: 3.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.yaw_gear_ratio",
+        get: |r| r.end_effector.yaw_gear_ratio,
+        lo: 1.0,
+        hi: 1000.0,
+        why: ENC,
+    },
+    Bound {
+        field: "end_effector.yaw_backlash_rad",
+        get: |r| r.end_effector.yaw_backlash_rad,
+        lo: 0.0,
+        hi: 0.1,
+        why: ENC,
+    },
+    Bound {
+        field: "end_effector.tilt_screw_pitch_m",
+        get: |r| r.end_effector.tilt_screw_pitch_m,
+        lo: 1e-4,
+        hi: 0.1,
+        why: ENC,
+    },
+    Bound {
+        field: "end_effector.tilt_motor_turns_per_screw_turn",
+        get: |r| r.end_effector.tilt_motor_turns_per_screw_turn,
+        lo: 0.01,
+        hi: 100.0,
+        why: ENC,
+    },
+    Bound {
+        field: "end_effector.tilt_nut_max_speed_mps",
+        get: |r| r.end_effector.tilt_nut_max_speed_mps,
+        lo: 1e-3,
+        hi: 10.0,
+        why: SERVO,
+    },
+    Bound {
+        field: "end_effector.nozzle_below_joint_f_m",
+        get: |r| r.end_effector.nozzle_below_joint_f_m,
+        lo: 0.05,
+        hi: 5.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.joint_f_test_torque_nm",
+        get: |r| r.end_effector.joint_f_test_torque_nm,
+        lo: 1.0,
+        hi: 1e5,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.fourbar.ground_m",
+        get: |r| r.end_effector.fourbar.ground_m,
+        lo: 0.01,
+        hi: 2.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.fourbar.coupler_m",
+        get: |r| r.end_effector.fourbar.coupler_m,
+        lo: 0.01,
+        hi: 2.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.fourbar.rocker_m",
+        get: |r| r.end_effector.fourbar.rocker_m,
+        lo: 0.01,
+        hi: 2.0,
+        why: ARM,
+    },
+    Bound {
+        field: "end_effector.fourbar.tip_below_coupler_m",
+        get: |r| r.end_effector.fourbar.tip_below_coupler_m,
+        lo: 0.0,
+        hi: 2.0,
+        why: ARM,
+    },
+    Bound {
+        field: "paint.flow_m3ps",
+        get: |r| r.paint.flow_m3ps,
+        lo: 1e-8,
+        hi: 1e-3,
+        why: PAINT,
+    },
+    Bound {
+        field: "paint.transfer_efficiency",
+        get: |r| r.paint.transfer_efficiency,
+        lo: 0.01,
+        hi: 1.0,
+        why: PAINT,
+    },
+    Bound {
+        field: "paint.film_m",
+        get: |r| r.paint.film_m,
+        lo: 1e-5,
+        hi: 0.01,
+        why: PAINT,
+    },
+    Bound {
+        field: "paint.tip_life_min_m3",
+        get: |r| r.paint.tip_life_min_m3,
+        lo: 1e-4,
+        hi: 10.0,
+        why: PAINT,
+    },
+    Bound {
+        field: "paint.tip_life_max_m3",
+        get: |r| r.paint.tip_life_max_m3,
+        lo: 1e-4,
+        hi: 10.0,
+        why: PAINT,
+    },
+    Bound {
+        field: "control.period_s",
+        get: |r| r.control.period_s,
+        lo: 0.001,
+        hi: 0.1,
+        why: SIM_STEP,
+    },
+    Bound {
+        field: "control.controller_sample_s",
+        get: |r| r.control.controller_sample_s,
+        lo: 0.001,
+        hi: 0.05,
+        why: SIM_STEP,
+    },
+    Bound {
+        field: "control.accuracy_m",
+        get: |r| r.control.accuracy_m,
+        lo: 1e-4,
+        hi: 0.1,
+        why: ARM,
+    },
+    Bound {
+        field: "encoders.base_counts_per_rev",
+        get: |r| f64::from(r.encoders.base_counts_per_rev),
+        lo: 100.0,
+        hi: 1e8,
+        why: ENC,
+    },
+    Bound {
+        field: "encoders.extension_m_per_count",
+        get: |r| r.encoders.extension_m_per_count,
+        lo: 1e-7,
+        hi: 0.01,
+        why: ENC,
+    },
+    Bound {
+        field: "encoders.yaw_counts_per_motor_rev",
+        get: |r| f64::from(r.encoders.yaw_counts_per_motor_rev),
+        lo: 1.0,
+        hi: 1e7,
+        why: ENC,
+    },
+    Bound {
+        field: "encoders.tilt_counts_per_motor_rev",
+        get: |r| f64::from(r.encoders.tilt_counts_per_motor_rev),
+        lo: 1.0,
+        hi: 1e7,
+        why: ENC,
+    },
+    Bound {
+        field: "encoders.vertical_m_per_count",
+        get: |r| r.encoders.vertical_m_per_count,
+        lo: 1e-7,
+        hi: 0.01,
+        why: ENC,
+    },
+    Bound {
+        field: "hydraulics.supply_pa",
+        get: |r| r.hydraulics.supply_pa,
+        lo: 1e6,
+        hi: 4.2e7,
+        why: HYD,
+    },
+    Bound {
+        field: "hydraulics.tank_pa",
+        get: |r| r.hydraulics.tank_pa,
+        lo: 0.0,
+        hi: 1e6,
+        why: HYD,
+    },
+    Bound {
+        field: "hydraulics.bulk_modulus_pa",
+        get: |r| r.hydraulics.bulk_modulus_pa,
+        lo: 2e8,
+        hi: 2.5e9,
+        why: BULK,
+    },
+    Bound {
+        field: "hydraulics.base_motor_displacement_m3prad",
+        get: |r| r.hydraulics.base_motor_displacement_m3prad,
+        lo: 1e-6,
+        hi: 1e-3,
+        why: HYD,
+    },
+    Bound {
+        field: "hydraulics.base_chamber_a_m3",
+        get: |r| r.hydraulics.base_chamber_a_m3,
+        lo: 1e-5,
+        hi: 0.01,
+        why: HYD,
+    },
+    Bound {
+        field: "hydraulics.base_chamber_b_m3",
+        get: |r| r.hydraulics.base_chamber_b_m3,
+        lo: 1e-5,
+        hi: 0.01,
+        why: HYD,
+    },
+    Bound {
+        field: "hydraulics.valve_flow_gain",
+        get: |r| r.hydraulics.valve_flow_gain,
+        lo: 1e-9,
+        hi: 1e-5,
+        why: HYD,
+    },
+    Bound {
+        field: "hydraulics.command_limit",
+        get: |r| r.hydraulics.command_limit,
+        lo: 0.01,
+        hi: 1.0,
+        why: "a fraction of the spool's full opening",
+    },
+    Bound {
+        field: "hydraulics.gravity_b_n",
+        get: |r| r.hydraulics.gravity_b_n,
+        lo: 1.0,
+        hi: 1e6,
+        why: ARM,
+    },
+    Bound {
+        field: "hydraulics.gravity_d_m",
+        get: |r| r.hydraulics.gravity_d_m,
+        lo: 0.05,
+        hi: 5.0,
+        why: ARM,
+    },
+    Bound {
+        field: "hydraulics.gravity_x_min_m",
+        get: |r| r.hydraulics.gravity_x_min_m,
+        lo: 0.01,
+        hi: 5.0,
+        why: ARM,
+    },
+    Bound {
+        field: "hydraulics.gravity_x_max_m",
+        get: |r| r.hydraulics.gravity_x_max_m,
+        lo: 0.01,
+        hi: 5.0,
+        why: ARM,
+    },
+];
+
 /// Every out-of-range number of `r` outside `[dynamics]`.
 pub(crate) fn problems(r: &Robot) -> Vec<(String, String)> {
     let a = &r.arm;
     let e = &r.end_effector;
-    let f = &e.fourbar;
     let p = &r.paint;
     let c = &r.control;
-    let n = &r.encoders;
     let h = &r.hydraulics;
-    let mut v = vec![
-        Range::new("arm.a2_m", a.a2_m, -0.5, 0.5, ARM),
-        Range::new("arm.pantograph_ratio", a.pantograph_ratio, 1.0, 20.0, ARM),
-        Range::new(
-            "arm.retracted_extension_m",
-            a.retracted_extension_m,
-            0.2,
-            10.0,
-            ARM,
-        ),
-        Range::new("arm.cylinder_stroke_m", a.cylinder_stroke_m, 0.01, 2.0, ARM),
-        // assumed: up to 5 cm of cylinder; the check against the stroke
-        // itself follows below.
-        Range::new(
-            "arm.cylinder_stroke_margin_m",
-            a.cylinder_stroke_margin_m,
-            0.0,
-            0.05,
-            ARM,
-        ),
-        Range::new("arm.base_motor_ratio", a.base_motor_ratio, 0.01, 100.0, ARM),
-        Range::new("end_effector.mass_kg", e.mass_kg, 1.0, 500.0, ARM),
-        Range::new(
-            "end_effector.vertical_stroke_m",
-            e.vertical_stroke_m,
-            0.01,
-            2.0,
-            ARM,
-        ),
-        Range::new(
-            "end_effector.vertical_disturbance_m",
-            e.vertical_disturbance_m,
-            1e-4,
-            0.2,
-            ARM,
-        ),
-        Range::new(
-            "end_effector.vertical_disturbance_hz",
-            e.vertical_disturbance_hz,
-            0.1,
-            100.0,
-            SERVO,
-        ),
-        Range::new(
-            "end_effector.tip_height_top_m",
-            e.tip_height_top_m,
-            0.01,
-            3.0,
-            ARM,
-        ),
-        Range::new(
-            "end_effector.yaw_gear_ratio",
-            e.yaw_gear_ratio,
-            1.0,
-            1000.0,
-            ENC,
-        ),
-        Range::new(
-            "end_effector.yaw_backlash_rad",
-            e.yaw_backlash_rad,
-            0.0,
-            0.1,
-            ENC,
-        ),
-        Range::new(
-            "end_effector.tilt_screw_pitch_m",
-            e.tilt_screw_pitch_m,
-            1e-4,
-            0.1,
-            ENC,
-        ),
-        Range::new(
-            "end_effector.tilt_motor_turns_per_screw_turn",
-            e.tilt_motor_turns_per_screw_turn,
-            0.01,
-            100.0,
-            ENC,
-        ),
-        Range::new(
-            "end_effector.tilt_nut_max_speed_mps",
-            e.tilt_nut_max_speed_mps,
-            1e-3,
-            10.0,
-            SERVO,
-        ),
-        Range::new(
-            "end_effector.nozzle_below_joint_f_m",
-            e.nozzle_below_joint_f_m,
-            0.05,
-            5.0,
-            ARM,
-        ),
-        Range::new(
-            "end_effector.joint_f_test_torque_nm",
-            e.joint_f_test_torque_nm,
-            1.0,
-            1e5,
-            ARM,
-        ),
-        Range::new("end_effector.fourbar.ground_m", f.ground_m, 0.01, 2.0, ARM),
-        Range::new(
-            "end_effector.fourbar.coupler_m",
-            f.coupler_m,
-            0.01,
-            2.0,
-            ARM,
-        ),
-        Range::new("end_effector.fourbar.rocker_m", f.rocker_m, 0.01, 2.0, ARM),
-        Range::new(
-            "end_effector.fourbar.tip_below_coupler_m",
-            f.tip_below_coupler_m,
-            0.0,
-            2.0,
-            ARM,
-        ),
-        Range::new("paint.flow_m3ps", p.flow_m3ps, 1e-8, 1e-3, PAINT),
-        Range::new(
-            "paint.transfer_efficiency",
-            p.transfer_efficiency,
-            0.01,
-            1.0,
-            PAINT,
-        ),
-        Range::new("paint.film_m", p.film_m, 1e-5, 0.01, PAINT),
-        Range::new(
-            "paint.tip_life_min_m3",
-            p.tip_life_min_m3,
-            1e-4,
-            10.0,
-            PAINT,
-        ),
-        Range::new(
-            "paint.tip_life_max_m3",
-            p.tip_life_max_m3,
-            1e-4,
-            10.0,
-            PAINT,
-        ),
-        Range::new("control.period_s", c.period_s, 0.001, 0.1, SIM_STEP),
-        Range::new(
-            "control.controller_sample_s",
-            c.controller_sample_s,
-            0.001,
-            0.05,
-            SIM_STEP,
-        ),
-        Range::new(
-            "control.delay_estimate_s",
-            c.delay_estimate_s,
-            c.controller_sample_s,
-            0.1,
-            "at least one controller period and at most 0.1 s (000 §II eq. 21)",
-        ),
-        Range::new("control.accuracy_m", c.accuracy_m, 1e-4, 0.1, ARM),
-        Range::new(
-            "encoders.base_counts_per_rev",
-            n.base_counts_per_rev.into(),
-            100.0,
-            1e8,
-            ENC,
-        ),
-        Range::new(
-            "encoders.extension_m_per_count",
-            n.extension_m_per_count,
-            1e-7,
-            0.01,
-            ENC,
-        ),
-        Range::new(
-            "encoders.yaw_counts_per_motor_rev",
-            n.yaw_counts_per_motor_rev.into(),
-            1.0,
-            1e7,
-            ENC,
-        ),
-        Range::new(
-            "encoders.tilt_counts_per_motor_rev",
-            n.tilt_counts_per_motor_rev.into(),
-            1.0,
-            1e7,
-            ENC,
-        ),
-        Range::new(
-            "encoders.vertical_m_per_count",
-            n.vertical_m_per_count,
-            1e-7,
-            0.01,
-            ENC,
-        ),
-        Range::new("hydraulics.supply_pa", h.supply_pa, 1e6, 4.2e7, HYD),
-        Range::new("hydraulics.tank_pa", h.tank_pa, 0.0, 1e6, HYD),
-        Range::new(
-            "hydraulics.bulk_modulus_pa",
-            h.bulk_modulus_pa,
-            2e8,
-            2.5e9,
-            BULK,
-        ),
-        Range::new(
-            "hydraulics.base_motor_displacement_m3prad",
-            h.base_motor_displacement_m3prad,
-            1e-6,
-            1e-3,
-            HYD,
-        ),
-        Range::new(
-            "hydraulics.base_chamber_a_m3",
-            h.base_chamber_a_m3,
-            1e-5,
-            0.01,
-            HYD,
-        ),
-        Range::new(
-            "hydraulics.base_chamber_b_m3",
-            h.base_chamber_b_m3,
-            1e-5,
-            0.01,
-            HYD,
-        ),
-        Range::new(
-            "hydraulics.valve_flow_gain",
-            h.valve_flow_gain,
-            1e-9,
-            1e-5,
-            HYD,
-        ),
-        Range::new(
-            "hydraulics.command_limit",
-            h.command_limit,
-            0.01,
-            1.0,
-            "a fraction of the spool's full opening",
-        ),
-        Range::new("hydraulics.gravity_b_n", h.gravity_b_n, 1.0, 1e6, ARM),
-        Range::new("hydraulics.gravity_d_m", h.gravity_d_m, 0.05, 5.0, ARM),
-        Range::new(
-            "hydraulics.gravity_x_min_m",
-            h.gravity_x_min_m,
-            0.01,
-            5.0,
-            ARM,
-        ),
-        Range::new(
-            "hydraulics.gravity_x_max_m",
-            h.gravity_x_max_m,
-            0.01,
-            5.0,
-            ARM,
-        ),
-    ];
+    let mut v = rows("", r, BASR);
+    v.push(Range::new(
+        "control.delay_estimate_s",
+        c.delay_estimate_s,
+        c.controller_sample_s,
+        0.1,
+        "at least one controller period and at most 0.1 s (000 §II eq. 21)",
+    ));
     for (i, d) in e.joint_f_deflection_rad.iter().enumerate() {
         v.push(Range::new(
             &format!("end_effector.joint_f_deflection_rad[{i}]"),
@@ -399,6 +501,327 @@ pub(crate) fn problems(r: &Robot) -> Vec<(String, String)> {
                 a.cylinder_stroke_m,
                 h.gravity_x_min_m,
                 2.0 * h.gravity_d_m
+            ),
+        ));
+    }
+    out
+}
+
+/// One row of a range table: a number of `T` (dotted below the table's
+/// prefix), its inclusive bounds and why they are there.
+pub(crate) struct Bound<T: 'static> {
+    pub field: &'static str,
+    pub get: fn(&T) -> f64,
+    pub lo: f64,
+    pub hi: f64,
+    pub why: &'static str,
+}
+
+/// A table's rows as [`Range`]s for `v`, each field as `prefix.field`.
+pub(crate) fn rows<T>(prefix: &str, v: &T, table: &[Bound<T>]) -> Vec<Range> {
+    table
+        .iter()
+        .map(|b| {
+            let path = if prefix.is_empty() {
+                b.field.to_string()
+            } else {
+                format!("{prefix}.{}", b.field)
+            };
+            Range::new(&path, (b.get)(v), b.lo, b.hi, b.why)
+        })
+        .collect()
+}
+
+const SERVO_JOINT: &str = "an electric servo joint of a truck-mounted arm";
+const ELECTRIC_ARM: &str = "an arm of a few metres on a truck's rear";
+
+/// The paint of every electric kind: the same bounds as BASR's.
+pub(crate) static PAINT_RANGES: &[Bound<super::Paint>] = &[
+    Bound {
+        field: "fan_angle_rad",
+        get: |p| p.fan_angle_rad,
+        // A flat fan between 5° and 170°: 0 paints nothing, π is a plane.
+        lo: 0.087,
+        hi: 2.97,
+        why: PAINT,
+    },
+    Bound {
+        field: "flow_m3ps",
+        get: |p| p.flow_m3ps,
+        lo: 1e-8,
+        hi: 1e-3,
+        why: PAINT,
+    },
+    Bound {
+        field: "transfer_efficiency",
+        get: |p| p.transfer_efficiency,
+        lo: 0.01,
+        hi: 1.0,
+        why: PAINT,
+    },
+    Bound {
+        field: "film_m",
+        get: |p| p.film_m,
+        lo: 1e-5,
+        hi: 0.01,
+        why: PAINT,
+    },
+    Bound {
+        field: "tip_life_min_m3",
+        get: |p| p.tip_life_min_m3,
+        lo: 1e-4,
+        hi: 10.0,
+        why: PAINT,
+    },
+    Bound {
+        field: "tip_life_max_m3",
+        get: |p| p.tip_life_max_m3,
+        lo: 1e-4,
+        hi: 10.0,
+        why: PAINT,
+    },
+];
+
+/// The control timing of every electric kind: BASR's bounds. A 1 ns
+/// controller period is a billion simulated ticks a second (issue 31, R2:
+/// `compile` ran past a minute).
+pub(crate) static CONTROL_RANGES: &[Bound<super::Control>] = &[
+    Bound {
+        field: "period_s",
+        get: |c| c.period_s,
+        lo: 0.001,
+        hi: 0.1,
+        why: SIM_STEP,
+    },
+    Bound {
+        field: "controller_sample_s",
+        get: |c| c.controller_sample_s,
+        lo: 0.001,
+        hi: 0.05,
+        why: SIM_STEP,
+    },
+    Bound {
+        field: "delay_estimate_s",
+        get: |c| c.delay_estimate_s,
+        lo: 0.001,
+        hi: 0.1,
+        why: "at least one controller period and at most 0.1 s (000 §II eq. 21)",
+    },
+    Bound {
+        field: "accuracy_m",
+        get: |c| c.accuracy_m,
+        lo: 1e-4,
+        hi: 0.1,
+        why: ARM,
+    },
+];
+
+/// Every number of one servo joint table. The position bounds are wide
+/// (±13 rad: two turns either way, as BASR's; strokes to 20 m) and the
+/// joint's own range is checked against them separately.
+pub(crate) static SERVO_RANGES: &[Bound<super::kind::ServoJoint>] = &[
+    Bound {
+        field: "min",
+        get: |j| j.min,
+        lo: -13.0,
+        hi: 20.0,
+        why: SERVO_JOINT,
+    },
+    Bound {
+        field: "max",
+        get: |j| j.max,
+        lo: -13.0,
+        hi: 20.0,
+        why: SERVO_JOINT,
+    },
+    // A joint 10^4 times slower than the shipped ones (0.5 rad/s) would take
+    // hours per letter; the planner samples every millisecond of that
+    // (issue 31, R3: 1e-12 rad/s asked 84 TB).
+    Bound {
+        field: "max_vel",
+        get: |j| j.max_vel,
+        lo: 1e-4,
+        hi: 100.0,
+        why: SERVO_JOINT,
+    },
+    Bound {
+        field: "max_acc",
+        get: |j| j.max_acc,
+        lo: 1e-4,
+        hi: 1e4,
+        why: SERVO_JOINT,
+    },
+    // From one count a radian (or metre) to 10^10: a 32-bit absolute
+    // encoder through a 1000:1 gear is 6.8e8 per radian. Over the widest
+    // joint range (20) that is 2e11 counts, far inside the i64 the counts
+    // are written as (issue 31, R5: 1e300 saturated every count at i64::MAX).
+    Bound {
+        field: "counts_per_unit",
+        get: |j| j.counts_per_unit,
+        lo: 1.0,
+        hi: 1e10,
+        why: ENC,
+    },
+    Bound {
+        field: "inertia",
+        get: |j| j.inertia,
+        lo: 1e-6,
+        hi: 1e6,
+        why: SERVO_JOINT,
+    },
+    Bound {
+        field: "max_effort",
+        get: |j| j.max_effort,
+        lo: 1e-3,
+        hi: 1e7,
+        why: SERVO_JOINT,
+    },
+];
+
+/// The telescopic arm's dimensions (seed 002's DH parameters and the head).
+pub(crate) static TELESCOPIC_ARM: &[Bound<super::telescopic::TelescopicArm>] = &[
+    Bound {
+        field: "base_height_m",
+        get: |a| a.base_height_m,
+        lo: 0.1,
+        hi: 10.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "a1_m",
+        get: |a| a.a1_m,
+        lo: 1e-3,
+        hi: 5.0,
+        why: "002's eq. 1 needs an offset between the first two axes (0.05 m will do)",
+    },
+    Bound {
+        field: "alpha1_rad",
+        get: |a| a.alpha1_rad,
+        lo: -std::f64::consts::PI,
+        hi: std::f64::consts::PI,
+        why: "an angle of one turn",
+    },
+    Bound {
+        field: "h2_m",
+        get: |a| a.h2_m,
+        lo: -5.0,
+        hi: 5.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "a2_m",
+        get: |a| a.a2_m,
+        lo: 0.0,
+        hi: 5.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "alpha2_rad",
+        get: |a| a.alpha2_rad,
+        lo: -std::f64::consts::PI,
+        hi: std::f64::consts::PI,
+        why: "an angle of one turn",
+    },
+    Bound {
+        field: "nozzle_m",
+        get: |a| a.nozzle_m,
+        lo: 0.01,
+        hi: 5.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "tip_height_min_m",
+        get: |a| a.tip_height_min_m,
+        lo: 1e-3,
+        hi: 3.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "tip_height_max_m",
+        get: |a| a.tip_height_max_m,
+        lo: 1e-3,
+        hi: 3.0,
+        why: ELECTRIC_ARM,
+    },
+];
+
+/// The articulated arm's dimensions (seed 003's links).
+pub(crate) static ARTICULATED_ARM: &[Bound<super::articulated::ArticulatedArm>] = &[
+    Bound {
+        field: "shoulder_height_m",
+        get: |a| a.shoulder_height_m,
+        lo: 0.1,
+        hi: 10.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "shoulder_offset_m",
+        get: |a| a.shoulder_offset_m,
+        lo: -5.0,
+        hi: 5.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "upper_arm_m",
+        get: |a| a.upper_arm_m,
+        lo: 0.05,
+        hi: 20.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "forearm_m",
+        get: |a| a.forearm_m,
+        lo: 0.05,
+        hi: 20.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "gun_m",
+        get: |a| a.gun_m,
+        lo: 0.01,
+        hi: 5.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "tip_height_min_m",
+        get: |a| a.tip_height_min_m,
+        lo: 1e-3,
+        hi: 3.0,
+        why: ELECTRIC_ARM,
+    },
+    Bound {
+        field: "tip_height_max_m",
+        get: |a| a.tip_height_max_m,
+        lo: 1e-3,
+        hi: 3.0,
+        why: ELECTRIC_ARM,
+    },
+];
+
+/// Every out-of-range number of an electric kind's shared tables: paint,
+/// control and each joint (`names`: the joints' table names), and the
+/// cross-check a row cannot say: the delay estimate is at least one
+/// controller period.
+pub(crate) fn electric(
+    paint: &super::Paint,
+    control: &super::Control,
+    names: &[&str; 5],
+    joints: [&super::kind::ServoJoint; 5],
+) -> Vec<(String, String)> {
+    let mut v = rows("paint", paint, PAINT_RANGES);
+    v.extend(rows("control", control, CONTROL_RANGES));
+    for (name, j) in names.iter().zip(joints) {
+        v.extend(rows(&format!("joints.{name}"), j, SERVO_RANGES));
+    }
+    let mut out = outside(v);
+    if control.delay_estimate_s < control.controller_sample_s {
+        out.push((
+            "control.delay_estimate_s".into(),
+            format!(
+                "{} s is shorter than one controller period (control.controller_sample_s = {} \
+                 s); give at least that (000 §II eq. 21)",
+                basr_io::show_num(control.delay_estimate_s),
+                basr_io::show_num(control.controller_sample_s)
             ),
         ));
     }

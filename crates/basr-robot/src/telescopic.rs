@@ -188,24 +188,11 @@ impl Telescopic {
         if self.kind != Kind::Telescopic {
             out.push(("kind".into(), "must be \"telescopic\" here".into()));
         }
-        for (k, v) in [
-            ("base_height_m", a.base_height_m),
-            ("a1_m", a.a1_m),
-            ("nozzle_m", a.nozzle_m),
-            ("tip_height_min_m", a.tip_height_min_m),
-        ] {
-            if v <= 0.0 {
-                let why = if k == "a1_m" {
-                    "; 002's eq. 1 needs an offset between the first two axes (0.05 m will do)"
-                } else {
-                    ""
-                };
-                out.push((
-                    format!("arm.{k}"),
-                    format!("must be positive (got {v}){why}"),
-                ));
-            }
-        }
+        out.extend(super::ranges::outside(super::ranges::rows(
+            "arm",
+            a,
+            super::ranges::TELESCOPIC_ARM,
+        )));
         if a.alpha1_rad.sin().abs() < 0.05 {
             out.push((
                 "arm.alpha1_rad".into(),
@@ -215,9 +202,6 @@ impl Telescopic {
                     a.alpha1_rad
                 ),
             ));
-        }
-        if a.a2_m < 0.0 {
-            out.push(("arm.a2_m".into(), "must not be negative".into()));
         }
         let j = &self.joints;
         if j.stroke_m.min < 0.0 {

@@ -549,9 +549,20 @@ mod tests {
             ((strokes + bare) - area).abs() < 0.005 * area,
             "strokes {strokes} + bare {bare} vs region {area}"
         );
-        for s in &d.strokes {
-            for (a, b) in s.rungs(50) {
-                assert!((b - a).hypot() <= lim.max_width_m + 1e-9);
+        for (k, s) in d.strokes.iter().enumerate() {
+            for (i, (a, b)) in s.rungs(50).into_iter().enumerate() {
+                let w = (b - a).hypot();
+                assert!(
+                    w <= lim.max_width_m + 1e-9,
+                    "stroke {k} of {} ({:?}), rung {i} of 50: {w} m, wider than the widest \
+                     band {} m",
+                    d.strokes.len(),
+                    d.regions
+                        .iter()
+                        .map(|r| r.chosen.method)
+                        .collect::<Vec<_>>(),
+                    lim.max_width_m
+                );
             }
         }
         let fine = crate::font::Limits {
@@ -688,6 +699,23 @@ mod tests {
         for d in &all {
             assert_decomposition_tiles(std::slice::from_ref(&r), d);
         }
+    }
+
+    /// The star `random_star_polygons_tile` found on a clean clone (issue
+    /// 31, P1): a strip of its decomposition was wider than the widest
+    /// band one pass paints. Kept as a plain test as well as in
+    /// proptest-regressions/shape/decompose.txt so it runs whatever seed
+    /// the property test draws.
+    #[test]
+    fn the_star_that_held_a_band_wider_than_a_pass_tiles() {
+        let radii = [
+            0.9570366644665043,
+            0.6681598566749936,
+            0.4781911179228048,
+            1.1143794053900888,
+            0.8790835737214171,
+        ];
+        assert_tiles(&[super::super::region::from_radii(&radii, 0.0)]);
     }
 
     proptest! {

@@ -24,6 +24,7 @@ pub fn read_dxf(text: &str, origin: &str) -> Result<Outline, ShapeError> {
             "the file is empty: a DXF with closed polylines, circles or splines is needed",
         ));
     }
+    super::limits::check_dxf_text(text, origin)?;
     let drawing = dxf::Drawing::load(&mut text.as_bytes()).map_err(|e| {
         ShapeError::invalid(
             origin,
@@ -51,6 +52,18 @@ pub fn read_dxf(text: &str, origin: &str) -> Result<Outline, ShapeError> {
                 closed(&pts, p.is_closed(), &name("POLYLINE"), origin)?
             }
             EntityType::Circle(c) => {
+                // kurbo draws a full circle for r = -1 (issue 31, R8).
+                if !(c.radius.is_finite() && c.radius > 0.0) {
+                    return Err(ShapeError::invalid(
+                        origin,
+                        format!(
+                            "{} has radius {}: a circle's radius must be a positive number; \
+                             fix or delete it",
+                            name("CIRCLE"),
+                            basr_io::show_num(c.radius)
+                        ),
+                    ));
+                }
                 kurbo::Circle::new((c.center.x, c.center.y), c.radius).to_path(ARC_TOLERANCE)
             }
             EntityType::Ellipse(el) => ellipse(el, &name("ELLIPSE"), origin)?,
@@ -200,6 +213,18 @@ fn ellipse(el: &dxf::entities::Ellipse, name: &str, origin: &str) -> Result<BezP
     }
     let major = Vec2::new(el.major_axis.x, el.major_axis.y);
     let rx = major.hypot();
+    let ratio = el.minor_axis_ratio;
+    if !(rx.is_finite() && rx > 0.0 && ratio.is_finite() && ratio > 0.0 && ratio <= 1.0) {
+        return Err(ShapeError::invalid(
+            origin,
+            format!(
+                "{name} has a major axis {} long and a minor/major ratio of {}: an ellipse \
+                 needs a positive axis and a ratio in (0, 1]; fix or delete it",
+                basr_io::show_num(rx),
+                basr_io::show_num(ratio)
+            ),
+        ));
+    }
     let m = Affine::translate((el.center.x, el.center.y)) * Affine::rotate(major.atan2());
     Ok(
         m * kurbo::Ellipse::new((0.0, 0.0), (rx, rx * el.minor_axis_ratio), 0.0)

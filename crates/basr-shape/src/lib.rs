@@ -35,6 +35,7 @@ mod convex;
 mod decompose;
 mod dxf;
 mod hatch;
+pub mod limits;
 mod lobes;
 mod passes;
 mod region;
@@ -114,7 +115,8 @@ pub enum Size {
     FileUnits,
 }
 
-/// Read an SVG (`.svg`) or DXF (`.dxf`) file into its filled contours.
+/// Read an SVG (`.svg`) or DXF (`.dxf`) file into its filled contours,
+/// within [`limits`].
 pub fn read(path: &Path) -> Result<Outline, ShapeError> {
     let origin = path.display().to_string();
     let ext = path
@@ -122,19 +124,27 @@ pub fn read(path: &Path) -> Result<Outline, ShapeError> {
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase());
     match ext.as_deref() {
-        Some("svg") => {
+        Some(ext @ ("svg" | "dxf")) => {
             let text = basr_io::read_text(path).map_err(ShapeError::Read)?;
-            svg::read_svg(&text, &origin)
-        }
-        Some("dxf") => {
-            let text = basr_io::read_text(path).map_err(ShapeError::Read)?;
-            dxf::read_dxf(&text, &origin)
+            read_str(&text, ext, &origin)
         }
         _ => Err(ShapeError::invalid(
             &origin,
             "a shape file must be an SVG (.svg) or a DXF (.dxf) drawing",
         )),
     }
+}
+
+/// [`read`] of a file's text; `ext` is `svg` or `dxf` (anything else reads
+/// as DXF). For the fuzz targets and tests, which hold no file.
+pub fn read_str(text: &str, ext: &str, origin: &str) -> Result<Outline, ShapeError> {
+    let outline = if ext == "svg" {
+        svg::read_svg(text, origin)?
+    } else {
+        dxf::read_dxf(text, origin)?
+    };
+    limits::check_outline(&outline)?;
+    Ok(outline)
 }
 
 /// The scale (m per file unit) that gives the outline the asked size.
@@ -263,9 +273,11 @@ pub fn import_outline(
     size: Size,
     bands: &Bands,
 ) -> Result<Vec<Imported>, ShapeError> {
+    limits::check_outline(outline)?;
     let scale = scale_for(outline, size)?;
     let bb = bounds(outline);
     let (width_m, height_m) = (bb.width() * scale, bb.height() * scale);
+    limits::check_scaled(outline, scale, width_m)?;
     let regions = regions(outline, scale)?;
     let all = candidates(&regions, bands, &outline.origin)?;
     if all.iter().all(|d| d.strokes.is_empty()) {

@@ -16,21 +16,36 @@ pub fn read_svg(text: &str, origin: &str) -> Result<Outline, ShapeError> {
             "the file is empty: an SVG with filled paths is needed",
         ));
     }
+    super::limits::check_svg_text(text, origin)?;
     refuse_text(text, origin)?;
-    let tree = usvg::Tree::from_str(text, &usvg::Options::default()).map_err(|e| {
-        ShapeError::invalid(
-            origin,
-            format!("not a readable SVG ({e}); export it again as plain SVG"),
-        )
-    })?;
-    let mut elements = vec![];
-    let mut count = 0usize;
-    walk(tree.root(), origin, &mut count, &mut elements)?;
+    let parse = |text: &str| -> Result<Vec<Element>, ShapeError> {
+        let tree = usvg::Tree::from_str(text, &usvg::Options::default()).map_err(|e| {
+            ShapeError::invalid(
+                origin,
+                format!("not a readable SVG ({e}); export it again as plain SVG"),
+            )
+        })?;
+        let mut elements = vec![];
+        let mut count = 0usize;
+        walk(tree.root(), origin, &mut count, &mut elements)?;
+        Ok(elements)
+    };
+    let mut elements = parse(text)?;
+    if elements.is_empty() {
+        // usvg draws nothing of an <svg> without the SVG namespace (a
+        // hand-written file's usual omission): read it as one.
+        if let Some(with_ns) = with_svg_namespace(text) {
+            elements = parse(&with_ns)?;
+        }
+    }
     if elements.is_empty() {
         return Err(ShapeError::invalid(
             origin,
-            "no filled shape in the file: basr paints filled paths, polygons, circles and \
-             ellipses; give the outline a fill",
+            format!(
+                "no filled shape in the file: {}; basr paints filled paths, rects, polygons, \
+                 circles and ellipses",
+                why_nothing_filled(text)
+            ),
         ));
     }
     Ok(Outline {
@@ -38,6 +53,58 @@ pub fn read_svg(text: &str, origin: &str) -> Result<Outline, ShapeError> {
         elements,
         metres_per_unit: None,
     })
+}
+
+/// The text with `xmlns="http://www.w3.org/2000/svg"` on its root `<svg>`
+/// when that has no namespace; `None` when it has one or is no XML.
+fn with_svg_namespace(text: &str) -> Option<String> {
+    let doc = usvg::roxmltree::Document::parse(text).ok()?;
+    let root = doc.root_element();
+    if root.tag_name().name() != "svg" || root.tag_name().namespace().is_some() {
+        return None;
+    }
+    let at = root.range().start + "<svg".len();
+    let mut out = String::with_capacity(text.len() + 40);
+    out.push_str(text.get(..at)?);
+    out.push_str(" xmlns=\"http://www.w3.org/2000/svg\"");
+    out.push_str(text.get(at..)?);
+    Some(out)
+}
+
+/// Why usvg found nothing filled, from the XML: no shape element at all,
+/// shapes only where nothing is drawn (`<defs>`, `<symbol>`, `<clipPath>`,
+/// …, never placed with `<use>`), or shapes unfilled or hidden.
+fn why_nothing_filled(text: &str) -> String {
+    const SHAPES: [&str; 7] = [
+        "path", "rect", "circle", "ellipse", "polygon", "polyline", "line",
+    ];
+    const UNDRAWN: [&str; 6] = ["defs", "symbol", "clipPath", "mask", "pattern", "marker"];
+    let Ok(doc) = usvg::roxmltree::Document::parse(text) else {
+        return "the file is not XML".into();
+    };
+    let shapes: Vec<_> = doc
+        .descendants()
+        .filter(|n| n.is_element() && SHAPES.contains(&n.tag_name().name()))
+        .collect();
+    if shapes.is_empty() {
+        return "it holds no path, rect, circle, ellipse or polygon element".into();
+    }
+    let undrawn = |n: &usvg::roxmltree::Node| {
+        n.ancestors()
+            .any(|a| a.is_element() && UNDRAWN.contains(&a.tag_name().name()))
+    };
+    let uses = doc
+        .descendants()
+        .any(|n| n.is_element() && n.tag_name().name() == "use");
+    if shapes.iter().all(undrawn) && !uses {
+        return "its shapes are only inside <defs>, <symbol>, <clipPath> or the like, which \
+                draw nothing by themselves: place them with <use href=\"#id\"/> or move them \
+                out"
+        .into();
+    }
+    "its shapes are unfilled (fill=\"none\"), hidden (display=\"none\", \
+     visibility=\"hidden\", opacity 0) or of zero size: give the outline a fill"
+        .into()
 }
 
 /// usvg (without its text feature) drops `<text>`; say so instead of

@@ -193,6 +193,20 @@ pub enum TimingError {
         "the speed profile stalls between waypoints {index} and {next}: no joint can move there"
     )]
     Stalled { index: usize, next: usize },
+    #[error(
+        "the motion lasts {} s: {} setpoints at control.period_s = {} s, more than the {} one \
+         job holds (resample::MAX_SAMPLES); the robot's joint speed and acceleration limits \
+         (max_vel, max_acc) are far below a real arm's, or the period is too short",
+        basr_io::show_num(*duration_s),
+        basr_io::show_num(*samples),
+        basr_io::show_num(*period_s),
+        resample::MAX_SAMPLES
+    )]
+    TooLong {
+        duration_s: f64,
+        samples: f64,
+        period_s: f64,
+    },
 }
 
 /// Position and rate on a trajectory at one instant.

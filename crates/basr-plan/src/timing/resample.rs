@@ -28,6 +28,11 @@ impl<const N: usize> Samples<N> {
     }
 }
 
+/// Most setpoints one job holds. assumed: 10^7 is 2.8 hours at the
+/// shortest control period (1 ms, `robot::ranges`), past any stop's work
+/// (a long message paints in minutes), and about 1.2 GB of samples here.
+pub const MAX_SAMPLES: usize = 10_000_000;
+
 /// Samples `pieces` played one after another (each from rest to rest) at
 /// t = k·`period_s`, from 0 through the first multiple of the period at or
 /// after the end, which holds the final pose.
@@ -49,7 +54,18 @@ pub fn resample<const N: usize>(
     let starts = super::start_times(pieces);
     let total: f64 = pieces.iter().map(|p| p.duration_s).sum();
     // A hair of slack so a total that is an exact multiple does not gain a sample from rounding.
-    let count = (total / period_s - 1e-9).ceil().max(0.0) as usize + 1;
+    let count = (total / period_s - 1e-9).ceil().max(0.0) + 1.0;
+    // Sized by the robot's limits: bounded before it is allocated (a
+    // telescopic joint at 1e-12 rad/s asked 84 TB here, issue 31 R3).
+    // NaN (an infinite total over a period) is refused with the rest.
+    if count.is_nan() || count > MAX_SAMPLES as f64 {
+        return Err(TimingError::TooLong {
+            duration_s: total,
+            samples: count,
+            period_s,
+        });
+    }
+    let count = count as usize;
     for v in [&mut out.t_s, &mut out.local_t_s, &mut out.s, &mut out.sd] {
         v.reserve(count);
     }

@@ -69,6 +69,28 @@ pub const LETTER_HEIGHT_RANGE_M: (f64, f64) = (0.3, 10.0);
 /// 14 GB.
 pub const MAX_LANE_WIDTH_M: f64 = 30.0;
 
+/// [`LayoutError::TooWide`]'s message: the word's own width, and where
+/// it is anchored off the centre, what that anchor leaves of the lane (a
+/// 2.147 m word anchored 1 m off centre was once called 4.147 m wide).
+fn too_wide(word: &str, width_m: f64, anchor_x_m: f64, lane_m: f64) -> String {
+    use basr_io::show_num;
+    let fix = "use a wider lane (--lane-width), a smaller letter height (--letter-height) or \
+               a shorter word";
+    if anchor_x_m == 0.0 {
+        let (w, l) = basr_io::show_apart(width_m, lane_m);
+        format!("{word:?} is {w} m wide but the lane is {l} m: {fix}")
+    } else {
+        let room = (lane_m - 2.0 * anchor_x_m.abs()).max(0.0);
+        let (w, r) = basr_io::show_apart(width_m, room);
+        format!(
+            "{word:?} is {w} m wide but anchored {} m off the centre of the {} m lane \
+             (anchor_x_m) it has {r} m: move the anchor towards the centre, or {fix}",
+            show_num(anchor_x_m),
+            show_num(lane_m)
+        )
+    }
+}
+
 /// Errors of layout and of marking files.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum LayoutError {
@@ -103,18 +125,20 @@ pub enum LayoutError {
         position: usize,
         message: String,
     },
-    #[error(
-        "{word:?} is {width_m:.3} m wide but the lane is {lane_m:.3} m: use a wider lane \
-         (--lane-width), a smaller letter height (--letter-height) or a shorter word"
-    )]
+    #[error("{}", too_wide(word, *width_m, *anchor_x_m, *lane_m))]
     TooWide {
         word: String,
+        /// The word's own width (m).
         width_m: f64,
+        /// How far off the lane's centre it is anchored (m).
+        anchor_x_m: f64,
         lane_m: f64,
     },
     #[error(
-        "clear space between lines is {gap_m:.3} m but must be at least {min_m:.3} m \
-         ({MIN_LINE_GAP_HEIGHTS}× the letter height, MUTCD §3B.20): raise --line-gap"
+        "clear space between lines is {} m but must be at least {} m \
+         ({MIN_LINE_GAP_HEIGHTS}× the letter height, MUTCD §3B.20): raise --line-gap",
+        basr_io::show_apart(*gap_m, *min_m).0,
+        basr_io::show_apart(*gap_m, *min_m).1
     )]
     GapTooSmall { gap_m: f64, min_m: f64 },
     #[error("{field} {} m is outside {min}..{max} m: {why}", basr_io::show_num(*value))]
@@ -290,6 +314,14 @@ impl Marking {
             .map(|l| l.trim().to_ascii_uppercase())
             .collect();
         for (i, l) in lines.iter().enumerate() {
+            // A line break inside one line: `check` passed it and `compile`
+            // refused it (issue 31, D12); both read the file here.
+            if l.contains(|c: char| c.is_whitespace() && c != ' ') {
+                return Err(err(format!(
+                    "lines[{i}] = {l:?} holds a line break or tab; give each line its own \
+                     string (lines = [\"ST\", \"OP\"] for two lines)"
+                )));
+            }
             if l.contains(' ') {
                 return Err(err(format!(
                     "lines[{i}] = {l:?} holds several words; put one word per line \
@@ -585,7 +617,8 @@ pub fn place(
         if reach > m.lane_width_m / 2.0 + 1e-12 {
             return Err(LayoutError::TooWide {
                 word: word.to_uppercase(),
-                width_m: width + 2.0 * m.anchor_x_m.abs(),
+                width_m: width,
+                anchor_x_m: m.anchor_x_m,
                 lane_m: m.lane_width_m,
             });
         }
@@ -729,7 +762,7 @@ mod tests {
         }
         let m = Marking::from_message("ABCDEFGHIJKLMNOPQRSTUVWXYZ", &o).unwrap();
         let e = place(&m, grid).unwrap_err();
-        assert!(e.to_string().contains("lane is 3.660 m"), "{e}");
+        assert!(e.to_string().contains("lane is 3.66 m"), "{e}");
         let gap = Overrides {
             line_gap_m: Some(3.0),
             ..o.clone()

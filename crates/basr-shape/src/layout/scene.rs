@@ -194,6 +194,8 @@ pub enum SceneError {
     NotOneKind,
     #[error("needs `at_m = [x, y]`: the centre of its near edge in the lane")]
     NoAt,
+    #[error("at_m holds {0} numbers; give two, `at_m = [x, y]` (m across and along the lane: items lie on the road)")]
+    AtCount(usize),
     #[error("at_m = [{}, {}] must be finite and within {MAX_OFFSET_M} m of the anchor", basr_io::show_num(.0[0]), basr_io::show_num(.0[1]))]
     At([f64; 2]),
     #[error("rotate_deg = {} must be within ±{MAX_ROTATE_DEG}", basr_io::show_num(*.0))]
@@ -241,7 +243,8 @@ fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, SceneError>
     if given.iter().filter(|&&g| g).count() != 1 {
         return Err(SceneError::NotOneKind);
     }
-    let at = t.at_m.ok_or(SceneError::NoAt)?;
+    let at = t.at_m.as_deref().ok_or(SceneError::NoAt)?;
+    let at: [f64; 2] = at.try_into().map_err(|_| SceneError::AtCount(at.len()))?;
     if at.iter().any(|v| !v.is_finite() || v.abs() > MAX_OFFSET_M) {
         return Err(SceneError::At(at));
     }
@@ -339,7 +342,9 @@ struct ItemToml {
     word: Option<String>,
     symbol: Option<String>,
     shape: Option<String>,
-    at_m: Option<[f64; 2]>,
+    /// Read as a list so a third number is refused, not dropped: the TOML
+    /// reader filled `[f64; 2]` from `[0, 0, 5]` (issue 31, R13).
+    at_m: Option<Vec<f64>>,
     rotate_deg: Option<f64>,
     letter_height_m: Option<f64>,
     letter_height_ft: Option<f64>,
