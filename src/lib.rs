@@ -8,6 +8,7 @@
 
 pub mod canon;
 pub mod chars;
+pub mod export;
 pub mod font;
 pub mod geom;
 pub mod io;

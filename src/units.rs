@@ -8,12 +8,42 @@
 pub const M_PER_FT: f64 = 0.3048;
 pub const M_PER_IN: f64 = 0.0254;
 
+/// The units a person reads lengths in: the crew's tape.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum System {
+    /// Metres, to the centimetre: `4.60 m`.
+    #[default]
+    Metric,
+    /// Feet and inches, to the inch: `15 ft 1 in`.
+    Us,
+}
+
+impl System {
+    /// `m` (a length ≥ 0) as this system writes it for a crew.
+    pub fn length(self, m: f64) -> String {
+        match self {
+            System::Metric => format!("{m:.2} m"),
+            System::Us => {
+                // To the inch: a truck is placed with a tape, not finer.
+                let inches = (m / M_PER_IN).round() as i64;
+                match (inches / 12, inches % 12) {
+                    (0, i) => format!("{i} in"),
+                    (ft, 0) => format!("{ft} ft"),
+                    (ft, i) => format!("{ft} ft {i} in"),
+                }
+            }
+        }
+    }
+}
+
 /// A length as given: its value in metres and whether a unit was written.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Length {
     pub m: f64,
     /// No unit was written: the number is in the option's own unit.
     pub bare: bool,
+    /// Written in feet or inches (`8ft`, `96in`): the user reads US units.
+    pub us: bool,
 }
 
 /// The unit suffixes accepted, with metres per unit.
@@ -41,6 +71,7 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
         return Ok(Length {
             m: value * bare_m,
             bare: true,
+            us: false,
         });
     }
     let split = t
@@ -61,6 +92,7 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
         return Ok(Length {
             m: value * bare_m,
             bare: true,
+            us: false,
         });
     }
     let per = UNITS
@@ -73,6 +105,7 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, String> {
     Ok(Length {
         m: value * per,
         bare: false,
+        us: per == M_PER_FT || per == M_PER_IN,
     })
 }
 
@@ -106,6 +139,114 @@ pub fn feet_hint(option: &str, length: Length, usual_m: (f64, f64)) -> Option<St
     ))
 }
 
+/// Length keys of a marking file in other units than metres, with metres
+/// per unit: `lane_width_ft = 12`, `at_ft = [0, 16]`, `height_in = 24`.
+const KEY_UNITS: [(&str, f64); 2] = [("_ft", M_PER_FT), ("_in", M_PER_IN)];
+
+/// A marking file's lengths in metres, for a crew that measures in feet:
+/// every `NAME_ft` / `NAME_in` key becomes `NAME_m` (numbers, or arrays of
+/// them, times the unit), and a length given as text with its unit
+/// (`lane_width_m = "12ft"`, `at_m = ["0ft", "16ft"]`, `at_ft = [0, "6in"]`)
+/// is read as `--letter-height 8ft` is. `Ok(None)` when the file has none
+/// of these (or is not TOML: its reader reports that with the line), so a
+/// metric file is read exactly as before.
+pub fn marking_lengths_in_metres(text: &str) -> Result<Option<toml::Table>, String> {
+    let Ok(mut table) = text.parse::<toml::Table>() else {
+        return Ok(None);
+    };
+    let changed = lengths_in_table(&mut table, "")?;
+    Ok(changed.then_some(table))
+}
+
+/// [`marking_lengths_in_metres`] on one table and the tables below it;
+/// `at` names where it is (`item 2: `) in messages. Whether anything changed.
+fn lengths_in_table(t: &mut toml::Table, at: &str) -> Result<bool, String> {
+    let mut changed = false;
+    let keys: Vec<String> = t.keys().cloned().collect();
+    for key in keys {
+        let unit = KEY_UNITS
+            .iter()
+            .find(|(suffix, _)| key.ends_with(suffix) && key.len() > suffix.len());
+        let Some(value) = t.get(&key).cloned() else {
+            continue;
+        };
+        match (unit, value) {
+            (Some(&(suffix, per)), v) => {
+                let base = &key[..key.len() - suffix.len()];
+                let metric = format!("{base}_m");
+                if t.contains_key(&metric) {
+                    return Err(format!("{at}give {metric} or {key}, not both"));
+                }
+                let m = length_value(&v, per, &format!("{at}{key}"))?;
+                t.remove(&key);
+                t.insert(metric, m);
+                changed = true;
+            }
+            (None, toml::Value::Table(mut sub)) => {
+                if lengths_in_table(&mut sub, &format!("{at}{key}."))? {
+                    t.insert(key, toml::Value::Table(sub));
+                    changed = true;
+                }
+            }
+            (None, toml::Value::Array(items))
+                if items.iter().all(|v| matches!(v, toml::Value::Table(_)))
+                    && !items.is_empty() =>
+            {
+                let mut out = Vec::with_capacity(items.len());
+                let mut any = false;
+                for (i, v) in items.into_iter().enumerate() {
+                    let toml::Value::Table(mut sub) = v else {
+                        continue;
+                    };
+                    any |= lengths_in_table(&mut sub, &format!("{at}{key} {}: ", i + 1))?;
+                    out.push(toml::Value::Table(sub));
+                }
+                if any {
+                    t.insert(key, toml::Value::Array(out));
+                    changed = true;
+                }
+            }
+            (None, v) if key.ends_with("_m") && has_text(&v) => {
+                let m = length_value(&v, 1.0, &format!("{at}{key}"))?;
+                t.insert(key, m);
+                changed = true;
+            }
+            _ => {}
+        }
+    }
+    Ok(changed)
+}
+
+fn has_text(v: &toml::Value) -> bool {
+    match v {
+        toml::Value::String(_) => true,
+        toml::Value::Array(a) => a.iter().any(has_text),
+        _ => false,
+    }
+}
+
+/// A length value (number, text with a unit, or an array of them) in
+/// metres; a bare number is in units of `per` metres.
+fn length_value(v: &toml::Value, per: f64, what: &str) -> Result<toml::Value, String> {
+    Ok(match v {
+        toml::Value::Integer(i) => toml::Value::Float(*i as f64 * per),
+        toml::Value::Float(f) => toml::Value::Float(f * per),
+        toml::Value::String(s) => {
+            toml::Value::Float(parse(s, per).map_err(|e| format!("{what}: {e}"))?.m)
+        }
+        toml::Value::Array(a) => toml::Value::Array(
+            a.iter()
+                .map(|x| length_value(x, per, what))
+                .collect::<Result<_, _>>()?,
+        ),
+        other => {
+            return Err(format!(
+                "{what} = {other}: give a length, a number or text with its unit (12, \"12ft\", \"144in\")"
+            ))
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,15 +260,18 @@ mod tests {
             metres("2.44 m").unwrap(),
             Length {
                 m: 2.44,
-                bare: false
+                bare: false,
+                us: false
             }
         );
         assert_eq!(metres("8'").unwrap().m, 2.4384);
+        assert!(metres("8ft").unwrap().us && metres("96in").unwrap().us);
         assert_eq!(
             metres("2.44").unwrap(),
             Length {
                 m: 2.44,
-                bare: true
+                bare: true,
+                us: false
             }
         );
         assert_eq!(metres("-1.5m").unwrap().m, -1.5);
@@ -141,6 +285,50 @@ mod tests {
         assert!(metres("8yd").unwrap_err().contains("unknown unit \"yd\""));
         assert!(metres("ft").unwrap_err().contains("not a length"));
         assert!(metres("").unwrap_err().contains("not a length"));
+    }
+
+    #[test]
+    fn lengths_read_as_a_crew_reads_them() {
+        assert_eq!(System::Metric.length(4.6), "4.60 m");
+        assert_eq!(System::Us.length(4.6), "15 ft 1 in");
+        assert_eq!(System::Us.length(12.0 * M_PER_FT), "12 ft");
+        assert_eq!(System::Us.length(0.3), "1 ft");
+        assert_eq!(System::Us.length(0.25), "10 in");
+        assert_eq!(System::Us.length(0.2), "8 in");
+    }
+
+    #[test]
+    fn marking_lengths_in_feet_become_metres() {
+        let t = marking_lengths_in_metres(
+            "[marking]\nlane_width_ft = 12\nletter_height_ft = 8\n[[item]]\nword = \"STOP\"\n\
+             at_ft = [0, \"6in\"]\n[[item]]\nsymbol = \"rxr\"\nat_m = [\"1ft\", 2.5]\n",
+        )
+        .unwrap()
+        .unwrap();
+        let m = t["marking"].as_table().unwrap();
+        assert_eq!(m["lane_width_m"].as_float(), Some(12.0 * M_PER_FT));
+        assert_eq!(m["letter_height_m"].as_float(), Some(8.0 * M_PER_FT));
+        assert!(!m.contains_key("lane_width_ft"));
+        let items = t["item"].as_array().unwrap();
+        let at = |i: usize| items[i].as_table().unwrap()["at_m"].clone();
+        assert_eq!(
+            at(0),
+            toml::Value::Array(vec![0.0.into(), (6.0 * M_PER_IN).into()])
+        );
+        assert_eq!(at(1), toml::Value::Array(vec![M_PER_FT.into(), 2.5.into()]));
+        // A metric file is left to its reader, untouched.
+        assert_eq!(
+            marking_lengths_in_metres("[marking]\nlines = [\"STOP\"]\nlane_width_m = 3.66\n"),
+            Ok(None)
+        );
+        let e = marking_lengths_in_metres("[marking]\nlane_width_m = 3\nlane_width_ft = 12\n")
+            .unwrap_err();
+        assert!(e.contains("lane_width_m or lane_width_ft, not both"), "{e}");
+        let e = marking_lengths_in_metres("[[item]]\nat_ft = [0, \"6yd\"]\n").unwrap_err();
+        assert!(
+            e.contains("item 1: at_ft") && e.contains("unknown unit"),
+            "{e}"
+        );
     }
 
     #[test]

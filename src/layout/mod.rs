@@ -261,8 +261,7 @@ impl Marking {
         if text.trim().is_empty() {
             return Err(err(format!("the file is empty: {SHAPE}")));
         }
-        let file: MarkingFileToml = toml::from_str(text).map_err(|e| {
-            let m = toml_message(text, &e);
+        let file: MarkingFileToml = parse_marking(text).map_err(|m| {
             err(if m.contains("missing field") {
                 format!("{m}: {SHAPE}")
             } else {
@@ -426,6 +425,19 @@ impl Marking {
 
 /// A toml error as `line L, column C: what` (toml's own text already names
 /// the line and column; keep it on one line).
+/// Read a marking file's TOML as `T`, its lengths in feet and inches or
+/// written with their unit (`lane_width_ft = 12`, `at_m = ["0ft", "16ft"]`)
+/// first turned into metres ([`crate::units::marking_lengths_in_metres`]).
+/// A metric file is read from its text, so its errors keep their line.
+pub(crate) fn parse_marking<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, String> {
+    match crate::units::marking_lengths_in_metres(text)? {
+        Some(t) => toml::Value::Table(t)
+            .try_into()
+            .map_err(|e: toml::de::Error| crate::io::one_line(e.message())),
+        None => toml::from_str(text).map_err(|e| toml_message(text, &e)),
+    }
+}
+
 fn toml_message(text: &str, e: &toml::de::Error) -> String {
     let what = crate::io::one_line(e.message());
     match e.span() {
