@@ -143,7 +143,7 @@ fn message_words(args: &[String]) -> (Vec<String>, Vec<String>) {
     let takes_value = |name: &str| -> Option<bool> {
         let a = compile?.get_arguments().find(|a| {
             name.strip_prefix("--")
-                .map_or(false, |l| a.get_long() == Some(l))
+                .is_some_and(|l| a.get_long() == Some(l))
                 || (name.len() == 2
                     && name.starts_with('-')
                     && a.get_short() == name.chars().nth(1))

@@ -182,6 +182,8 @@ fn lengths_in_table(t: &mut toml::Table, at: &str) -> Result<bool, String> {
                 t.insert(metric, m);
                 changed = true;
             }
+            // Not a guard: a guard cannot borrow the table mutably.
+            #[allow(clippy::collapsible_match)]
             (None, toml::Value::Table(mut sub)) => {
                 if lengths_in_table(&mut sub, &format!("{at}{key}."))? {
                     t.insert(key, toml::Value::Table(sub));

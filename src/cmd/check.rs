@@ -149,7 +149,7 @@ fn marking_problems(text: &str, origin: &str) -> Vec<String> {
 
 /// `check`'s line for a sound job whose verdict is NOT READY: the verdict,
 /// how many problems and the first, and what to do.
-fn not_ready_line(origin: &str, job: Option<&Box<basr::job::Job>>) -> String {
+fn not_ready_line(origin: &str, job: Option<&basr::job::Job>) -> String {
     let problems: Vec<&str> = job
         .map(|j| {
             j.summary
@@ -271,7 +271,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             // A sound file, but not a job to paint: the step before the
             // truck must not pass it.
             bad += 1;
-            note!("{}", not_ready_line(&origin, job));
+            note!("{}", not_ready_line(&origin, job.map(|j| &**j)));
         } else if found.is_empty() {
             if !global.quiet {
                 let signed = job

@@ -71,28 +71,29 @@ pub fn gun_intervals(job: &Job, range: std::ops::Range<usize>) -> Vec<(f64, f64)
 /// stencil is all it takes.
 pub fn derivatives(t: &[f64], q: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let n = q.len();
-    let mut v = vec![0.0; n];
     if n < 2 {
-        return (v, vec![0.0; n]);
+        return (vec![0.0; n], vec![0.0; n]);
     }
-    for i in 0..n {
-        let (a, b) = match i {
-            0 => (0, 1),
-            i if i == n - 1 => (n - 2, n - 1),
-            i => (i - 1, i + 1),
-        };
-        let dt = t[b] - t[a];
-        v[i] = if dt > 0.0 { (q[b] - q[a]) / dt } else { 0.0 };
-    }
-    let mut acc = vec![0.0; n];
-    for i in 0..n {
-        let (a, b) = match i {
-            0 => (0, 1),
-            i if i == n - 1 => (n - 2, n - 1),
-            i => (i - 1, i + 1),
-        };
-        let dt = t[b] - t[a];
-        acc[i] = if dt > 0.0 { (v[b] - v[a]) / dt } else { 0.0 };
-    }
+    // The neighbours a derivative at `i` is taken between.
+    let pair = |i: usize| match i {
+        0 => (0, 1),
+        i if i == n - 1 => (n - 2, n - 1),
+        i => (i - 1, i + 1),
+    };
+    let rate = |x: &[f64]| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let (a, b) = pair(i);
+                let dt = t[b] - t[a];
+                if dt > 0.0 {
+                    (x[b] - x[a]) / dt
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    };
+    let v = rate(q);
+    let acc = rate(&v);
     (v, acc)
 }

@@ -137,8 +137,8 @@ mod tests {
         for i in 1..19 {
             assert!((v[i] - (6.0 * t[i] + 1.0)).abs() < 1e-9, "{i}: {}", v[i]);
         }
-        for i in 2..18 {
-            assert!((a[i] - 6.0).abs() < 1e-9, "{i}: {}", a[i]);
+        for (i, a) in a.iter().enumerate().take(18).skip(2) {
+            assert!((a - 6.0).abs() < 1e-9, "{i}: {a}");
         }
     }
 }
