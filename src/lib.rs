@@ -41,5 +41,6 @@ pub use basr_shape as shape;
 pub use basr_shape::{chars, font, layout};
 pub use basr_sim as sim;
 
+pub mod export;
 pub mod pipeline;
 pub mod report;

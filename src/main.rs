@@ -85,6 +85,7 @@ enum Command {
     Check(cmd::check::Args),
     Keygen(cmd::keygen::Args),
     Design(cmd::design::Args),
+    Export(cmd::export::Args),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     #[command(after_help = "Examples:
   basr completions bash > ~/.local/share/bash-completion/completions/basr
@@ -97,7 +98,11 @@ enum Command {
 }
 
 /// Print clap's error (or help) as clap would, with a hint for the usual
-/// slip: `basr compile STOP AHEAD`, a message of several words unquoted.
+/// slips: `basr compile STOP AHEAD`, a message of several words unquoted,
+/// and `--letter-height 8 ft`, a number and its unit apart. A misspelt
+/// option's value is never taken for message text (`--lane-widht 12ft`
+/// must not become `compile "STOP 12ft"`, which paints 12FT): clap's own
+/// tip names the option meant.
 fn usage_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -105,20 +110,75 @@ fn usage_error(e: clap::Error) -> ExitCode {
     if e.kind() != ErrorKind::UnknownArgument || !compiling {
         e.exit();
     }
-    let words: Vec<&str> = args[1..]
-        .iter()
-        .map(String::as_str)
-        .filter(|a| !a.is_empty() && a.chars().all(|c| c.is_alphanumeric()))
-        .collect();
+    let (words, units) = message_words(&args[1..]);
     let text = e.render().to_string();
     note_text(&text);
-    if words.len() > 1 {
+    if !units.is_empty() {
+        for u in units {
+            note!("hint: write the number and its unit as one: {u}");
+        }
+    } else if words.len() > 1 {
         note!(
             "hint: a message of several words is one argument; quote it: basr compile \"{}\"",
             words.join(" ")
         );
     }
     ExitCode::from(2)
+}
+
+/// Unit words a length may be followed by when typed apart (`8 ft`).
+const UNIT_WORDS: [&str; 10] = [
+    "ft", "feet", "foot", "in", "inch", "inches", "m", "mm", "cm", "'",
+];
+
+/// From `compile`'s arguments: the words that stand where the message
+/// does (not an option, not an option's value, not a unit that follows
+/// one), and `OPTION VALUEunit` for each length typed apart from its unit.
+/// An unknown option is taken to have a value when the next argument is
+/// not an option: it is never message text.
+fn message_words(args: &[String]) -> (Vec<String>, Vec<String>) {
+    use clap::CommandFactory;
+    let cmd = Cli::command();
+    let compile = cmd.find_subcommand("compile");
+    let takes_value = |name: &str| -> Option<bool> {
+        let a = compile?.get_arguments().find(|a| {
+            name.strip_prefix("--")
+                .is_some_and(|l| a.get_long() == Some(l))
+                || (name.len() == 2
+                    && name.starts_with('-')
+                    && a.get_short() == name.chars().nth(1))
+        })?;
+        Some(a.get_action().takes_values())
+    };
+    let (mut words, mut units) = (vec![], vec![]);
+    let mut i = 0;
+    while i < args.len() {
+        let a = &args[i];
+        let next_is_value = args.get(i + 1).is_some_and(|n| !n.starts_with('-'));
+        if a.starts_with('-') && a.len() > 1 && !a.contains('=') {
+            match takes_value(a) {
+                Some(false) => i += 1,
+                Some(true) => {
+                    let unit = args.get(i + 2).filter(|u| {
+                        UNIT_WORDS.contains(&u.to_ascii_lowercase().as_str())
+                            && args[i + 1].parse::<f64>().is_ok()
+                    });
+                    if let Some(u) = unit {
+                        units.push(format!("{a} {}{u}", args[i + 1]));
+                        i += 1;
+                    }
+                    i += 2;
+                }
+                None => i += if next_is_value { 2 } else { 1 },
+            }
+            continue;
+        }
+        if !a.starts_with('-') && !a.is_empty() && a.chars().all(|c| c.is_alphanumeric()) {
+            words.push(a.clone());
+        }
+        i += 1;
+    }
+    (words, units)
 }
 
 fn main() -> ExitCode {
@@ -149,6 +209,7 @@ fn main() -> ExitCode {
         Command::Check(a) => cmd::check::run(a, &global),
         Command::Keygen(a) => cmd::keygen::run(a, &global),
         Command::Design(a) => cmd::design::run(a, &global),
+        Command::Export(a) => cmd::export::run(a, &global),
         Command::Completions { shell } => {
             use clap::CommandFactory;
             // Generated into memory: clap_complete panics on a failed write,

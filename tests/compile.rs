@@ -12,16 +12,34 @@ fn basr() -> Command {
     Command::cargo_bin("basr").expect("the basr binary is built")
 }
 
-/// Compile `args` in a fresh folder; returns the folder.
+/// Compile `args` in a fresh folder; returns the folder. A NOT READY job
+/// (`--tilt none`'s uneven film) exits 1 and is written all the same: exit
+/// 1 is accepted exactly when the job written holds a problem.
 fn compile_in(args: &[&str]) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
-    basr()
+    let out = basr()
         .current_dir(dir.path())
         .arg("compile")
         .args(args)
         .arg("--quiet")
-        .assert()
-        .success();
+        .output()
+        .unwrap();
+    let job = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.to_string_lossy().ends_with(".job.json"))
+        .unwrap_or_else(|| panic!("{args:?}: no job written"));
+    let problem = read_job(&job)
+        .summary
+        .warnings
+        .iter()
+        .any(|w| w.severity == Some(basr::job::Severity::Problem));
+    assert_eq!(
+        out.status.code(),
+        Some(if problem { 1 } else { 0 }),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     dir
 }
 

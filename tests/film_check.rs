@@ -76,7 +76,18 @@ fn assert_film_agrees(args: &[&str]) -> (Value, Value) {
     let dir = tempfile::tempdir().unwrap();
     let job = dir.path().join("j.job.json");
     let (code, c, stderr) = compile(args, &job);
-    assert_eq!(code, Some(0), "compile {args:?}: {stderr}");
+    // NOT READY is a negative verdict (exit 1), the job written all the same.
+    let problem = c["summary"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w["severity"] == "problem");
+    assert_eq!(
+        code,
+        Some(if problem { 1 } else { 0 }),
+        "compile {args:?}: {stderr}"
+    );
+    assert_eq!(c["verdict"] == "not ready", problem, "{args:?}");
     let film = &c["summary"]["film"];
     assert!(film.is_object(), "compile {args:?}: no summary.film");
     // The job file holds the same figures as --json prints.

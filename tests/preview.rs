@@ -222,7 +222,7 @@ fn cli_writes_an_svg_resvg_can_render_and_defaults_its_name() {
         .assert()
         .success()
         .stdout("");
-    let svg = std::fs::read_to_string(dir.path().join("BAR.svg")).unwrap();
+    let svg = std::fs::read_to_string(dir.path().join("BAR.preview.svg")).unwrap();
     assert!(svg.starts_with("<svg"));
     let pix = render(&svg);
     assert!(pix.width() > 500);

@@ -12,12 +12,17 @@ use serde_json::Value;
 
 fn compile(dir: &Path, message: &str, tilt: &str, out: &str) -> std::path::PathBuf {
     let path = dir.join(out);
-    Command::cargo_bin("basr")
+    let out = Command::cargo_bin("basr")
         .unwrap()
         .args(["compile", message, "--tilt", tilt, "--quiet", "-o"])
         .arg(&path)
-        .assert()
-        .success();
+        .output()
+        .unwrap();
+    assert!(
+        preview_common::compiled(&out, &path),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     path
 }
 
@@ -276,12 +281,15 @@ fn damaged_compiled_job_exits_2() {
 fn small_letters_fail_the_film_verdict() {
     let dir = tempfile::tempdir().unwrap();
     let job = dir.path().join("small.job.json");
-    Command::cargo_bin("basr")
+    let out = Command::cargo_bin("basr")
         .unwrap()
         .args(["compile", "STOP", "--letter-height", "0.5", "-q", "-o"])
         .arg(&job)
-        .assert()
-        .success();
+        .output()
+        .unwrap();
+    // Letters this small are NOT READY: exit 1, the job written.
+    assert_eq!(out.status.code(), Some(1));
+    assert!(preview_common::compiled(&out, &job));
     let run = |extra: &[&str]| {
         Command::cargo_bin("basr")
             .unwrap()

@@ -55,7 +55,10 @@ fn the_job_sheet_renders_in_a_browser() {
         String::from_utf8_lossy(&out.stderr)
     );
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("wrote STOP.html (job sheet: "), "{err}");
+    assert!(
+        err.contains("READY: wrote STOP.html (the job sheet"),
+        "{err}"
+    );
     let page = dir.path().join("STOP.html");
     let html = std::fs::read_to_string(&page).unwrap();
     // Self-contained: nothing to fetch, nothing to run.
@@ -108,7 +111,8 @@ fn the_job_sheet_renders_in_a_browser() {
         &bin,
         &profile,
         &[
-            "--window-size=1200,2400",
+            // The film picture is in the appendix, below the crew's part.
+            "--window-size=1200,4000",
             &format!("--screenshot={}", shot.display()),
         ],
         &page,

@@ -50,7 +50,12 @@ fn every_test_shape_imports_checks_and_compiles() {
         if let Some(h) = size {
             cmd.args(["--shape-height-m", h]);
         }
-        cmd.assert().success();
+        let out = cmd.output().expect("run");
+        assert!(
+            compiled(&out, &job),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         let text = std::fs::read_to_string(&job).expect("job");
         assert!(
             text.contains("\"kind\": \"shape\""),
@@ -254,15 +259,35 @@ fn scene_dir(items: &str) -> (tempfile::TempDir, PathBuf) {
     (dir, scene)
 }
 
+/// A compile that ran to its verdict and wrote `job`: exit 0, or exit 1
+/// exactly when the job is NOT READY (a problem among its warnings).
+fn compiled(out: &std::process::Output, job: &Path) -> bool {
+    let Ok(text) = std::fs::read_to_string(job) else {
+        return false;
+    };
+    let v: serde_json::Value = serde_json::from_str(&text).expect("json");
+    let problem = v["summary"]["warnings"]
+        .as_array()
+        .expect("warnings")
+        .iter()
+        .any(|w| w["severity"] == "problem");
+    out.status.code() == Some(if problem { 1 } else { 0 })
+}
+
 /// Compile a scene file to `job`; the job as JSON.
 fn compile_scene(scene: &Path, job: &Path) -> serde_json::Value {
-    basr()
+    let out = basr()
         .args(["compile", "--marking"])
         .arg(scene)
         .arg("-o")
         .arg(job)
-        .assert()
-        .success();
+        .output()
+        .expect("run");
+    assert!(
+        compiled(&out, job),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_str(&std::fs::read_to_string(job).expect("job")).expect("json")
 }
 

@@ -20,7 +20,7 @@ use super::{Global, Outcome};
 /// `--trust`, a job not signed by that key is a problem.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  basr check STOP.job.json STOP.csv     # a job and the CSV written with it\n  basr check --trust crew.key.pub STOP.job.json\n  basr check fonts/basr.toml markings/*.toml\n  basr robot --toml | basr check -\n\nExit codes: 0 all valid, 1 problems found (all listed), 2 a file could not be read\n(the others are still checked)."
+    after_help = "Examples:\n  basr check STOP.job.json STOP.csv     # a job and the CSV written with it\n  basr check --trust crew.key.pub STOP.job.json\n  basr check fonts/basr.toml markings/*.toml\n  basr robot --toml | basr check -\n\nA sound job's verdict is said beside it (READY, READY WITH NOTES, NOT READY);\na NOT READY job is a problem (exit 1): it is not to be loaded on the truck.\n`--validate-only` checks the files alone.\n\nExit codes: 0 all valid, 1 problems found (all listed) or a job NOT READY, 2 a\nfile could not be read (the others are still checked)."
 )]
 pub struct Args {
     /// Files to check (`-` for standard input).
@@ -29,6 +29,11 @@ pub struct Args {
 
     #[command(flatten)]
     pub trust: basr::job::trust::TrustOptions,
+
+    /// Only validate the files: a sound job whose verdict is NOT READY is
+    /// then `ok` (exit 0) instead of a problem (exit 1).
+    #[arg(long)]
+    pub validate_only: bool,
 }
 
 /// What kind of basr file a text is.
@@ -168,6 +173,31 @@ fn marking_problems(text: &str, origin: &str) -> Vec<String> {
     basr::layout::check_marking_source_with(text, origin, &shapes)
 }
 
+/// `check`'s line for a sound job whose verdict is NOT READY: the verdict,
+/// how many problems and the first, and what to do.
+fn not_ready_line(origin: &str, job: Option<&basr::job::Job>) -> String {
+    let problems: Vec<&str> = job
+        .map(|j| {
+            j.summary
+                .warnings
+                .iter()
+                .filter(|w| w.severity == Some(basr::job::Severity::Problem))
+                .map(|w| w.message.as_str())
+                .collect()
+        })
+        .unwrap_or_default();
+    format!(
+        "{origin}: verdict NOT READY ({} problem{}): do not load it on the truck; \
+         `basr report {origin}` says what to change (--validate-only checks the file alone){}",
+        problems.len(),
+        if problems.len() == 1 { "" } else { "s" },
+        problems
+            .first()
+            .map(|p| format!("\n  first problem: {p}"))
+            .unwrap_or_default()
+    )
+}
+
 /// Problems in one file's text (empty when valid).
 fn text_problems(text: &str, origin: &str) -> Vec<String> {
     if text.trim().is_empty() {
@@ -270,13 +300,29 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         }
     }
     for (origin, found) in report {
-        if found.is_empty() {
+        let job = jobs.iter().find(|(o, _)| *o == origin).map(|(_, j)| j);
+        let verdict = job.map(|j| super::compile::verdict_of(j));
+        if found.is_empty() && verdict == Some("not ready") && !args.validate_only {
+            // A sound file, but not a job to paint: the step before the
+            // truck must not pass it.
+            bad += 1;
+            note!("{}", not_ready_line(&origin, job.map(|j| &**j)));
+        } else if found.is_empty() {
             if !global.quiet {
                 let signed = match seals.iter().find(|(o, _)| *o == origin) {
                     Some((_, Seal::Unsigned)) | None => String::new(),
-                    Some((_, seal)) => format!(" ({})", seal.describe()),
+                    Some((_, seal)) => format!(", {}", seal.describe()),
                 };
-                note!("{origin}: ok{signed}");
+                let verdict = verdict
+                    .map(|v| format!(" (verdict {}{signed})", v.to_uppercase()))
+                    .unwrap_or_else(|| {
+                        if signed.is_empty() {
+                            String::new()
+                        } else {
+                            format!(" ({})", &signed[2..])
+                        }
+                    });
+                note!("{origin}: ok{verdict}");
             }
         } else {
             bad += 1;

@@ -43,7 +43,11 @@ Examples:
   basr compile --symbol arrow-left                # writes arrow-left.job.json
   basr compile --marking markings/stop_line.toml  # a scene: stop line and STOP
   basr compile --shape logo.svg --shape-height-m 2 -o logo.job.json
-  basr compile STOP --sign crew.key --csv stop.csv # signed; stop.csv bound to it")]
+  basr compile STOP --sign crew.key --csv stop.csv # signed; stop.csv bound to it
+
+Exit codes: 0 the job is READY or READY WITH NOTES; 1 it is NOT READY (the
+job is still written, so `basr report` can say why; do not paint it);
+2 bad input or usage (nothing is written).")]
 pub struct Args {
     /// The message: letters A–Z (lower case is read as upper case), digits
     /// and spaces; each word is painted as one line.
@@ -133,10 +137,21 @@ pub struct Args {
         default_value_t = 0.0
     )]
     pub gun_lag_s: f64,
+    /// Replace the default job file (<MESSAGE>.job.json) even when it holds
+    /// a job compiled from something else (`--symbol rxr`, then `--marking
+    /// markings/rxr.toml`, both rxr.job.json); without it such a compile
+    /// stops (exit 2) and names the file.
+    #[arg(long)]
+    pub force: bool,
     /// Sign the job with this secret key (written by `basr keygen -o NAME`),
     /// so readers under `--trust NAME.pub` accept it.
     #[arg(long, value_name = "NAME")]
     pub sign: Option<PathBuf>,
+    /// Units for the truck's stops in the summary: metric (4.60 m) or us
+    /// (feet and inches, 15 ft 1 in) [default: us when the marking file or
+    /// --letter-height/--lane-width are in feet or inches, else metric].
+    #[arg(long, value_enum, value_name = "UNITS")]
+    pub units: Option<super::UnitsArg>,
     /// Print the summary as JSON on stdout (every warning, with its
     /// severity).
     #[arg(long)]
@@ -169,6 +184,152 @@ fn stem_of(text: &str) -> String {
             }
         })
         .collect()
+}
+
+/// The default job name's stem: a shape's job is named after its file, a
+/// symbol's after the symbol, a scene's after its file, a message's after
+/// the `message` it paints.
+fn default_stem(args: &Args, scene_file: bool, message: &str) -> String {
+    match (&args.shape, &args.symbol, &args.marking) {
+        (Some(p), _, _) => p
+            .file_stem()
+            .map(|s| stem_of(&s.to_string_lossy()))
+            .unwrap_or_else(|| "shape".into()),
+        (None, Some(name), _) => stem_of(&library_name(Some(name))),
+        (None, None, Some(path)) if scene_file => path
+            .file_stem()
+            .map_or_else(|| stem_of(message), |s| stem_of(&s.to_string_lossy())),
+        _ => stem_of(message),
+    }
+}
+
+/// The job's `message` as the compile will write it, worked out from the
+/// arguments alone (cheap: no planning), so a default name that holds a
+/// job of something else is refused before minutes of work. `None` when
+/// the input is bad: the compile reports that.
+fn predicted_message(args: &Args) -> Option<(String, bool)> {
+    use basr::layout::{Marking, Scene};
+    let o = Overrides::default();
+    if let Some(name) = &args.symbol {
+        return Some((
+            basr::pipeline::shapes::message_of(&library_name(Some(name))),
+            false,
+        ));
+    }
+    if let Some(p) = &args.shape {
+        let label = p.file_stem()?.to_string_lossy().to_string();
+        return Some((basr::pipeline::shapes::message_of(&label), false));
+    }
+    if let Some(m) = &args.message {
+        return Some((
+            Marking::from_message(m.to_str()?, &o).ok()?.message(),
+            false,
+        ));
+    }
+    let path = args.marking.as_deref()?;
+    let text = std::fs::read_to_string(path).ok()?;
+    let origin = path.display().to_string();
+    if basr::layout::is_scene(&text) {
+        Some((Scene::from_toml(&text, &origin, &o).ok()?.message(), true))
+    } else {
+        Some((
+            Marking::from_toml(&text, &origin, &o).ok()?.message(),
+            false,
+        ))
+    }
+}
+
+/// A `--symbol` name as the library spells it (names are matched without
+/// regard to case); an unknown name as given, for the layout's error that
+/// lists the nearest.
+fn library_name(name: Option<&str>) -> String {
+    let name = name.unwrap_or_default();
+    basr::font::Library::embedded()
+        .get(name)
+        .map_or_else(|| name.to_string(), |s| s.name.clone())
+}
+
+/// Messages that are a symbol's name or the words it stands for: painting
+/// them as letters is seldom what is meant (`basr compile RXR` paints the
+/// letters R, X, R; the crossing symbol is `--symbol rxr`).
+const SYMBOL_WORDS: [(&str, &str); 5] = [
+    ("RXR", "rxr"),
+    ("RRXING", "rxr"),
+    ("RXING", "rxr"),
+    ("RAILROADXING", "rxr"),
+    ("RAILROADCROSSING", "rxr"),
+];
+
+/// A hint when the message (spaces and hyphens aside, case ignored) is a
+/// symbol's name or one of [`SYMBOL_WORDS`]: the symbol and how to paint it.
+fn symbol_hint(message: &str) -> Option<String> {
+    let key: String = message
+        .chars()
+        .filter(|c| !c.is_whitespace() && *c != '-' && *c != '_')
+        .collect::<String>()
+        .to_ascii_uppercase();
+    let lib = basr::font::Library::embedded();
+    let name = SYMBOL_WORDS
+        .iter()
+        .find(|(w, _)| *w == key)
+        .map(|(_, n)| n.to_string())
+        .or_else(|| {
+            lib.symbols()
+                .find(|s| s.name.replace('-', "").eq_ignore_ascii_case(&key))
+                .map(|s| s.name.clone())
+        })?;
+    let sym = lib.get(&name)?;
+    Some(format!(
+        "{:?} names a symbol: `{}` ({}) is painted with `basr compile --symbol {}`; a \
+         message is painted as letters",
+        message.trim(),
+        sym.name,
+        sym.description,
+        sym.name
+    ))
+}
+
+/// Refuse a default job name that holds a job of something else (another
+/// message, symbol, scene or shape): compiling `--symbol rxr` and then
+/// `--marking markings/rxr.toml` must not silently replace the first job.
+/// The same message compiled again (other options) replaces its own job.
+/// A file there that is not a basr job is refused too: it is the user's.
+fn refuse_replacing_another(
+    out: &Path,
+    message: &str,
+    stem: &str,
+    args: &Args,
+) -> anyhow::Result<()> {
+    let Ok(bytes) = std::fs::read(out) else {
+        return Ok(());
+    };
+    let kind = match (&args.marking, &args.symbol, &args.shape) {
+        (Some(_), _, _) => "scene",
+        (_, Some(_), _) => "symbol",
+        (_, _, Some(_)) => "shape",
+        _ => "text",
+    };
+    let fix = format!(
+        "give -o {stem}-{kind}.job.json for this one, or --force to replace {}",
+        out.display()
+    );
+    let held = serde_json::from_slice::<serde_json::Value>(&bytes)
+        .ok()
+        .and_then(|v| v.get("message")?.as_str().map(str::to_string));
+    match held {
+        Some(m) if m == message => Ok(()),
+        Some(m) => anyhow::bail!(
+            "{} holds the job of {:?}, compiled from something else; this compile is of \
+             {:?} and would replace it: {fix}",
+            out.display(),
+            m.replace('\n', " / "),
+            message.replace('\n', " / ")
+        ),
+        None => anyhow::bail!(
+            "{} exists and is not a job basr wrote; this compile would replace it: {fix}",
+            out.display()
+        ),
+    }
 }
 
 /// Usual ranges, m, for the feet hint: letters of 1–12 ft (MUTCD §3B.20
@@ -227,6 +388,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(p) = &args.adept {
         super::outputs::check("--adept", p, &[])?;
     }
+    if args.output.is_none() && !args.force {
+        if let Some((message, scene_file)) = predicted_message(&args) {
+            let stem = default_stem(&args, scene_file, &message);
+            let out = PathBuf::from(format!("{stem}.job.json"));
+            refuse_replacing_another(&out, &message, &stem, &args)?;
+        }
+    }
     // Non-finite and non-positive values are reported by the planner.
     let too_fine = |v: f64, min: f64| v.is_finite() && v > 0.0 && v < min;
     anyhow::ensure!(
@@ -243,7 +411,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     );
     let mut shape = None;
     let source = match (&args.message, &args.marking) {
-        _ if args.symbol.is_some() => Source::Symbol(args.symbol.clone().unwrap_or_default()),
+        _ if args.symbol.is_some() => Source::Symbol(library_name(args.symbol.as_deref())),
         (None, None) if args.shape.is_some() => {
             let path = args.shape.as_deref().unwrap_or(Path::new(""));
             let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
@@ -310,7 +478,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for p in [&args.output, &args.csv, &args.adept].into_iter().flatten() {
         basr::io::check_writable(p)?;
     }
-    let hints = feet_hints(&args);
+    let mut hints = feet_hints(&args);
+    if let Source::Message(m) = &req.source {
+        hints.extend(symbol_hint(m));
+    }
     let scene_file =
         matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
     let compiled = match (&shape, &args.shape) {
@@ -337,25 +508,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             note!("hint: {h}");
         }
     }
-    // A shape's job is named after its file, a symbol's after the symbol,
-    // a scene's after its file.
-    let stem = match (&args.shape, &args.symbol, &args.marking) {
-        (Some(p), _, _) => p
-            .file_stem()
-            .map(|s| stem_of(&s.to_string_lossy()))
-            .unwrap_or_else(|| "shape".into()),
-        (None, Some(name), _) => stem_of(name),
-        (None, None, Some(path)) if scene_file => path
-            .file_stem()
-            .map_or_else(|| stem_of(&job.message), |s| stem_of(&s.to_string_lossy())),
-        _ => stem_of(&job.message),
-    };
+    let stem = default_stem(&args, scene_file, &job.message);
     let out = args
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{stem}.job.json")));
     super::outputs::check("the job", &out, &["json"])?;
     refuse_clashing_paths(&args, &out)?;
+    if args.output.is_none() && !args.force {
+        refuse_replacing_another(&out, &job.message, &stem, &args)?;
+    }
     basr::io::check_writable(&out)?;
     // main renames all three into place together when the run succeeds, and
     // drops them all when any fails or the run is interrupted; the job,
@@ -377,6 +539,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // WriteError names the path and the OS reason.
     job.write(&out)?;
     let s = &job.summary;
+    let verdict = verdict_of(&job);
     if args.json {
         let v = serde_json::json!({
             "job": out.display().to_string(),
@@ -386,6 +549,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "stations": job.stations,
             "samples": job.samples.len(),
             "control_period_s": job.control_period_s,
+            "verdict": verdict,
             "summary": s,
             "sha256": job.sha256,
             "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
@@ -396,7 +560,22 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         // Printed once every output is in place.
         super::outputs::after_commit(summary_text(&job, &out, &args).join("\n"));
     }
-    Ok(Outcome::Success)
+    // NOT READY is a negative verdict (exit 1): a script that compiles and
+    // loads must not take it for a job to paint. The job is written all
+    // the same, for `basr report` to say why.
+    Ok(if verdict == "not ready" {
+        Outcome::Negative
+    } else {
+        Outcome::Success
+    })
+}
+
+/// The job's verdict as its sheet and `basr check` say it: `ready`,
+/// `ready with notes` or `not ready`.
+pub fn verdict_of(job: &basr::job::Job) -> &'static str {
+    let severities: Vec<basr::job::Severity> =
+        job.summary.warnings.iter().map(Warning::graded).collect();
+    basr::report::overall(&severities, false)
 }
 
 /// Lines compile prints at most without --verbose (issue 15: a crew reads
@@ -466,6 +645,42 @@ fn grouped<'w>(warnings: &[&'w Warning]) -> Vec<Vec<&'w Warning>> {
     groups
 }
 
+/// The units the summary speaks: `--units`, else those the user wrote
+/// lengths in (a marking file in feet or inches, `--lane-width 12ft`).
+fn units_of(args: &Args) -> basr::units::System {
+    use basr::units::System;
+    if let Some(u) = args.units {
+        return u.into();
+    }
+    let in_feet = |l: Option<Length>| l.is_some_and(|l| l.us);
+    let marking_in_feet = args
+        .marking
+        .as_deref()
+        .and_then(|p| std::fs::read_to_string(p).ok())
+        .is_some_and(|t| t.lines().any(us_length_line));
+    if marking_in_feet || in_feet(args.letter_height) || in_feet(args.lane_width) {
+        System::Us
+    } else {
+        System::Metric
+    }
+}
+
+/// Whether a marking file's line gives a position or width in feet or
+/// inches (`lane_width_ft = 12`, `at_m = ["0ft", "16ft"]`); letter heights
+/// in feet are how MUTCD states them, so `letter_height_ft` alone is not.
+fn us_length_line(line: &str) -> bool {
+    let Some((key, value)) = line.split_once('=') else {
+        return false;
+    };
+    let key = key.trim();
+    let us_key = (key.ends_with("_ft") || key.ends_with("_in")) && key != "letter_height_ft";
+    let value = value.split('#').next().unwrap_or("");
+    us_key
+        || ["ft\"", "in\"", "feet\"", "inches\""]
+            .iter()
+            .any(|u| value.contains(u))
+}
+
 /// Compile's human text: what, where the truck stops, time on site, paint,
 /// the verdict and the problems; `verbose` adds every warning.
 fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
@@ -482,18 +697,19 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         job.samples.len()
     )];
     let anchor = basr::report::anchor_words(job);
+    let units = units_of(args);
     if stops <= MAX_STOP_LINES {
         for (k, st) in job.stations.iter().enumerate() {
             lines.push(format!(
                 "  stop {}: arm axis {}",
                 k + 1,
-                basr::report::place_words(st, &anchor)
+                basr::report::place_words_in(st, &anchor, units)
             ));
         }
     } else {
         lines.push(format!(
             "  stops 1–{stops}: the first with the arm axis {}; `basr report` lists them all",
-            basr::report::place_words(&job.stations[0], &anchor)
+            basr::report::place_words_in(&job.stations[0], &anchor, units)
         ));
     }
     let written: Vec<String> = [("setpoints", &args.csv), ("Adept V+ program", &args.adept)]

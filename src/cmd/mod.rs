@@ -4,6 +4,7 @@
 pub mod check;
 pub mod compile;
 pub mod design;
+pub mod export;
 pub mod glyphs;
 pub mod import;
 pub mod keygen;
@@ -24,6 +25,24 @@ use std::path::Path;
 pub struct Global {
     /// `--quiet`: no human text on stderr except errors.
     pub quiet: bool,
+}
+
+/// `--units`: the crew's units for truck positions and sizes.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum UnitsArg {
+    /// Metres (4.60 m).
+    Metric,
+    /// Feet and inches, to the inch (15 ft 1 in).
+    Us,
+}
+
+impl From<UnitsArg> for basr::units::System {
+    fn from(u: UnitsArg) -> Self {
+        match u {
+            UnitsArg::Metric => basr::units::System::Metric,
+            UnitsArg::Us => basr::units::System::Us,
+        }
+    }
 }
 
 /// How a command that ran to the end turned out.

@@ -65,6 +65,9 @@ fn describe(ext: &str) -> &'static str {
         "csv" => "a CSV table",
         "html" | "htm" => "an HTML page",
         "toml" => "a TOML file",
+        "yaml" | "yml" => "a YAML document",
+        "mcap" => "an MCAP recording",
+        "script" | "urscript" => "a URScript program",
         _ => "a file of another kind",
     }
 }

@@ -20,12 +20,14 @@ use super::{Global, Outcome};
 /// tilt) lays flow × transfer efficiency on a road-frame raster; the film is
 /// measured against the letters' true outlines. Writes an SVG (film map in
 /// µm with colour bar, outlines, nozzle path, stations, metrics, per-glyph
-/// table); without -o it is the job's name with `.svg` (STOP.job.json →
-/// STOP.svg) in the current folder.
+/// table); without -o it is the job's name with `.preview.svg`
+/// (STOP.job.json → STOP.preview.svg) in the current folder, a name no
+/// input of yours carries (`compile --shape logo.svg` then `preview
+/// logo.job.json` keeps logo.svg).
 #[derive(clap::Args)]
 #[command(after_help = "\
 Examples:
-  basr preview STOP.job.json                   # writes STOP.svg here
+  basr preview STOP.job.json                   # writes STOP.preview.svg here
   basr preview STOP.job.json -o stop.svg --json
   basr preview STOP.job.json --resolution-mm 2 --profile beta:2,2
   basr preview STOP.job.json --compare none,trapezoid,quadrilateral
@@ -48,7 +50,7 @@ pub struct Args {
     #[command(flatten)]
     pub trust: basr::job::trust::TrustOptions,
 
-    /// SVG to write (default: the job's name with .svg, in the current folder).
+    /// SVG to write [default: the job's name with .preview.svg, in the current folder].
     #[arg(short, long, value_name = "SVG")]
     pub output: Option<PathBuf>,
 
@@ -125,9 +127,11 @@ const MIN_RESOLUTION_MM: f64 = 1.0;
 /// the metrics were empty.
 const MAX_RESOLUTION_MM: f64 = 20.0;
 
-/// `STOP.job.json` → `STOP.svg` in the current folder.
+/// `STOP.job.json` → `STOP.preview.svg` in the current folder: the
+/// command in the name, so the default never lands on a user's own SVG
+/// (a shape's job `logo.job.json` would otherwise write over `logo.svg`).
 fn default_output(job: &Path) -> PathBuf {
-    super::named_after_job(job, "svg")
+    super::named_after_job(job, "preview.svg")
 }
 
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
@@ -564,12 +568,15 @@ mod tests {
     fn default_output_drops_job_suffixes() {
         assert_eq!(
             default_output(Path::new("a/STOP.job.json")),
-            PathBuf::from("STOP.svg")
+            PathBuf::from("STOP.preview.svg")
         );
-        assert_eq!(default_output(Path::new("x.json")), PathBuf::from("x.svg"));
+        assert_eq!(
+            default_output(Path::new("x.json")),
+            PathBuf::from("x.preview.svg")
+        );
         assert_eq!(
             default_output(Path::new("plain")),
-            PathBuf::from("plain.svg")
+            PathBuf::from("plain.preview.svg")
         );
     }
 }

@@ -27,8 +27,9 @@ Examples:
   basr simulate STOP.job.json --json > sim.json
   basr report STOP.job.json -o STOP.html --sim sim.json          # no second simulation
 
-Exit 0 when the page is written (its verdict is on the page), 2 for bad
-input. docs/report.md describes the page and the tally file.")]
+Exit 0 when the page is written and the job is READY or READY WITH NOTES,
+1 when it is NOT READY (the page is written and says why), 2 for bad input.
+docs/report.md describes the page and the tally file.")]
 pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
@@ -36,7 +37,8 @@ pub struct Args {
     #[command(flatten)]
     pub trust: basr::job::trust::TrustOptions,
 
-    /// The page to write (.html) [default: the job's name with .html, here].
+    /// The page to write (.html) [default: the job's name with .sheet.html,
+    /// here: STOP.job.json → STOP.sheet.html].
     #[arg(short, long, value_name = "FILE.html")]
     pub output: Option<PathBuf>,
 
@@ -48,6 +50,11 @@ pub struct Args {
     /// Leave the simulator out (the page says it was not simulated).
     #[arg(long)]
     pub no_sim: bool,
+
+    /// Units for the truck's stops and the sizes on the page: metric
+    /// (4.60 m) or us (feet and inches, 15 ft 1 in).
+    #[arg(long, value_enum, default_value = "metric")]
+    pub units: super::UnitsArg,
 
     /// The crew's tally of paint through the current spray tip (TOML; made
     /// when missing). This job's paint is added once; start a new file for
@@ -119,7 +126,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let out = args
         .output
         .clone()
-        .unwrap_or_else(|| super::named_after_job(&args.job, "html"));
+        .unwrap_or_else(|| super::named_after_job(&args.job, "sheet.html"));
     let mut outputs: Vec<(&str, &Path)> = vec![("the page (-o)", &out)];
     if let Some(t) = &args.tip_tally {
         outputs.push(("the tip tally (--tip-tally)", t));
@@ -188,6 +195,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         sim: sim.as_ref(),
         tip_used_before_m3: tally.as_ref().map(|t| t.used_m3_without(&job.sha256)),
         signature: &seal.describe(),
+        units: args.units.into(),
     });
     basr::io::write_atomic(&out, report::html::render(&sheet).as_bytes())?;
     if let (Some(p), Some(t)) = (&args.tip_tally, tally) {
@@ -199,10 +207,22 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             t.used_m3_without("") * 1e3
         ));
     }
+    // The verdict first: it is what the reader acts on.
     super::outputs::after_commit(format!(
-        "wrote {} (job sheet: {})",
+        "{}: wrote {} (the job sheet{})",
+        sheet.overall.to_uppercase(),
         out.display(),
-        sheet.overall.to_uppercase()
+        if sheet.overall == "not ready" {
+            "; it says why: do not paint this job"
+        } else {
+            ""
+        }
     ));
-    Ok(Outcome::Success)
+    // NOT READY is a negative verdict (exit 1), as compile's; the page is
+    // written all the same.
+    Ok(if sheet.overall == "not ready" {
+        Outcome::Negative
+    } else {
+        Outcome::Success
+    })
 }

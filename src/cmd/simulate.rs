@@ -78,6 +78,12 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub svg: Option<PathBuf>,
 
+    /// Write the simulation as MCAP (JSON channels with JSON schemas:
+    /// nozzle desired/actual in the road frame, joints, error) for
+    /// Foxglove or Rerun (docs/exports.md).
+    #[arg(long, value_name = "FILE.mcap")]
+    pub mcap: Option<PathBuf>,
+
     /// Print the report as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -170,6 +176,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(p) = &args.svg {
         outputs.push(("--svg", p));
     }
+    if let Some(p) = &args.mcap {
+        outputs.push(("--mcap", p));
+    }
     let mut inputs: Vec<(&str, &std::path::Path)> = vec![("the job", &args.job)];
     if let Some(p) = &args.robot {
         inputs.push(("the robot file (--robot)", p));
@@ -180,6 +189,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     if let Some(p) = &args.svg {
         super::outputs::check("--svg", p, &["svg"])?;
+    }
+    if let Some(p) = &args.mcap {
+        super::outputs::check("--mcap", p, &["mcap"])?;
     }
     for (_, p) in &outputs {
         basr::io::check_writable(p)?;
@@ -211,7 +223,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let opts = sim::Options {
         controller: args.controller.into(),
         tolerance_m: args.tolerance_mm * 1e-3,
-        keep_trace: args.trace.is_some() || args.svg.is_some(),
+        keep_trace: args.trace.is_some() || args.svg.is_some() || args.mcap.is_some(),
         substeps: args.substeps,
     };
     let show = !global.quiet && !args.json && std::io::stderr().is_terminal();
@@ -279,7 +291,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if let Some(p) = &args.svg {
         basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
     }
-    for p in args.trace.iter().chain(&args.svg) {
+    if let Some(p) = &args.mcap {
+        let bytes = basr::export::mcap_trace::trace(&outcome.trace, &job.message)
+            .map_err(anyhow::Error::msg)?;
+        basr::io::write_atomic(p, &bytes)?;
+    }
+    for p in args.trace.iter().chain(&args.svg).chain(&args.mcap) {
         super::outputs::after_commit(format!("wrote {}", p.display()));
     }
     say(&args, global, report, &report.human(), report.passed())
@@ -313,6 +330,7 @@ fn run_servo(args: &Args, global: &Global, job: &basr::job::Job) -> anyhow::Resu
     for (given, flag) in [
         (args.trace.is_some(), "--trace"),
         (args.svg.is_some(), "--svg"),
+        (args.mcap.is_some(), "--mcap"),
         (args.plants > 1, "--plants"),
         (args.substeps.is_some(), "--substeps"),
         (!args.fault.is_empty(), "--fault"),

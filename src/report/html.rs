@@ -40,8 +40,17 @@ ol.stops li { margin-bottom: 0.5em; }
 figure { margin: 0.5em 0; }
 figure svg { max-width: 100%; height: auto; border: 1px solid #ccc; }
 section { break-inside: avoid; }
+#first { font-weight: bold; margin: 0.4em 0; }
+ol.groups li { margin-bottom: 0.4em; }
+#appendix { font-size: 0.85em; }
+#appendix section { break-inside: auto; }
+h2.appendix { border-bottom: 3px double #1a1a1a; }
+
 .sign td { height: 2.2em; min-width: 14em; }
-@media print { body { margin: 0; max-width: none; } a { color: inherit; } }
+@media print { body { margin: 0; max-width: none; font-size: 10pt; line-height: 1.25; }
+                a { color: inherit; } h2 { margin-top: 0.8em; }
+                #appendix { break-before: page; }
+                #appendix figure svg { max-height: 9.5cm; width: auto; } }
 ";
 
 fn minutes(s: f64) -> String {
@@ -189,7 +198,7 @@ fn film(out: &mut String, s: &Sheet) {
 }
 
 fn warnings(out: &mut String, s: &Sheet) {
-    out.push_str("<section id=\"warnings\"><h2>Warnings</h2>\n");
+    out.push_str("<section id=\"warnings\"><h2>Warnings, every one</h2>\n");
     if s.notes.is_empty() {
         out.push_str("<p>None.</p>");
     }
@@ -219,7 +228,37 @@ fn warnings(out: &mut String, s: &Sheet) {
     out.push_str("</section>\n");
 }
 
-/// The page.
+/// Problems and notices, one line per kind, problems first and the most
+/// frequent first; every single warning is in the appendix.
+fn grouped(out: &mut String, s: &Sheet) {
+    out.push_str("<section id=\"groups\"><h2>Warnings: fix these first, expect these</h2>\n");
+    if s.groups.is_empty() {
+        out.push_str("<p>No problem and no notice.</p></section>\n");
+        return;
+    }
+    out.push_str("<ol class=\"groups\">\n");
+    for g in &s.groups {
+        let word = if g.severity == "problem" {
+            "Problem (fix before painting)"
+        } else {
+            "Notice (comes out slightly off)"
+        };
+        let _ = writeln!(
+            out,
+            "<li class=\"{}\"><strong>{word}: {} ×{}</strong>. {}</li>",
+            g.severity,
+            escape(&g.what),
+            g.count,
+            escape(&g.example)
+        );
+    }
+    out.push_str("</ol></section>\n");
+}
+
+/// The page: what the crew reads in a minute first (the word and the one
+/// thing to do, what to paint, where to stop, what to load, the warnings
+/// grouped), then the engineer's appendix (film figures and picture, every
+/// warning, the job's identity).
 pub fn render(s: &Sheet) -> String {
     let mut out = String::new();
     let _ = write!(
@@ -227,10 +266,11 @@ pub fn render(s: &Sheet) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <title>basr job sheet: {t}</title><style>{STYLE}</style></head><body>\n\
          <header><h1>Job sheet: {t}</h1>\n<p class=\"overall {cls}\" id=\"overall\">{word}</p>\n\
-         </header>\n",
+         <p id=\"first\" class=\"{cls}\">{first}</p>\n</header>\n",
         t = escape(&s.title),
         cls = s.overall.replace(' ', "-"),
         word = s.overall.to_uppercase(),
+        first = escape(&s.first),
     );
     summary(&mut out, s);
     out.push_str("<section id=\"items\"><h2>What to paint</h2><ul>\n");
@@ -239,17 +279,25 @@ pub fn render(s: &Sheet) -> String {
     }
     out.push_str("</ul></section>\n");
     stops(&mut out, s);
-    film(&mut out, s);
-    warnings(&mut out, s);
+    out.push_str("<section id=\"truck\"><h2>Load this on the truck</h2><ol>\n");
+    for t in &s.truck {
+        let _ = writeln!(out, "<li>{}</li>", escape(t));
+    }
+    out.push_str("</ol></section>\n");
+    grouped(&mut out, s);
     out.push_str("<section id=\"job\"><h2>The job</h2><table>\n");
     for (k, v) in &s.facts {
         row(&mut out, k, &escape(v));
     }
+    out.push_str("</table>\n</section>\n");
     out.push_str(
-        "</table>\n<table class=\"sign\"><tr><th>checked by</th><td></td><th>date</th><td></td>\
-         </tr><tr><th>painted by</th><td></td><th>date</th><td></td></tr></table>\n\
-         </section>\n</body></html>\n",
+        "<table class=\"sign\"><tr><th>checked by</th><td></td><th>date</th><td></td>\
+         </tr><tr><th>painted by</th><td></td><th>date</th><td></td></tr></table>\n",
     );
+    out.push_str("<div id=\"appendix\"><h2 class=\"appendix\">Appendix for the engineer</h2>\n");
+    film(&mut out, s);
+    warnings(&mut out, s);
+    out.push_str("</div>\n</body></html>\n");
     out
 }
 

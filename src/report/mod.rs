@@ -7,9 +7,10 @@
 pub mod html;
 pub mod tally;
 
-use crate::job::{Job, Severity, Station};
+use crate::job::{Job, Severity, Station, WarningKind};
 use crate::paint::metrics::Metrics;
 use crate::paint::verdict::Verdict;
+use crate::units::System;
 
 /// Time a truck move between two stations takes: pull forward a few
 /// metres, stop, let the arm settle. // assumed: 1 min; the job does not
@@ -70,6 +71,8 @@ pub struct Input<'a> {
     /// Whether the job is signed, by which key and whether that was
     /// verified (`basr::job::trust::Seal::describe`).
     pub signature: &'a str,
+    /// The crew's units for truck positions and sizes.
+    pub units: System,
 }
 
 /// One truck stop in words.
@@ -126,6 +129,106 @@ pub struct Sheet {
     pub notes: Vec<Note>,
     /// `ready`, `ready with notes` or `not ready`.
     pub overall: &'static str,
+    /// "Load this on the truck": which file goes to the controller, how to
+    /// check it there, how each stop starts (docs/truck.md).
+    pub truck: Vec<String>,
+    /// The one thing to do first, under the verdict.
+    pub first: String,
+    /// Problems and notices grouped by kind, most frequent first: (severity,
+    /// how many, what, the first one's text).
+    pub groups: Vec<Group>,
+}
+
+/// Warnings of one kind and severity, as one line of the sheet.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    pub severity: &'static str,
+    pub count: usize,
+    /// What they are, in a few words (`paint outside a letter`).
+    pub what: String,
+    /// The first (worst) one's full text.
+    pub example: String,
+}
+
+/// A warning kind in a few words for the crew.
+fn kind_words(kind: WarningKind) -> String {
+    match kind {
+        WarningKind::HeightClamped => {
+            "paint outside a stroke (the stroke is narrower than the fan)".into()
+        }
+        WarningKind::Slowed => "a heavy line where the arm slows down".into(),
+        WarningKind::Film => "the paint film misses its limits".into(),
+        WarningKind::Layout => "a layout rule the marking bends".into(),
+        WarningKind::Passes => "a stroke painted in side-by-side passes".into(),
+        WarningKind::Shape => "how a shape is painted".into(),
+        WarningKind::Stop => "the arm comes to rest".into(),
+    }
+}
+
+/// Problems and notices grouped by kind: problems first, then the most
+/// frequent first; the first of each group is its worst as compile orders
+/// them.
+pub fn groups(job: &Job) -> Vec<Group> {
+    let mut out: Vec<(Group, WarningKind)> = vec![];
+    for w in &job.summary.warnings {
+        let severity = match w.severity {
+            Some(sev @ (Severity::Problem | Severity::Notice)) => sev.name(),
+            _ => continue,
+        };
+        match out
+            .iter_mut()
+            .find(|(g, k)| g.severity == severity && *k == w.kind)
+        {
+            Some((g, _)) => g.count += 1,
+            None => out.push((
+                Group {
+                    severity,
+                    count: 1,
+                    what: kind_words(w.kind),
+                    example: w.message.clone(),
+                },
+                w.kind,
+            )),
+        }
+    }
+    let mut out: Vec<Group> = out.into_iter().map(|(g, _)| g).collect();
+    out.sort_by(|a, b| {
+        (a.severity != "problem")
+            .cmp(&(b.severity != "problem"))
+            .then(b.count.cmp(&a.count))
+    });
+    out
+}
+
+/// The one thing to do first: for NOT READY the worst group's fix, else
+/// the first stop.
+fn first_thing(overall: &str, groups: &[Group], stops: &[Stop], film_fails: bool) -> String {
+    match overall {
+        "not ready" => match groups.iter().find(|g| g.severity == "problem") {
+            Some(g) => format!(
+                "Do not paint this job. First fix: {} ({} place{}); the engineer who planned it \
+                 compiles it again. {}",
+                g.what,
+                g.count,
+                if g.count == 1 { "" } else { "s" },
+                g.example
+            ),
+            None if film_fails => "Do not paint this job: the paint film fails its limits \
+                                   (see The paint film); ask the engineer who planned it."
+                .into(),
+            None => "Do not paint this job: the simulated arm misses its accuracy; ask the \
+                     engineer who planned it."
+                .into(),
+        },
+        _ => format!(
+            "Paint it. First: {}",
+            stops
+                .first()
+                .map_or("place the truck as below.".into(), |s| s
+                    .instruction
+                    .clone())
+        ),
+    }
 }
 
 /// Time on site: the job's arm time and a truck move between stops.
@@ -155,18 +258,23 @@ pub fn overall(severities: &[Severity], failed: bool) -> &'static str {
 /// Where a station's arm axis is, said from the anchor: `4.60 m past the
 /// near edge of STOP, on the lane centre`.
 pub fn place_words(s: &Station, anchor: &str) -> String {
+    place_words_in(s, anchor, System::Metric)
+}
+
+/// [`place_words`] in the crew's units (`15 ft 1 in past …`).
+pub fn place_words_in(s: &Station, anchor: &str, units: System) -> String {
     let along = if s.y_m >= 0.0 {
-        format!("{:.2} m past {anchor}", s.y_m)
+        format!("{} past {anchor}", units.length(s.y_m))
     } else {
-        format!("{:.2} m before {anchor}", -s.y_m)
+        format!("{} before {anchor}", units.length(-s.y_m))
     };
-    // +x is the approaching driver's right (SPEC §2).
+    // +x is the approaching driver's right (road frame).
     let across = if s.x_m.abs() < 0.005 {
         "on the lane centre".to_string()
     } else if s.x_m > 0.0 {
-        format!("{:.2} m right of the lane centre", s.x_m)
+        format!("{} right of the lane centre", units.length(s.x_m))
     } else {
-        format!("{:.2} m left of the lane centre", -s.x_m)
+        format!("{} left of the lane centre", units.length(-s.x_m))
     };
     // heading −π/2: the arm's axis points straight back against the traffic.
     let turn_deg = (s.heading_rad + std::f64::consts::FRAC_PI_2).to_degrees();
@@ -181,6 +289,11 @@ pub fn place_words(s: &Station, anchor: &str) -> String {
 /// The stops in words: the first from the anchor, later ones as a drive
 /// forward and the place reached.
 pub fn stops(job: &Job) -> Vec<Stop> {
+    stops_in(job, System::Metric)
+}
+
+/// [`stops`] in the crew's units.
+pub fn stops_in(job: &Job, units: System) -> Vec<Stop> {
     let anchor = format!("{} (the marking's anchor)", anchor_words(job));
     let n = job.stations.len();
     let mut work = vec![0.0; n];
@@ -197,7 +310,7 @@ pub fn stops(job: &Job) -> Vec<Stop> {
             let instruction = if k == 0 {
                 format!(
                     "Drive with the traffic and stop the truck with the arm's rotation axis {}.",
-                    place_words(st, &anchor)
+                    place_words_in(st, &anchor, units)
                 )
             } else {
                 let prev = &job.stations[k - 1];
@@ -208,8 +321,9 @@ pub fn stops(job: &Job) -> Vec<Stop> {
                     "back"
                 };
                 format!(
-                    "When stop {k} is painted, drive {d:.2} m {dir} and stop with the axis {}.",
-                    place_words(st, &anchor)
+                    "When stop {k} is painted, drive {} {dir} and stop with the axis {}.",
+                    units.length(d),
+                    place_words_in(st, &anchor, units)
                 )
             };
             Stop {
@@ -243,28 +357,123 @@ fn letters(m: &Metrics, v: &Verdict) -> Vec<Letter> {
         .collect()
 }
 
-/// The message's lines as items, with their letter counts and heights.
-fn items(job: &Job) -> Vec<String> {
+/// What to paint, one entry per line or item, 1-based: a word as its
+/// letters and height, a symbol as its name, description and size, a
+/// shape as its outline's size (all from the job's own outlines).
+fn items(job: &Job, units: System) -> Vec<String> {
     let h = job.layout.letter_height_m;
+    let lib = crate::font::Library::embedded();
+    let both = |m: f64| match units {
+        System::Us => format!("{} ({m:.2} m)", units.length(m)),
+        System::Metric => format!("{m:.2} m ({})", System::Us.length(m)),
+    };
     job.message
         .lines()
         .enumerate()
         .map(|(k, line)| {
-            let n = line.chars().filter(|c| !c.is_whitespace()).count();
-            format!(
-                "line {}: {line} ({n} letter{}, {h:.2} m / {:.1} ft tall)",
-                k + 1,
-                if n == 1 { "" } else { "s" },
-                h / crate::units::M_PER_FT
-            )
+            // The item's outline: its extent across and along the lane.
+            let mut lo = [f64::INFINITY; 2];
+            let mut hi = [f64::NEG_INFINITY; 2];
+            for g in job.layout.glyphs.iter().filter(|g| g.line == k) {
+                for st in &g.strokes {
+                    for p in st.left.iter().chain(&st.right) {
+                        for a in 0..2 {
+                            lo[a] = lo[a].min(p[a]);
+                            hi[a] = hi[a].max(p[a]);
+                        }
+                    }
+                }
+            }
+            let size = if lo[0].is_finite() {
+                format!(
+                    "{} across × {} along the lane",
+                    both(hi[0] - lo[0]),
+                    both(hi[1] - lo[1])
+                )
+            } else {
+                String::new()
+            };
+            let name = line.strip_prefix('[').and_then(|l| l.strip_suffix(']'));
+            match name {
+                Some(n) => match lib.get(n) {
+                    Some(sym) => format!("{}: the symbol {n} ({}), {size}", k + 1, sym.description),
+                    None => format!("{}: the shape {n} (a filled outline), {size}", k + 1),
+                },
+                None => {
+                    let n = line.chars().filter(|c| !c.is_whitespace()).count();
+                    format!(
+                        "{}: the word {line}, {n} letter{} {} tall",
+                        k + 1,
+                        if n == 1 { "" } else { "s" },
+                        both(h)
+                    )
+                }
+            }
         })
         .collect()
+}
+
+/// "Load this on the truck", in steps: the files the controller takes
+/// (those bound to the job), the check on the truck, how each stop starts.
+pub fn truck_steps(job: &Job, job_name: &str) -> Vec<String> {
+    let name = std::path::Path::new(job_name).file_name().map_or_else(
+        || job_name.to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let bound: Vec<(&str, &str)> = [
+        ("csv", "the setpoint CSV"),
+        ("adept", "the Adept V+ program"),
+    ]
+    .into_iter()
+    .filter_map(|(k, what)| job.outputs.get(k).map(|b| (what, b.file.as_str())))
+    .collect();
+    let mut steps = vec![];
+    if bound.is_empty() {
+        steps.push(format!(
+            "No setpoint file is bound to this job: compile it again with --csv FILE (the truck's \
+             control computer) or --adept FILE (an Adept controller), and copy that file with {name}."
+        ));
+    } else {
+        let files: Vec<String> = bound.iter().map(|(w, f)| format!("{f} ({w})")).collect();
+        steps.push(format!(
+            "Copy {name} and {} to the truck; the controller runs {}.",
+            files.join(" and "),
+            bound
+                .iter()
+                .map(|(_, f)| *f)
+                .collect::<Vec<_>>()
+                .join(" or ")
+        ));
+    }
+    let files: Vec<&str> = std::iter::once(name.as_str())
+        .chain(bound.iter().map(|(_, f)| *f))
+        .collect();
+    steps.push(match &job.signature {
+        Some(sig) => format!(
+            "On the truck, before loading: basr check --trust crew.key.pub {} (the key {} signed \
+             it); load only on exit 0 and \"ok (verdict READY…)\".",
+            files.join(" "),
+            sig.key_id
+        ),
+        None => format!(
+            "On the truck, before loading: basr check {} (exit 0 to load). The job is not signed: \
+             sign it (compile --sign crew.key) so the truck can check who planned it (--trust).",
+            files.join(" ")
+        ),
+    });
+    steps.push(format!(
+        "Each stop (1 to {}): place the truck as \"Where the truck stops\" says, bring the arm to \
+         rest (retracted, middle) and zero its encoders, then run that stop's setpoints (CSV rows \
+         with station = stop − 1; the Adept program from \"; stop N:\"). The gun switches itself.",
+        job.stations.len()
+    ));
+    steps
 }
 
 /// Build the sheet.
 pub fn build(input: &Input) -> Sheet {
     let job = input.job;
-    let stops = stops(job);
+    let stops = stops_in(job, input.units);
     let time_on_site_s = time_on_site_s(job);
     let paint_m3 = job.summary.paint_volume_m3;
     let life = (
@@ -314,10 +523,12 @@ pub fn build(input: &Input) -> Sheet {
             ),
         ),
     ];
+    let groups = groups(job);
+    let first = first_thing(overall, &groups, &stops, !input.film_verdict.pass());
     Sheet {
         title: job.message.replace('\n', " / "),
         facts,
-        items: items(job),
+        items: items(job, input.units),
         stops,
         time_on_site_s,
         paint_m3,
@@ -328,6 +539,9 @@ pub fn build(input: &Input) -> Sheet {
         film_svg: input.film_svg.to_string(),
         letters: letters(m, input.film_verdict),
         sim: input.sim.cloned(),
+        truck: truck_steps(job, input.job_name),
+        first,
+        groups,
         notes,
         overall,
     }

@@ -287,3 +287,19 @@ pub fn ran_to_a_verdict(out: &std::process::Output) -> bool {
         _ => matches!(code, Some(0 | 1)),
     }
 }
+
+/// A compile that ran to its verdict and wrote `job`: exit 0, or exit 1
+/// exactly when the job is NOT READY (a problem among its warnings).
+#[allow(dead_code)] // not every test binary that includes this compiles
+pub fn compiled(out: &std::process::Output, job: &std::path::Path) -> bool {
+    let Ok(bytes) = std::fs::read(job) else {
+        return false;
+    };
+    let v: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+    let problem = v["summary"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w["severity"] == "problem");
+    out.status.code() == Some(if problem { 1 } else { 0 })
+}

@@ -8,12 +8,42 @@
 pub const M_PER_FT: f64 = 0.3048;
 pub const M_PER_IN: f64 = 0.0254;
 
+/// The units a person reads lengths in: the crew's tape.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum System {
+    /// Metres, to the centimetre: `4.60 m`.
+    #[default]
+    Metric,
+    /// Feet and inches, to the inch: `15 ft 1 in`.
+    Us,
+}
+
+impl System {
+    /// `m` (a length ≥ 0) as this system writes it for a crew.
+    pub fn length(self, m: f64) -> String {
+        match self {
+            System::Metric => format!("{m:.2} m"),
+            System::Us => {
+                // To the inch: a truck is placed with a tape, not finer.
+                let inches = (m / M_PER_IN).round() as i64;
+                match (inches / 12, inches % 12) {
+                    (0, i) => format!("{i} in"),
+                    (ft, 0) => format!("{ft} ft"),
+                    (ft, i) => format!("{ft} ft {i} in"),
+                }
+            }
+        }
+    }
+}
+
 /// A length as given: its value in metres and whether a unit was written.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Length {
     pub m: f64,
     /// No unit was written: the number is in the option's own unit.
     pub bare: bool,
+    /// Written in feet or inches (`8ft`, `96in`): the user reads US units.
+    pub us: bool,
 }
 
 /// The unit suffixes accepted, with metres per unit.
@@ -54,6 +84,7 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, LengthError> {
         return Ok(Length {
             m: value * bare_m,
             bare: true,
+            us: false,
         });
     }
     let split = t
@@ -75,6 +106,7 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, LengthError> {
         return Ok(Length {
             m: value * bare_m,
             bare: true,
+            us: false,
         });
     }
     let per = UNITS
@@ -88,6 +120,7 @@ pub fn parse(text: &str, bare_m: f64) -> Result<Length, LengthError> {
     Ok(Length {
         m: value * per,
         bare: false,
+        us: per == M_PER_FT || per == M_PER_IN,
     })
 }
 
@@ -134,15 +167,18 @@ mod tests {
             metres("2.44 m").unwrap(),
             Length {
                 m: 2.44,
-                bare: false
+                bare: false,
+                us: false
             }
         );
         assert_eq!(metres("8'").unwrap().m, 2.4384);
+        assert!(metres("8ft").unwrap().us && metres("96in").unwrap().us);
         assert_eq!(
             metres("2.44").unwrap(),
             Length {
                 m: 2.44,
-                bare: true
+                bare: true,
+                us: false
             }
         );
         assert_eq!(metres("-1.5m").unwrap().m, -1.5);
@@ -164,6 +200,16 @@ mod tests {
         );
         assert!(std::error::Error::source(&e).is_some());
         assert!(metres("").unwrap_err().to_string().contains("not a length"));
+    }
+
+    #[test]
+    fn lengths_read_as_a_crew_reads_them() {
+        assert_eq!(System::Metric.length(4.6), "4.60 m");
+        assert_eq!(System::Us.length(4.6), "15 ft 1 in");
+        assert_eq!(System::Us.length(12.0 * M_PER_FT), "12 ft");
+        assert_eq!(System::Us.length(0.3), "1 ft");
+        assert_eq!(System::Us.length(0.25), "10 in");
+        assert_eq!(System::Us.length(0.2), "8 in");
     }
 
     #[test]

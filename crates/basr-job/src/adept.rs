@@ -48,7 +48,10 @@ pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String
             if let Some(s) = stations.get(st as usize) {
                 let _ = writeln!(
                     out,
-                    "; station {st}: move the truck so the arm axis is at x {:.3} m, y {:.3} m, heading {:.1} deg",
+                    // Stops count from 1 as the job sheet and compile say
+                    // them; the job's `station` column is the 0-based index.
+                    "; stop {}: move the truck so the arm axis is at x {:.3} m, y {:.3} m, heading {:.1} deg (job station {st})",
+                    st + 1,
                     s.x_m,
                     s.y_m,
                     s.heading_rad.to_degrees()
@@ -190,6 +193,11 @@ mod tests {
             "{p}"
         );
         assert!(p.contains("speed (160.0*scale), rotate MMPS"), "{p}");
+        // Stops counted from 1, as the job sheet counts them.
+        assert!(
+            p.contains("; stop 1: move the truck") && p.contains("(job station 0)"),
+            "{p}"
+        );
         // −1° = −5 steps → two's complement 251 (001 table 2.2).
         assert!(p.contains("bits 9,8 = 251"), "{p}");
         assert!(

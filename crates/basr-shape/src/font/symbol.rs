@@ -114,8 +114,12 @@ impl Library {
         })
     }
 
+    /// The symbol of that name; names are kebab-case and matched without
+    /// regard to case (`RXR`, as the marking reads, is `rxr`).
     pub fn get(&self, name: &str) -> Option<&Symbol> {
-        self.symbols.get(name)
+        self.symbols
+            .get(name)
+            .or_else(|| self.symbols.get(&name.to_ascii_lowercase()))
     }
 
     /// All symbols by name.
@@ -123,17 +127,36 @@ impl Library {
         self.symbols.values()
     }
 
-    /// Up to three names nearest `name` (Jaro–Winkler similarity, which
-    /// weighs a shared beginning: `arow` → `arrow-…`), nearest first.
+    /// Up to three names nearest `name`, nearest first: by edit distance
+    /// (Damerau–Levenshtein, case ignored) to the whole name or, one edit
+    /// dearer, to its beginning, so a shortened name finds its family
+    /// (`arow` → `arrow-…`) and a slip finds its name (`stopline` →
+    /// `stop-line`); ties in name order.
     pub fn nearest(&self, name: &str) -> Vec<&str> {
-        let mut v: Vec<(f64, &str)> = self
+        let q = name.to_ascii_lowercase();
+        let mut v: Vec<(usize, &str)> = self
             .symbols
             .keys()
-            .map(|k| (strsim::jaro_winkler(name, k), k.as_str()))
+            .map(|k| (name_distance(&q, k), k.as_str()))
             .collect();
-        v.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(b.1)));
+        v.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(b.1)));
         v.into_iter().take(3).map(|(_, k)| k).collect()
     }
+}
+
+/// Edit distance from a typed name `q` (lower case) to a library name: to
+/// the whole name, or one more than to a beginning of it.
+fn name_distance(q: &str, name: &str) -> usize {
+    let whole = strsim::damerau_levenshtein(q, name);
+    let prefix = name
+        .char_indices()
+        .map(|(i, _)| i)
+        .chain([name.len()])
+        .filter(|&i| i > 0)
+        .map(|i| strsim::damerau_levenshtein(q, &name[..i]) + 1)
+        .min()
+        .unwrap_or(whole);
+    whole.min(prefix)
 }
 
 /// Whether a text is a symbol library (for `basr check`).
@@ -438,6 +461,11 @@ mod tests {
     fn nearest_names_first() {
         let lib = Library::embedded();
         assert_eq!(lib.nearest("arow-left")[0], "arrow-left");
+        assert_eq!(lib.nearest("RXR")[0], "rxr");
+        assert_eq!(lib.nearest("rxx")[0], "rxr");
+        assert_eq!(lib.nearest("bke")[0], "bike");
+        assert_eq!(lib.nearest("yeild-line")[0], "yield-line");
+        assert!(lib.get("RXR").is_some() && lib.get("Stop-Line").is_some());
         assert_eq!(lib.nearest("stopline")[0], "stop-line");
         assert!(lib.nearest("arow").iter().all(|n| n.starts_with("arrow-")));
     }

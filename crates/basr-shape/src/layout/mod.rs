@@ -15,6 +15,7 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod lengths;
 pub mod place;
 pub mod rules;
 pub mod scene;
@@ -285,8 +286,7 @@ impl Marking {
         if text.trim().is_empty() {
             return Err(err(format!("the file is empty: {SHAPE}")));
         }
-        let file: MarkingFileToml = toml::from_str(text).map_err(|e| {
-            let m = toml_message(text, &e);
+        let file: MarkingFileToml = parse_marking(text).map_err(|m| {
             err(if m.contains("missing field") {
                 format!("{m}: {SHAPE}")
             } else {
@@ -458,6 +458,19 @@ impl Marking {
 
 /// A toml error as `line L, column C: what` (toml's own text already names
 /// the line and column; keep it on one line).
+/// Read a marking file's TOML as `T`, its lengths in feet and inches or
+/// written with their unit (`lane_width_ft = 12`, `at_m = ["0ft", "16ft"]`)
+/// first turned into metres ([`lengths::marking_lengths_in_metres`]).
+/// A metric file is read from its text, so its errors keep their line.
+pub(crate) fn parse_marking<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, String> {
+    match lengths::marking_lengths_in_metres(text).map_err(|e| e.to_string())? {
+        Some(t) => toml::Value::Table(t)
+            .try_into()
+            .map_err(|e: toml::de::Error| basr_io::one_line(e.message())),
+        None => toml::from_str(text).map_err(|e| toml_message(text, &e)),
+    }
+}
+
 fn toml_message(text: &str, e: &toml::de::Error) -> String {
     let what = basr_io::one_line(e.message());
     match e.span() {

@@ -236,7 +236,8 @@ fn item_marks(
             })?;
             let m = to_road * Affine::scale(*scale);
             Ok(vec![PlacedMark {
-                label: name.clone(),
+                // The library's spelling (`--symbol RXR` paints `rxr`).
+                label: sym.name.clone(),
                 line: i,
                 kind: OwnerKind::Symbol,
                 strokes: sym.strokes.iter().map(|s| s.transformed(&m)).collect(),

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use serde::Deserialize;
 
 use super::{
-    toml_message, LayoutError, Overrides, DEFAULT_LANE_WIDTH_M, DEFAULT_LETTER_HEIGHT_M,
-    LETTER_HEIGHT_RANGE_M, MAX_LANE_WIDTH_M, MAX_OFFSET_M, M_PER_FT,
+    LayoutError, Overrides, DEFAULT_LANE_WIDTH_M, DEFAULT_LETTER_HEIGHT_M, LETTER_HEIGHT_RANGE_M,
+    MAX_LANE_WIDTH_M, MAX_OFFSET_M, M_PER_FT,
 };
 
 /// Largest item rotation magnitude, degrees: a full turn either way.
@@ -135,7 +135,7 @@ impl Scene {
             origin: origin.to_string(),
             message,
         };
-        let file: SceneFileToml = toml::from_str(text).map_err(|e| err(toml_message(text, &e)))?;
+        let file: SceneFileToml = super::parse_marking(text).map_err(&err)?;
         let m = file.marking.unwrap_or_default();
         if m.lines.is_some() {
             return Err(err(

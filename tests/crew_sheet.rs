@@ -1,0 +1,159 @@
+//! Issue 30: a job sheet a crew reads in a minute — the verdict and the
+//! one thing to do first, what to paint said per item (a symbol by its
+//! name and size, not its name's letters), where to stop, what to load on
+//! the truck, warnings grouped; the engineer's detail in an appendix; a
+//! READY STOP sheet prints on at most 2 pages (Chromium, when installed).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command as Process, Output};
+
+use assert_cmd::Command;
+
+fn basr(dir: &Path, args: &[&str]) -> Output {
+    Command::cargo_bin("basr")
+        .unwrap()
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn browser() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("BASR_CHROMIUM") {
+        return Some(PathBuf::from(p));
+    }
+    let path = std::env::var_os("PATH")?;
+    ["chromium", "chromium-browser", "google-chrome", "chrome"]
+        .iter()
+        .flat_map(|name| std::env::split_paths(&path).map(move |d| d.join(name)))
+        .find(|p| p.is_file())
+}
+
+/// Pages of a PDF, counted by its page objects (`/Type /Page`, not
+/// `/Pages`): independent of any PDF tool.
+fn pdf_pages(pdf: &[u8]) -> usize {
+    let text = String::from_utf8_lossy(pdf);
+    text.match_indices("/Type /Page")
+        .chain(text.match_indices("/Type/Page"))
+        .filter(|(i, m)| !text[i + m.len()..].starts_with('s'))
+        .count()
+}
+
+#[test]
+fn a_ready_sheet_reads_in_a_minute_and_prints_on_two_pages() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = basr(d, &["compile", "STOP", "--csv", "STOP.csv", "-q"]);
+    assert!(out.status.success());
+    let out = basr(d, &["report", "STOP.job.json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(d.join("STOP.sheet.html")).unwrap();
+    let crew = html.split("id=\"appendix\"").next().unwrap();
+    for part in [
+        ">READY<",
+        "Paint it. First: Drive with the traffic",
+        "1: the word STOP, 4 letters 2.44 m (8 ft) tall",
+        "Load this on the truck",
+        "Copy STOP.job.json and STOP.csv (the setpoint CSV) to the truck",
+        "basr check STOP.job.json STOP.csv",
+        "No problem and no notice.",
+    ] {
+        assert!(crew.contains(part), "the crew's part lacks {part:?}");
+    }
+    // The engineer's detail is in the appendix, after the crew's part.
+    assert!(!crew.contains("id=\"letters\"") && html.contains("id=\"letters\""));
+
+    let Some(bin) = browser() else {
+        eprintln!("skipping the page count: no headless Chromium (apt-get install chromium)");
+        return;
+    };
+    let pdf = d.join("STOP.pdf");
+    let out = Process::new(bin)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--no-pdf-header-footer",
+        ])
+        .arg(format!("--user-data-dir={}", d.join("profile").display()))
+        .arg(format!("--print-to-pdf={}", pdf.display()))
+        .arg(format!("file://{}", d.join("STOP.sheet.html").display()))
+        .output()
+        .unwrap();
+    assert!(pdf.exists(), "{}", String::from_utf8_lossy(&out.stderr));
+    let pages = pdf_pages(&std::fs::read(&pdf).unwrap());
+    assert!(
+        (1..=2).contains(&pages),
+        "the READY STOP sheet prints on {pages} pages"
+    );
+}
+
+#[test]
+fn a_symbol_is_named_and_sized_and_a_not_ready_sheet_says_what_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    assert!(basr(d, &["compile", "--symbol", "stop-line", "-q"])
+        .status
+        .success());
+    let out = basr(
+        d,
+        &[
+            "report",
+            "stop-line.job.json",
+            "--no-sim",
+            "--units",
+            "us",
+            "-q",
+        ],
+    );
+    assert!(out.status.success());
+    let html = std::fs::read_to_string(d.join("stop-line.sheet.html")).unwrap();
+    assert!(
+        html.contains("1: the symbol stop-line (") && html.contains(" across × "),
+        "{html}"
+    );
+    assert!(
+        !html.contains("letters,") && !html.contains("(11 letters"),
+        "{html}"
+    );
+    // --units us: the truck's place in feet and inches.
+    let stops = html.split("id=\"stops\"").nth(1).unwrap();
+    assert!(
+        stops.contains(" ft ") && !stops.contains(" m past"),
+        "{stops}"
+    );
+
+    let out = basr(
+        d,
+        &["compile", "STOP AHEAD", "--letter-height", "6ft", "-q"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    let out = basr(d, &["report", "STOP_AHEAD.job.json", "--no-sim", "-q"]);
+    assert_eq!(out.status.code(), Some(1));
+    let html = std::fs::read_to_string(d.join("STOP_AHEAD.sheet.html")).unwrap();
+    let crew = html.split("id=\"appendix\"").next().unwrap();
+    assert!(
+        crew.contains("Do not paint this job. First fix: "),
+        "{crew}"
+    );
+    // Grouped: one line per kind, not one per warning.
+    let groups = crew.split("id=\"groups\"").nth(1).unwrap();
+    let lines = groups.matches("<li class=\"problem\">").count();
+    let job: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("STOP_AHEAD.job.json")).unwrap()).unwrap();
+    let problems = job["summary"]["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|w| w["severity"] == "problem")
+        .count();
+    assert!(
+        lines >= 1 && lines < problems,
+        "{lines} lines for {problems} problems"
+    );
+}
