@@ -27,7 +27,16 @@ const MESSAGES: [&str; 4] = [
 fn spawn_compile(dir: &Path, message: &str) -> Child {
     Command::new(assert_cmd::cargo::cargo_bin("basr"))
         .current_dir(dir)
-        .args(["compile", message, "--csv", "setpoints.csv", "--quiet"])
+        // --force: the earlier files a test lays under the default names
+        // are no jobs, which compile otherwise refuses to replace.
+        .args([
+            "compile",
+            message,
+            "--csv",
+            "setpoints.csv",
+            "--quiet",
+            "--force",
+        ])
         .stdin(Stdio::null())
         .stdout(Stdio::null())
         .stderr(Stdio::null())
