@@ -6,6 +6,9 @@ use std::path::{Path, PathBuf};
 
 use assert_cmd::Command;
 
+mod common;
+use common::set_key;
+
 /// A scratch folder holding only the inputs a case writes.
 struct Scratch {
     dir: tempfile::TempDir,
@@ -79,25 +82,6 @@ fn basr_toml() -> String {
         .unwrap();
     assert!(out.status.success());
     String::from_utf8(out.stdout).unwrap()
-}
-
-/// Replace the first line starting with `key =` (after trimming) by `key = value`.
-fn set_key(toml: &str, key: &str, value: &str) -> String {
-    let mut done = false;
-    let lines: Vec<String> = toml
-        .lines()
-        .map(|l| {
-            let t = l.trim_start();
-            if !done && t.starts_with(key) && t[key.len()..].trim_start().starts_with('=') {
-                done = true;
-                format!("{key} = {value}")
-            } else {
-                l.to_string()
-            }
-        })
-        .collect();
-    assert!(done, "key {key} not found in the robot description");
-    lines.join("\n")
 }
 
 #[test]

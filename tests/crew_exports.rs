@@ -5,16 +5,8 @@
 use std::path::Path;
 use std::process::Output;
 
-use assert_cmd::Command;
-
-fn basr(dir: &Path, args: &[&str]) -> Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::basr;
 
 fn ok(dir: &Path, args: &[&str]) -> Output {
     let out = basr(dir, args);

@@ -4,30 +4,10 @@
 //! the truck, warnings grouped; the engineer's detail in an appendix; a
 //! READY STOP sheet prints on at most 2 pages (Chromium, when installed).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command as Process, Output};
+use std::process::Command as Process;
 
-use assert_cmd::Command;
-
-fn basr(dir: &Path, args: &[&str]) -> Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn browser() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("BASR_CHROMIUM") {
-        return Some(PathBuf::from(p));
-    }
-    let path = std::env::var_os("PATH")?;
-    ["chromium", "chromium-browser", "google-chrome", "chrome"]
-        .iter()
-        .flat_map(|name| std::env::split_paths(&path).map(move |d| d.join(name)))
-        .find(|p| p.is_file())
-}
+mod common;
+use common::{basr, browser};
 
 /// Pages of a PDF, counted by its page objects (`/Type /Page`, not
 /// `/Pages`): independent of any PDF tool.

@@ -7,20 +7,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-use assert_cmd::Command;
-
-fn basr(dir: &Path, args: &[&str]) -> Output {
-    Command::cargo_bin("basr")
-        .unwrap()
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+mod common;
+use common::{basr, stderr};
 
 /// Run and require `code`, showing stderr when it differs.
 fn expect(dir: &Path, args: &[&str], code: i32) -> Output {

@@ -3,21 +3,13 @@
 //! blank. Skips, saying so, when no Chromium can be found (`.ci/run`
 //! installs Debian's `chromium`; `BASR_CHROMIUM` names another binary).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command as Process;
 
 use assert_cmd::Command;
 
-fn browser() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("BASR_CHROMIUM") {
-        return Some(PathBuf::from(p));
-    }
-    let path = std::env::var_os("PATH")?;
-    ["chromium", "chromium-browser", "google-chrome", "chrome"]
-        .iter()
-        .flat_map(|name| std::env::split_paths(&path).map(move |d| d.join(name)))
-        .find(|p| p.is_file())
-}
+mod common;
+use common::browser;
 
 fn chromium(bin: &Path, profile: &Path, args: &[&str], page: &Path) -> std::process::Output {
     Process::new(bin)

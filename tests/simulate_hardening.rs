@@ -4,26 +4,11 @@
 //! `check` refuses is refused by `simulate` and `preview` before any work.
 
 mod common;
-use common::{basr, stderr};
+use common::{basr, set_key, stderr};
 
 /// The embedded description with `key = value` in place of its first `key =` line.
 fn robot_with(key: &str, value: &str) -> String {
-    let text = basr::robot::BASR_TOML;
-    let mut done = false;
-    let lines: Vec<String> = text
-        .lines()
-        .map(|l| {
-            let t = l.trim_start();
-            if !done && t.starts_with(key) && t[key.len()..].trim_start().starts_with('=') {
-                done = true;
-                format!("{key} = {value}")
-            } else {
-                l.to_string()
-            }
-        })
-        .collect();
-    assert!(done, "{key} not in the robot description");
-    lines.join("\n") + "\n"
+    set_key(basr::robot::BASR_TOML, key, value) + "\n"
 }
 
 #[test]

@@ -64,9 +64,7 @@ pub fn run(args: Args, _global: &Global) -> anyhow::Result<Outcome> {
     let name = args.job.display().to_string();
     let text = match args.format {
         Format::Ros2 => basr::export::ros2::document(&job, &name),
-        Format::Urscript => {
-            basr::export::urscript::program(&job, &name).map_err(anyhow::Error::msg)?
-        }
+        Format::Urscript => basr::export::urscript::program(&job, &name)?,
     };
     basr::io::write_atomic(&out, text.as_bytes())?;
     super::outputs::after_commit(format!(

@@ -154,10 +154,10 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         (None, false) => Some(simulate(&job, !global.quiet)?),
     };
     let tally = match &args.tip_tally {
-        Some(p) if p.exists() => Some(
-            Tally::parse(&basr::io::read_text(p)?, &p.display().to_string())
-                .map_err(anyhow::Error::msg)?,
-        ),
+        Some(p) if p.exists() => Some(Tally::parse(
+            &basr::io::read_text(p)?,
+            &p.display().to_string(),
+        )?),
         Some(_) => Some(Tally::default()),
         None => None,
     };

@@ -292,8 +292,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::write_atomic(p, sim::svg::render(&outcome.trace, report).as_bytes())?;
     }
     if let Some(p) = &args.mcap {
-        let bytes = basr::export::mcap_trace::trace(&outcome.trace, &job.message)
-            .map_err(anyhow::Error::msg)?;
+        let bytes = basr::export::mcap_trace::trace(&outcome.trace, &job.message)?;
         basr::io::write_atomic(p, &bytes)?;
     }
     for p in args.trace.iter().chain(&args.svg).chain(&args.mcap) {

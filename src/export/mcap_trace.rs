@@ -86,9 +86,18 @@ fn messages(r: &TraceRow) -> [serde_json::Value; 3] {
     ]
 }
 
+/// Why the trace could not be written as MCAP.
+#[derive(Debug, thiserror::Error)]
+pub enum TraceError {
+    #[error("writing the MCAP trace: {0}")]
+    Mcap(mcap_crate::McapError),
+    #[error("writing the MCAP trace: a message as JSON: {0}")]
+    Json(#[from] serde_json::Error),
+}
+
 /// The MCAP file's bytes for a simulated trace.
-pub fn trace(rows: &[TraceRow], job_message: &str) -> Result<Vec<u8>, String> {
-    let err = |e: mcap_crate::McapError| format!("writing the MCAP trace: {e}");
+pub fn trace(rows: &[TraceRow], job_message: &str) -> Result<Vec<u8>, TraceError> {
+    let err = TraceError::Mcap;
     let mut buf = std::io::Cursor::new(Vec::new());
     {
         let mut w = mcap_crate::WriteOptions::new()
@@ -98,7 +107,7 @@ pub fn trace(rows: &[TraceRow], job_message: &str) -> Result<Vec<u8>, String> {
             .map_err(err)?;
         let mut ids = vec![];
         for (topic, name, schema) in channels() {
-            let data = serde_json::to_vec(&schema).map_err(|e| e.to_string())?;
+            let data = serde_json::to_vec(&schema)?;
             let schema_id = w.add_schema(name, "jsonschema", &data).map_err(err)?;
             let id = w
                 .add_channel(schema_id, topic, "json", &BTreeMap::new())
@@ -115,7 +124,7 @@ pub fn trace(rows: &[TraceRow], job_message: &str) -> Result<Vec<u8>, String> {
         for (seq, r) in rows.iter().enumerate() {
             let t_ns = (r.t_s.max(0.0) * 1e9).round() as u64;
             for (id, m) in ids.iter().zip(messages(r)) {
-                let data = serde_json::to_vec(&m).map_err(|e| e.to_string())?;
+                let data = serde_json::to_vec(&m)?;
                 w.write_to_known_channel(
                     &mcap_crate::records::MessageHeader {
                         channel_id: *id,

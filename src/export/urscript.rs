@@ -33,15 +33,24 @@ fn list(q: &[f64]) -> String {
     format!("[{}]", v.join(", "))
 }
 
+/// A job for another robot kind than the articulated arm URScript drives.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{job_name}: --format urscript posts the articulated kind (robots/articulated.toml); this \
+     job is for {robot:?}: compile it with --robot robots/articulated.toml, or use --format ros2"
+)]
+pub struct NotArticulated {
+    pub job_name: String,
+    pub robot: String,
+}
+
 /// The program, or why the job cannot be posted to this arm.
-pub fn program(job: &Job, job_name: &str) -> Result<String, String> {
+pub fn program(job: &Job, job_name: &str) -> Result<String, NotArticulated> {
     if job.samples.kind_joints.is_empty() || job.robot.joint_names()[0] != "waist_rad" {
-        return Err(format!(
-            "{job_name}: --format urscript posts the articulated kind (robots/articulated.toml); \
-             this job is for {:?}: compile it with --robot robots/articulated.toml, or use \
-             --format ros2",
-            job.robot.name()
-        ));
+        return Err(NotArticulated {
+            job_name: job_name.into(),
+            robot: job.robot.name().into(),
+        });
     }
     let s = &job.samples;
     let mut out = String::new();

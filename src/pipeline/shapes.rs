@@ -11,11 +11,11 @@
 use std::path::{Path, PathBuf};
 
 use crate::job::{Job, OwnerKind, Severity, Warning, WarningKind};
-use crate::layout::{ShapeSize, ShapeStrokes};
+use crate::layout::{ShapeItemError, ShapeSize, ShapeStrokes};
 use crate::paint::preview::{preview_job, Options};
 use crate::pipeline::compile::{compile_strokes, CompileError, CompileRequest, Source};
 use crate::pipeline::placed::lay_out;
-use crate::robot::AnyRobot;
+use crate::robot::{AnyRobot, RobotError};
 pub use crate::shape::label_of;
 use crate::shape::{self, report_lines, Bands, Imported, Method, Prediction, ShapeError, Size};
 use basr_plan::warnings::{Note, Owner};
@@ -402,10 +402,10 @@ fn uneven_note(m: &Measured, d: &shape::Decomposition) -> String {
 }
 
 /// The robot a request paints with (as `inputs::read` finds it).
-fn robot_of(req: &CompileRequest) -> Result<AnyRobot, String> {
+fn robot_of(req: &CompileRequest) -> Result<AnyRobot, RobotError> {
     match &req.robot_description {
         Some(r) => Ok(r.clone()),
-        None => AnyRobot::load_or_default(req.robot.as_deref()).map_err(|e| e.to_string()),
+        None => AnyRobot::load_or_default(req.robot.as_deref()),
     }
 }
 
@@ -429,13 +429,13 @@ pub fn import_item(
     marking_file: &str,
     path: &Path,
     size: ShapeSize,
-) -> Result<(ShapeStrokes, Vec<Note>), String> {
+) -> Result<(ShapeStrokes, Vec<Note>), ShapeItemError> {
     let file = resolve(path, marking_file);
     let size = match size {
         ShapeSize::HeightM(h) => Size::HeightM(h),
         ShapeSize::WidthM(w) => Size::WidthM(w),
     };
-    let imported = import_measured(&file, size, robot).map_err(|e| e.to_string())?;
+    let imported = import_measured(&file, size, robot)?;
     let label = label_of(path);
     let notes = report_lines(&imported.decomposition, &bands(robot))
         .into_iter()
@@ -462,7 +462,7 @@ pub fn importer<'a>(
     req: &'a CompileRequest,
     marking_file: &'a str,
     notes: &'a std::cell::RefCell<Vec<Note>>,
-) -> impl Fn(&Path, ShapeSize) -> Result<ShapeStrokes, String> + 'a {
+) -> impl Fn(&Path, ShapeSize) -> Result<ShapeStrokes, ShapeItemError> + 'a {
     move |path, size| {
         let (strokes, n) = import_item(&robot_of(req)?, marking_file, path, size)?;
         notes.borrow_mut().extend(n);

@@ -32,24 +32,38 @@ pub struct Entry {
     pub paint_l: f64,
 }
 
+/// A tip tally that cannot be read.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TallyError {
+    #[error(
+        "{origin}: not a tip tally ({why}); it holds [[job]] tables with sha256, message and \
+         paint_l (docs/report.md)"
+    )]
+    NotATally { origin: String, why: String },
+    #[error("{origin}: job {job} ({message:?}) has paint_l = {paint_l}: give the litres used, 0 or more")]
+    PaintL {
+        origin: String,
+        job: usize,
+        message: String,
+        paint_l: f64,
+    },
+}
+
 impl Tally {
     /// Read a tally; `origin` names it in messages.
-    pub fn parse(text: &str, origin: &str) -> Result<Tally, String> {
-        let t: Tally = toml::from_str(text).map_err(|e| {
-            format!(
-                "{origin}: not a tip tally ({}); it holds [[job]] tables with sha256, message \
-                 and paint_l (docs/report.md)",
-                crate::io::one_line(&e.to_string())
-            )
+    pub fn parse(text: &str, origin: &str) -> Result<Tally, TallyError> {
+        let t: Tally = toml::from_str(text).map_err(|e| TallyError::NotATally {
+            origin: origin.into(),
+            why: crate::io::one_line(&e.to_string()),
         })?;
         for (k, e) in t.jobs.iter().enumerate() {
             if !(e.paint_l.is_finite() && e.paint_l >= 0.0) {
-                return Err(format!(
-                    "{origin}: job {} ({:?}) has paint_l = {}: give the litres used, 0 or more",
-                    k + 1,
-                    e.message,
-                    e.paint_l
-                ));
+                return Err(TallyError::PaintL {
+                    origin: origin.into(),
+                    job: k + 1,
+                    message: e.message.clone(),
+                    paint_l: e.paint_l,
+                });
             }
         }
         Ok(t)
@@ -99,10 +113,12 @@ mod tests {
         assert_eq!(back, t);
         assert!(Tally::parse("used = 3", "t.toml")
             .unwrap_err()
+            .to_string()
             .contains("not a tip tally"));
         let neg = "[[job]]\nsha256 = \"a\"\nmessage = \"X\"\npaint_l = -1\n";
         assert!(Tally::parse(neg, "t.toml")
             .unwrap_err()
+            .to_string()
             .contains("paint_l = -1"));
     }
 }

@@ -314,6 +314,25 @@ pub fn malformed(sig: &Signature) -> Option<String> {
     }
 }
 
+/// Why a job's signature is no signature of it.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum SealError {
+    /// Not a signature at all (what is wrong with it).
+    #[error(
+        "the signature is malformed ({0}): it is no one's signature; compile the job again \
+         with --sign"
+    )]
+    Malformed(String),
+    /// A signature, but the key with its id at hand refuses it.
+    #[error(
+        "integrity check failed: the signature does not verify with key {key_id} ({}): the job \
+         was edited after it was signed or the signature was copied from another job; compile \
+         it again",
+        .key.display()
+    )]
+    DoesNotVerify { key_id: String, key: PathBuf },
+}
+
 /// The seal of a job read without `--trust`: `signature` as read from the
 /// job, `signed` the bytes it signs ([`super::signed_bytes`]), checked
 /// against the key with its id in [`key_folder`]. Err says why it is no
@@ -322,15 +341,12 @@ pub fn examine(
     signature: Option<&Signature>,
     signed: Option<&[u8]>,
     folder: Option<&Path>,
-) -> Result<Seal, String> {
+) -> Result<Seal, SealError> {
     let Some(sig) = signature else {
         return Ok(Seal::Unsigned);
     };
     if let Some(why) = malformed(sig) {
-        return Err(format!(
-            "the signature is malformed ({why}): it is no one's signature; compile the job \
-             again with --sign"
-        ));
+        return Err(SealError::Malformed(why));
     }
     let found = folder.and_then(|f| find_key(f, &sig.key_id));
     match (found, signed) {
@@ -341,13 +357,10 @@ pub fn examine(
                     key: path,
                 })
             } else {
-                Err(format!(
-                    "integrity check failed: the signature does not verify with key {} ({}): \
-                     the job was edited after it was signed or the signature was copied from \
-                     another job; compile it again",
-                    sig.key_id,
-                    path.display()
-                ))
+                Err(SealError::DoesNotVerify {
+                    key_id: sig.key_id.clone(),
+                    key: path,
+                })
             }
         }
         _ => Ok(Seal::Unverified {

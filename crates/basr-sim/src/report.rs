@@ -110,8 +110,9 @@ pub struct AxisErrors {
 /// One limit the run went past.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LimitViolation {
-    /// Short machine name, e.g. `base_rot_window`.
-    pub kind: String,
+    /// Short machine name, e.g. `base_rot_window` (one of the simulator's
+    /// fixed set of limits).
+    pub kind: &'static str,
     /// Whether it fails the verdict (a relief valve opening is only noted).
     pub fails: bool,
     pub first: Place,

@@ -30,7 +30,8 @@ pub struct JointUse {
 /// What the servo simulation of a job found.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ServoJobReport {
-    pub kind: String,
+    /// The robot kind's name (`telescopic`, `articulated`).
+    pub kind: &'static str,
     pub controller: String,
     pub tolerance_m: f64,
     pub verdict: Verdict,
@@ -208,7 +209,7 @@ pub fn simulate_job(job: &Job, tolerance_m: f64) -> Result<ServoJobReport, SimEr
         y_m: s.y_m[i],
     };
     let mut report = ServoJobReport {
-        kind: robot.kind().name().into(),
+        kind: robot.kind().name(),
         controller: "servo PID + feed-forward".into(),
         tolerance_m,
         // Judged below, once every reason is in.

@@ -72,7 +72,7 @@ impl LimitTrack {
             self.ticks as f64 * period
         );
         Some(LimitViolation {
-            kind: self.kind.into(),
+            kind: self.kind,
             fails: self.fails,
             first,
             duration_s: self.ticks as f64 * period,

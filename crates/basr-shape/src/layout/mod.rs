@@ -21,7 +21,8 @@ pub mod rules;
 pub mod scene;
 
 pub use place::{
-    glyph_box, lay_marking, lay_scene, lay_scene_with, Laid, PlacedMark, ShapeImport, ShapeStrokes,
+    glyph_box, lay_marking, lay_scene, lay_scene_with, Laid, PlacedMark, ShapeImport,
+    ShapeItemError, ShapeStrokes,
 };
 pub use scene::{is_scene, Item, ItemKind, Scene, ShapeSize};
 
@@ -287,10 +288,10 @@ impl Marking {
             return Err(err(format!("the file is empty: {SHAPE}")));
         }
         let file: MarkingFileToml = parse_marking(text).map_err(|m| {
-            err(if m.contains("missing field") {
+            err(if m.is_missing_field() {
                 format!("{m}: {SHAPE}")
             } else {
-                m
+                m.to_string()
             })
         })?;
         let t = file.marking;
@@ -456,29 +457,50 @@ impl Marking {
     }
 }
 
-/// A toml error as `line L, column C: what` (toml's own text already names
-/// the line and column; keep it on one line).
+/// Why a marking file's text does not read as one.
+#[derive(Debug, thiserror::Error)]
+pub enum MarkingTextError {
+    /// A length in feet or with its unit that cannot be read.
+    #[error(transparent)]
+    Lengths(#[from] lengths::LengthsError),
+    /// The TOML does not read as the file's tables: toml's words on one
+    /// line, after `line L, column C: ` where toml knows the place.
+    #[error("{}{what}", .at.map_or(String::new(), |(l, c)| format!("line {l}, column {c}: ")))]
+    Toml {
+        at: Option<(usize, usize)>,
+        what: String,
+    },
+}
+
+impl MarkingTextError {
+    /// A toml error of `text`, at its line and column when toml gives a span.
+    fn toml(text: Option<&str>, e: &toml::de::Error) -> MarkingTextError {
+        MarkingTextError::Toml {
+            at: text
+                .zip(e.span())
+                .map(|(text, span)| basr_io::line_col(text, span.start)),
+            what: basr_io::one_line(e.message()),
+        }
+    }
+
+    /// A field the file must have is missing.
+    fn is_missing_field(&self) -> bool {
+        matches!(self, MarkingTextError::Toml { what, .. } if what.contains("missing field"))
+    }
+}
+
 /// Read a marking file's TOML as `T`, its lengths in feet and inches or
 /// written with their unit (`lane_width_ft = 12`, `at_m = ["0ft", "16ft"]`)
 /// first turned into metres ([`lengths::marking_lengths_in_metres`]).
 /// A metric file is read from its text, so its errors keep their line.
-pub(crate) fn parse_marking<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, String> {
-    match lengths::marking_lengths_in_metres(text).map_err(|e| e.to_string())? {
+pub(crate) fn parse_marking<T: serde::de::DeserializeOwned>(
+    text: &str,
+) -> Result<T, MarkingTextError> {
+    match lengths::marking_lengths_in_metres(text)? {
         Some(t) => toml::Value::Table(t)
             .try_into()
-            .map_err(|e: toml::de::Error| basr_io::one_line(e.message())),
-        None => toml::from_str(text).map_err(|e| toml_message(text, &e)),
-    }
-}
-
-fn toml_message(text: &str, e: &toml::de::Error) -> String {
-    let what = basr_io::one_line(e.message());
-    match e.span() {
-        Some(span) => {
-            let (line, col) = basr_io::line_col(text, span.start);
-            format!("line {line}, column {col}: {what}")
-        }
-        None => what,
+            .map_err(|e: toml::de::Error| MarkingTextError::toml(None, &e)),
+        None => toml::from_str(text).map_err(|e| MarkingTextError::toml(Some(text), &e)),
     }
 }
 

@@ -108,15 +108,28 @@ pub struct ShapeStrokes {
 /// Imports a shape item's file at its size (`plan::shapes::importer`: the
 /// decomposition needs the robot's fan, which the layout does not know);
 /// the error says what is wrong with the file and how to fix it.
-pub type ShapeImport<'a> = &'a dyn Fn(&Path, ShapeSize) -> Result<ShapeStrokes, String>;
+pub type ShapeImport<'a> = &'a dyn Fn(&Path, ShapeSize) -> Result<ShapeStrokes, ShapeItemError>;
+
+/// Why a scene's shape item could not be imported.
+#[derive(Debug, thiserror::Error)]
+pub enum ShapeItemError {
+    /// The layout was asked without an importer (it has no robot).
+    #[error(
+        "shape items are imported by `basr compile` and `basr check`; this caller has no \
+         shapes importer"
+    )]
+    NoImporter,
+    /// The robot whose fan the shape is decomposed for cannot be read.
+    #[error(transparent)]
+    Robot(#[from] basr_robot::RobotError),
+    /// The file is no shape basr can paint, or not at that size.
+    #[error(transparent)]
+    Import(#[from] crate::ShapeError),
+}
 
 /// The importer of a layout without a robot: refuses shape items.
-pub(super) fn no_shapes(_: &Path, _: ShapeSize) -> Result<ShapeStrokes, String> {
-    Err(
-        "shape items are imported by `basr compile` and `basr check`; this caller \
-         has no shapes importer"
-            .into(),
-    )
+pub(super) fn no_shapes(_: &Path, _: ShapeSize) -> Result<ShapeStrokes, ShapeItemError> {
+    Err(ShapeItemError::NoImporter)
 }
 
 /// Lay out a scene without shape items (see [`lay_scene_with`]).
@@ -244,10 +257,10 @@ fn item_marks(
             }])
         }
         ItemKind::Shape { path, size } => {
-            let s = shapes(path, *size).map_err(|message| LayoutError::Shape {
+            let s = shapes(path, *size).map_err(|e| LayoutError::Shape {
                 item: i + 1,
                 path: path.display().to_string(),
-                message,
+                message: e.to_string(),
             })?;
             // The shape's near edge centred on its anchor (SPEC §5).
             let m = to_road * Affine::translate((-0.5 * s.width_m, 0.0));

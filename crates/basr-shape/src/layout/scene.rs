@@ -135,7 +135,7 @@ impl Scene {
             origin: origin.to_string(),
             message,
         };
-        let file: SceneFileToml = super::parse_marking(text).map_err(&err)?;
+        let file: SceneFileToml = super::parse_marking(text).map_err(|e| err(e.to_string()))?;
         let m = file.marking.unwrap_or_default();
         if m.lines.is_some() {
             return Err(err(
