@@ -175,7 +175,10 @@ impl Profile {
                 }
                 for (i, l) in lobes.iter().enumerate() {
                     if !(l.weight > 0.0 && l.sigma > 0.0 && l.mean.abs() <= 1.0) {
-                        return Err(ProfileError::Lobe { index: i, lobe: l.clone() });
+                        return Err(ProfileError::Lobe {
+                            index: i,
+                            lobe: l.clone(),
+                        });
                     }
                 }
                 Ok(())

@@ -6,7 +6,7 @@ use super::control::Command;
 use super::plant;
 use super::report::{
     self, AxisErrors, LimitViolation, PeakPressures, Place, Report, Saturation, StrokeError,
-    TraceRow, Unit, Waviness, VerdictOn,
+    TraceRow, Unit, VerdictOn, Waviness,
 };
 use super::run::{Arm, Refs, ServoLimited, Setup};
 use super::{safety, Outcome};

@@ -18,7 +18,9 @@ pub enum LengthsError {
     #[error("{what}: {source}")]
     Length { what: String, source: LengthError },
     /// A value that is neither a number nor text (a table, a date).
-    #[error("{what} = {value}: give a length, a number or text with its unit (12, \"12ft\", \"144in\")")]
+    #[error(
+        "{what} = {value}: give a length, a number or text with its unit (12, \"12ft\", \"144in\")"
+    )]
     NotALength { what: String, value: String },
 }
 
@@ -120,16 +122,14 @@ fn length_value(v: &toml::Value, per: f64, what: &str) -> Result<toml::Value, Le
     Ok(match v {
         toml::Value::Integer(i) => toml::Value::Float(*i as f64 * per),
         toml::Value::Float(f) => toml::Value::Float(f * per),
-        toml::Value::String(s) => {
-            toml::Value::Float(
-                parse(s, per)
-                    .map_err(|source| LengthsError::Length {
-                        what: what.into(),
-                        source,
-                    })?
-                    .m,
-            )
-        }
+        toml::Value::String(s) => toml::Value::Float(
+            parse(s, per)
+                .map_err(|source| LengthsError::Length {
+                    what: what.into(),
+                    source,
+                })?
+                .m,
+        ),
         toml::Value::Array(a) => toml::Value::Array(
             a.iter()
                 .map(|x| length_value(x, per, what))
@@ -174,7 +174,11 @@ mod tests {
         );
         let e = marking_lengths_in_metres("[marking]\nlane_width_m = 3\nlane_width_ft = 12\n")
             .unwrap_err();
-        assert!(e.to_string().contains("lane_width_m or lane_width_ft, not both"), "{e}");
+        assert!(
+            e.to_string()
+                .contains("lane_width_m or lane_width_ft, not both"),
+            "{e}"
+        );
         let e = marking_lengths_in_metres("[[item]]\nat_ft = [0, \"6yd\"]\n").unwrap_err();
         assert!(
             e.to_string().contains("item 1: at_ft") && e.to_string().contains("unknown unit"),
