@@ -974,3 +974,36 @@ fn path_runs(poses: &[Pose], frame: &Frame, keep: &dyn Fn(usize) -> bool) -> (St
     }
     (on, off)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_too_close_are_moved_apart_in_page_order() {
+        // Two stops 5 px apart on the page and one far off: the lower of
+        // the two moves down to 14 px under the upper, the far one stays.
+        let ys = [105.0, 100.0, 300.0];
+        assert_eq!(spread(&ys, 14.0), vec![114.0, 100.0, 300.0]);
+        // A run of three pushes each in turn.
+        assert_eq!(spread(&[0.0, 1.0, 2.0], 10.0), vec![0.0, 10.0, 20.0]);
+        assert!(spread(&[], 10.0).is_empty());
+    }
+
+    #[test]
+    fn a_stop_belongs_to_the_nearest_line_only() {
+        let line = |y0: f64, y1: f64| Bounds {
+            min: [-1.0, y0],
+            max: [1.0, y1],
+        };
+        // RXR's lines: 0–0.61, 5.18–10.06, 14.63–15.24 m.
+        let lines = [line(0.0, 0.61), line(5.18, 10.06), line(14.63, 15.24)];
+        // Stop 3 (12.55 m) was drawn with both lines within 3 m of it;
+        // stop 4 (18.53 m), over 3 m past the last line, with none.
+        assert_eq!(nearest(&lines, [0.0, 12.55]), 2);
+        assert_eq!(nearest(&lines, [0.0, 18.53]), 2);
+        assert_eq!(nearest(&lines, [0.0, 2.0]), 0);
+        assert_eq!(nearest(&lines, [0.0, 7.0]), 1);
+        assert_eq!(nearest(&[], [0.0, 7.0]), 0);
+    }
+}
