@@ -169,6 +169,16 @@ fn a_scene_of_four_stops_has_an_overview_and_each_stop_in_one_view() {
                 words.iter().any(|w| w.starts_with("paints ")),
                 "{id}: {words:?}"
             );
+            // What each stop paints: the first line whole, the symbol in
+            // part from stops 2 and 3.
+            let caption = words.join(" ");
+            let says = match k {
+                1 => "paints 1: [stop-line]",
+                2 => "paints 2: [rxr] (part, with stop 3)",
+                3 => "paints 2: [rxr] (part, with stop 2)",
+                _ => "paints 3: [stop-line]",
+            };
+            assert!(caption.contains(says), "{id}: {caption}");
         }
     }
     assert_ticks_clear(&svg);

@@ -157,6 +157,37 @@ fn stop_views(p: &Panel) -> Vec<View> {
     }
     let outlines: Vec<Bounds> = p.preview.outlines.iter().map(|g| g.bounds()).collect();
     let ids = glyph_ids(&p.preview.outlines);
+    let names = items(p);
+    // Each stop's gun-on points, gathered once: a long job has hundreds of
+    // letters and stops and 10⁵ samples.
+    let mut painted_at: Vec<Vec<[f64; 2]>> = vec![Vec::new(); n];
+    for i in 0..s.len() {
+        if let (Some(k), true) = (station(i), s.paint[i] != 0) {
+            painted_at[k].push([s.x_m[i], s.y_m[i]]);
+        }
+    }
+    // The letters each stop's gun paints in: any gun-on sample of the stop
+    // inside a letter's box.
+    let painted: Vec<Vec<usize>> = (0..n)
+        .map(|k| {
+            outlines
+                .iter()
+                .enumerate()
+                .filter(|(_, gb)| {
+                    // (a box above or below the stop's paint is skipped)
+                    let apart = gb.min[1] > on[k].max[1] || gb.max[1] < on[k].min[1];
+                    !(gb.is_empty() || apart)
+                        && painted_at[k].iter().any(|q| {
+                            q[0] >= gb.min[0]
+                                && q[0] <= gb.max[0]
+                                && q[1] >= gb.min[1]
+                                && q[1] <= gb.max[1]
+                        })
+                })
+                .map(|(i, _)| i)
+                .collect()
+        })
+        .collect();
     (0..n)
         .map(|k| {
             let st = &p.job.stations[k];
@@ -170,32 +201,45 @@ fn stop_views(p: &Panel) -> Vec<View> {
                     max: [1.0, 1.0],
                 };
             }
-            // The letters this stop's gun paints in: any gun-on sample of
-            // the stop inside a letter's box.
-            let painted: Vec<String> = outlines
-                .iter()
-                .zip(&p.preview.outlines)
-                .zip(&ids)
-                .filter(|((gb, _), _)| {
-                    !gb.is_empty()
-                        && (0..s.len()).any(|i| {
-                            station(i) == Some(k)
-                                && s.paint[i] != 0
-                                && s.x_m[i] >= gb.min[0]
-                                && s.x_m[i] <= gb.max[0]
-                                && s.y_m[i] >= gb.min[1]
-                                && s.y_m[i] <= gb.max[1]
-                        })
-                })
-                .map(|((_, g), id)| format!("{id} {}", g.label))
-                .collect();
+            // A line painted whole from this stop by its name (`1: PED`),
+            // else its letters painted here (`3.1 A, 3.2 H`); "part of" and
+            // the other stops where one letter or item is shared (RXR's
+            // symbol is painted from stops 2 and 3).
+            let mut said: Vec<String> = Vec::new();
+            for (line, text, _) in &names {
+                let of_line: Vec<usize> = (0..outlines.len())
+                    .filter(|&i| p.preview.outlines[i].line == *line)
+                    .collect();
+                let here: Vec<usize> = of_line
+                    .iter()
+                    .copied()
+                    .filter(|i| painted[k].contains(i))
+                    .collect();
+                let shared: Vec<String> = (0..n)
+                    .filter(|&o| o != k && here.iter().any(|i| painted[o].contains(i)))
+                    .map(|o| (o + 1).to_string())
+                    .collect();
+                let part = match shared.as_slice() {
+                    [] => String::new(),
+                    [o] => format!(" (part, with stop {o})"),
+                    more => format!(" (part, with stops {})", more.join(", ")),
+                };
+                match here.len() {
+                    0 => {}
+                    m if m == of_line.len() => said.push(format!("{text}{part}")),
+                    _ => said.extend(
+                        here.iter()
+                            .map(|&i| format!("{} {}", ids[i], p.preview.outlines[i].label)),
+                    ),
+                }
+            }
             View {
                 id: format!("stop-{}", k + 1),
                 title: format!("Stop {}", k + 1),
-                note: if painted.is_empty() {
+                note: if said.is_empty() {
                     String::new()
                 } else {
-                    format!("paints {}", painted.join(", "))
+                    format!("paints {}", said.join(", "))
                 },
                 bounds: b.grow(0.3),
                 path_of: Some(k),
@@ -236,8 +280,8 @@ const OVERVIEW_H_PX: f64 = 760.0;
 const OVERVIEW_W_PX: f64 = 240.0;
 
 /// Each line or item of the job as the overview names it (`2: [rxr]`,
-/// `1: SCHOOL`) with its letters' box.
-fn items(p: &Panel) -> Vec<(String, Bounds)> {
+/// `1: SCHOOL`) with its line number (from 0) and its letters' box.
+fn items(p: &Panel) -> Vec<(usize, String, Bounds)> {
     let mut by_line: std::collections::BTreeMap<usize, (Vec<&str>, Bounds)> = Default::default();
     for g in &p.preview.outlines {
         let e = by_line
@@ -256,7 +300,7 @@ fn items(p: &Panel) -> Vec<(String, Bounds)> {
                 _ if labels.iter().all(|l| l.chars().count() == 1) => labels.concat(),
                 _ => labels.join(" "),
             };
-            (plot::clip(&format!("{}: {text}", line + 1), 28), b)
+            (line, plot::clip(&format!("{}: {text}", line + 1), 28), b)
         })
         .collect()
 }
@@ -408,7 +452,7 @@ fn page(panels: &[Panel]) -> Page {
             let ov = Frame::new(margin, map_top + CAPTION_PX, ppm, b.min, b.max);
             let labels_w = items(p)
                 .iter()
-                .map(|(t, _)| plot::text_width_px(t, OVERVIEW_LABEL_PX))
+                .map(|(_, t, _)| plot::text_width_px(t, OVERVIEW_LABEL_PX))
                 .fold(0.0, f64::max);
             let ov_right = ov.left_px + ov.width_px() + 8.0 + labels_w;
             let views = stop_views(p);
@@ -447,32 +491,46 @@ pub fn panel_frames(panels: &[Panel]) -> Vec<Frame> {
     page(panels).frames
 }
 
-/// Height of a view's caption (px): its title, and a note under it.
-const CAPTION_PX: f64 = 36.0;
+/// Height of a view's caption (px): its title, and a note of up to two
+/// lines under it.
+const CAPTION_PX: f64 = 50.0;
+
+/// `note` in lines of at most `chars` characters, broken at spaces: at most
+/// two, the second cut with an ellipsis.
+fn note_lines(note: &str, chars: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in note.split(' ') {
+        let full = lines.len() == 2;
+        match lines.last_mut() {
+            // The second line takes the rest, to be cut below.
+            Some(l) if full || l.chars().count() + 1 + word.chars().count() <= chars => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines.iter().map(|l| plot::clip(l, chars)).collect()
+}
 
 /// A caption over a view whose frame's top left is (`x`, `y`): its title
-/// in bold and a note under it, cut to the view's width.
+/// in bold and a note under it, in the view's width.
 fn caption(x: f64, y: f64, title: &str, note: &str, width_px: f64) -> Group {
-    let (title_y, note_y) = if note.is_empty() {
-        (y - 8.0, y)
+    // assumed: 11 px text averages under 6.5 px a character.
+    let lines = if note.is_empty() {
+        Vec::new()
     } else {
-        (y - 22.0, y - 7.0)
+        note_lines(note, (width_px.max(120.0) / 6.5) as usize)
     };
+    let n = lines.len() as f64;
     let mut g = Group::new().add(
-        plot::text(x, title_y, title, 13.0, "start")
+        plot::text(x, y - 8.0 - 14.0 * n, title, 13.0, "start")
             .set("font-weight", "bold")
             .set("class", "caption"),
     );
-    if !note.is_empty() {
-        // assumed: 11 px text averages under 6.5 px a character.
-        let chars = (width_px.max(120.0) / 6.5) as usize;
-        g = g.add(plot::text(
-            x,
-            note_y,
-            &plot::clip(note, chars),
-            11.0,
-            "start",
-        ));
+    for (k, line) in lines.iter().enumerate() {
+        let ly = y - 7.0 - 14.0 * (n - 1.0 - k as f64);
+        g = g.add(plot::text(x, ly, line, 11.0, "start"));
     }
     g
 }
@@ -496,6 +554,11 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
             bottom = bottom.max(ov.top_px + ov.height_px());
             right = right.max(labels_right + 60.0);
         }
+        let stations = if views.iter().any(|v| v.path_of.is_some()) {
+            pose_stations(p)
+        } else {
+            Vec::new()
+        };
         for (frame, view) in pg.frames.iter().zip(views) {
             let clip_id = format!("{}-clip", view.id);
             let (x0, y0) = (frame.left_px, frame.top_px);
@@ -518,7 +581,7 @@ pub fn render_svg(panels: &[Panel], title: &str) -> String {
                     )
                     .add(caption(x0, y0, &view.title, &view.note, frame.width_px()))
                     .add(
-                        road_layers(p, frame, vmax, view)
+                        road_layers(p, frame, vmax, view, &stations)
                             .set("clip-path", format!("url(#{clip_id})")),
                     )
                     .add(plot::axes_fitted(frame, "x (m)", "y (m)")),
@@ -659,10 +722,10 @@ fn overview(p: &Panel, frame: &Frame) -> Group {
     let items = items(p);
     let mids: Vec<f64> = items
         .iter()
-        .map(|(_, b)| frame.px([0.0, (b.min[1] + b.max[1]) / 2.0]).1 + 4.0)
+        .map(|(_, _, b)| frame.px([0.0, (b.min[1] + b.max[1]) / 2.0]).1 + 4.0)
         .collect();
     let mut names = Group::new().set("class", "items");
-    for ((text, b), y) in items.iter().zip(spread(&mids, OVERVIEW_LABEL_PX + 3.0)) {
+    for ((_, text, b), y) in items.iter().zip(spread(&mids, OVERVIEW_LABEL_PX + 3.0)) {
         let (_, top) = frame.px([0.0, b.max[1]]);
         let (_, foot) = frame.px([0.0, b.min[1]]);
         let x = x0 + w;
@@ -762,7 +825,7 @@ fn draw_panel(p: &Panel, frame: &Frame, vmax: f64) -> Group {
         path_of: None,
         stops: (0..p.job.stations.len()).collect(),
     };
-    road_layers(p, frame, vmax, &all).add(plot::axes_fitted(frame, "x (m)", "y (m)"))
+    road_layers(p, frame, vmax, &all, &[]).add(plot::axes_fitted(frame, "x (m)", "y (m)"))
 }
 
 /// The stop (index into the job's stations) each pose was laid from: the
@@ -783,7 +846,15 @@ fn pose_stations(p: &Panel) -> Vec<Option<usize>> {
 /// What [`draw_panel`] draws inside the frame: film, outlines, nozzle path,
 /// stations and labels (everything but the axes); of the nozzle path,
 /// stroke numbers and stops only what `view` shows.
-fn road_layers(p: &Panel, frame: &Frame, vmax: f64, view: &View) -> Group {
+/// `stations[i]`: the stop pose i was laid from ([`pose_stations`]), needed
+/// only when the view shows one stop's path.
+fn road_layers(
+    p: &Panel,
+    frame: &Frame,
+    vmax: f64,
+    view: &View,
+    stations: &[Option<usize>],
+) -> Group {
     let grid = &p.preview.film.grid;
     let target = p.preview.metrics.target_film_m;
     // Only the cells the frame shows (a line's view of a long job).
@@ -843,10 +914,9 @@ fn road_layers(p: &Panel, frame: &Frame, vmax: f64, view: &View) -> Group {
             .set("stroke-linejoin", "round"),
     );
     // Nozzle path, split into gun-on and gun-off runs.
-    let of = view.path_of.map(|k| (k, pose_stations(p)));
     let keep = |i: usize| {
-        of.as_ref()
-            .is_none_or(|(k, st)| st.get(i).copied().flatten() == Some(*k))
+        view.path_of
+            .is_none_or(|k| stations.get(i).copied().flatten() == Some(k))
     };
     let (on, off) = path_runs(&p.preview.poses, frame, &keep);
     g = g
@@ -988,6 +1058,19 @@ mod tests {
         // A run of three pushes each in turn.
         assert_eq!(spread(&[0.0, 1.0, 2.0], 10.0), vec![0.0, 10.0, 20.0]);
         assert!(spread(&[], 10.0).is_empty());
+    }
+
+    #[test]
+    fn notes_break_at_spaces_into_two_lines_at_most() {
+        assert_eq!(note_lines("paints 1: PED", 30), ["paints 1: PED"]);
+        assert_eq!(
+            note_lines("paints 2: [rxr] (part, with stop 3)", 23),
+            ["paints 2: [rxr] (part,", "with stop 3)"]
+        );
+        let long = note_lines("paints 3.1 A, 3.2 H, 3.3 E, 3.4 A, 3.5 D, 4.1 S", 14);
+        assert_eq!(long.len(), 2);
+        assert!(long.iter().all(|l| l.chars().count() <= 14), "{long:?}");
+        assert!(long[1].ends_with('…'), "{long:?}");
     }
 
     #[test]
