@@ -203,3 +203,28 @@ fn a_job_from_one_stop_keeps_one_view_with_clear_ticks() {
     let ys = ticks(&svg, "ticks-y");
     assert!(ys.len() >= 8, "{ys:?}");
 }
+
+#[test]
+fn a_two_line_job_from_one_stop_draws_the_stop_once() {
+    // Letters 18 in tall, lines 1.83 m apart: both lines from one stop.
+    let dir = tempfile::tempdir().unwrap();
+    let (svg, stations) = preview(
+        dir.path(),
+        &[
+            "GO NOW",
+            "--letter-height",
+            "18in",
+            "--line-gap",
+            "1.83",
+            "-o",
+            "GO_NOW.job.json",
+        ],
+        "GO_NOW.job.json",
+    );
+    assert_eq!(stations, 1);
+    let ids: Vec<String> = views(&svg).into_iter().map(|(id, _)| id).collect();
+    assert_eq!(ids, ["line-view-1", "line-view-2"]);
+    let words: Vec<String> = texts(&svg).into_iter().map(|t| t.2).collect();
+    assert_eq!(words.iter().filter(|w| *w == "Stop 1").count(), 1);
+    assert_ticks_clear(&svg);
+}
