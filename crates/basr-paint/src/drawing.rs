@@ -264,8 +264,8 @@ fn scene_bounds(p: &Panel) -> Bounds {
     if b.is_empty() {
         b = panel_bounds(p);
     }
-    // The lane across, centred on the anchor as the layout centres it, so a
-    // narrow item is seen in its lane.
+    // The lane across (the road frame's x = 0 is the lane's centre,
+    // docs/job.md), so a narrow item is seen in its lane.
     let lane = p.job.layout.lane_width_m;
     if lane.is_finite() && lane > 0.0 && lane < 100.0 {
         b.include([-lane / 2.0, b.min[1]]);
