@@ -400,8 +400,9 @@ fn page(panels: &[Panel]) -> Page {
         header.push(("message".into(), p.job.message.replace('\n', " / ")));
         header.push((
             "robot".into(),
+            // "stops", as the panels, the job sheet and compile say.
             format!(
-                "{} ({} station{})",
+                "{} ({} stop{})",
                 p.job.robot.name(),
                 p.job.stations.len(),
                 if p.job.stations.len() == 1 { "" } else { "s" }
