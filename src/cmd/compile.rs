@@ -375,6 +375,14 @@ fn refuse_clashing_paths(args: &Args, out: &Path) -> anyhow::Result<()> {
     super::refuse_clashes(&outputs, &inputs)
 }
 
+/// A path's last part, for a progress line (`markings/rxr.toml` → `rxr.toml`).
+fn file_name(p: &Path) -> String {
+    p.file_name().map_or_else(
+        || p.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // Before any work: a folder or a wrong name fails now, not after planning.
     if let Some(p) = &args.output {
@@ -416,9 +424,23 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             let path = args.shape.as_deref().unwrap_or(Path::new(""));
             let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
             let bands = basr::pipeline::shapes::bands(&robot);
-            let imported =
-                basr::pipeline::shapes::import_measured(path, args.shape_size.size(), &robot)?;
-            shape = Some((imported, bands));
+            // The search compiles and previews candidate decompositions:
+            // the long part of a shape's compile (30–60 s).
+            let bar = super::progress_bar(
+                !global.quiet && !args.json,
+                &format!("{}: trying decompositions", file_name(path)),
+            );
+            let imported = basr::pipeline::shapes::import_measured_with_progress(
+                path,
+                args.shape_size.size(),
+                &robot,
+                &|done, total| {
+                    bar.set_length(total as u64);
+                    bar.set_position(done as u64);
+                },
+            );
+            bar.finish_and_clear();
+            shape = Some((imported?, bands));
             Source::Message(basr::shape::GLYPH.to_string())
         }
         (Some(m), None) => Source::Message(
@@ -484,6 +506,18 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     let scene_file =
         matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
+    let spin = super::spinner(
+        !global.quiet && !args.json,
+        &format!(
+            "compiling {}",
+            match (&req.source, &args.shape) {
+                (_, Some(p)) => file_name(p),
+                (Source::Marking { origin, .. }, _) => file_name(Path::new(origin)),
+                (Source::Symbol(s), _) => s.clone(),
+                (Source::Message(m), _) => basr::plot::clip(&m.replace('\n', " / "), 40),
+            }
+        ),
+    );
     let compiled = match (&shape, &args.shape) {
         (Some((imported, bands)), Some(path)) => {
             let label = path
@@ -494,6 +528,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         }
         _ => compile_job(&req),
     };
+    spin.finish_and_clear();
     let mut job = compiled.map_err(|e| {
         let e = anyhow::Error::from(e);
         match hints.is_empty() {

@@ -78,8 +78,22 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
     let bands = basr::pipeline::shapes::bands(&robot);
     // The file must load back as it will be used (checked before it is written).
-    let imported =
-        basr::pipeline::shapes::import_to_file(&args.file, args.size.size(), &robot, &args.output)?;
+    let bar = super::progress_bar(
+        !global.quiet && !args.json,
+        &format!("{}: trying decompositions", args.file.display()),
+    );
+    let imported = basr::pipeline::shapes::import_to_file_with_progress(
+        &args.file,
+        args.size.size(),
+        &robot,
+        &args.output,
+        &|done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        },
+    );
+    bar.finish_and_clear();
+    let imported = imported?;
     let d = &imported.decomposition;
     if args.json {
         let v = serde_json::json!({

@@ -73,6 +73,33 @@ pub fn refuse_clashes(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]) -> an
     Ok(())
 }
 
+/// Whether a command shows progress on stderr: only on a terminal, and
+/// never under `--quiet` or `--json` (a script reading either wants no
+/// control characters on its streams).
+pub fn shows_progress(quiet: bool, json: bool, stderr_is_terminal: bool) -> bool {
+    !quiet && !json && stderr_is_terminal
+}
+
+/// A spinner on stderr saying `what` and the time it has taken, for work
+/// that cannot count its steps (a compile: layout, planning, the verifying
+/// simulation of each stop, the film); hidden unless `show` and stderr is
+/// a terminal. Its own thread redraws it, so it moves while the work runs.
+pub fn spinner(show: bool, what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !(show && std::io::stderr().is_terminal()) {
+        return indicatif::ProgressBar::hidden();
+    }
+    let b = indicatif::ProgressBar::new_spinner();
+    b.set_style(
+        indicatif::ProgressStyle::with_template("{spinner} {msg} ({elapsed})")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_spinner()),
+    );
+    b.set_message(what.to_string());
+    // assumed: 8 redraws a second reads as moving and costs nothing.
+    b.enable_steady_tick(std::time::Duration::from_millis(125));
+    b
+}
+
 /// A progress bar on stderr when `show` and stderr is a terminal (hidden
 /// otherwise, so logs and pipes get no control characters).
 pub fn progress_bar(show: bool, what: &str) -> indicatif::ProgressBar {

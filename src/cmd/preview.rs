@@ -201,6 +201,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             .iter()
             .map(|m| replan::parse_tilt(m))
             .collect::<anyhow::Result<_>>()?;
+        // Re-planning is a compile (without its verifying simulation):
+        // seconds for a scene.
+        let spin = super::spinner(
+            !global.quiet && !args.json,
+            &format!("re-planning under {} tilt methods", tilts.len()),
+        );
         let plan = if tilts.iter().any(|t| t.name() != job.layout.tilt_method) {
             let font = replan::replan_font(&job, &origin, args.font.as_deref())?;
             Some(replan::recover(
@@ -221,6 +227,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 _ => v.push((job.clone(), false)),
             }
         }
+        spin.finish_and_clear();
         v
     };
     let replanned_lines = [

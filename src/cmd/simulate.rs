@@ -226,7 +226,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         keep_trace: args.trace.is_some() || args.svg.is_some() || args.mcap.is_some(),
         substeps: args.substeps,
     };
-    let show = !global.quiet && !args.json && std::io::stderr().is_terminal();
+    let show = super::shows_progress(global.quiet, args.json, std::io::stderr().is_terminal());
     let bar = if show {
         let b = indicatif::ProgressBar::new(1);
         b.set_style(
@@ -251,7 +251,16 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             spread: args.spread,
             seed: args.seed,
         };
-        let summary = sim::plants::run(&job, &model, &opts, &p)?;
+        let bar = super::progress_bar(
+            !global.quiet && !args.json,
+            &format!("simulating {} plants", args.plants),
+        );
+        let summary = sim::plants::run_with_progress(&job, &model, &opts, &p, &|done, total| {
+            bar.set_length(total.into());
+            bar.set_position(done.into());
+        });
+        bar.finish_and_clear();
+        let summary = summary?;
         let r = &mut outcome.report;
         // the verdict is the plants' p95, with the description's limits
         r.reasons.retain(|m| !m.starts_with("nozzle error"));

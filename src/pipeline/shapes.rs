@@ -188,8 +188,18 @@ enum Outcome {
 /// fallback (a ring in concentric passes),
 /// measures them in parallel, and stands in for copies
 /// (`Prediction::same`) by the first of them.
-fn measure_ranked(all: &[Imported], robot: &AnyRobot, b: &Bands, label: &str) -> Vec<Outcome> {
+/// `progress(done, total)` hears of each candidate measured (`total` the
+/// number of candidates: the search usually stops before the last).
+fn measure_ranked(
+    all: &[Imported],
+    robot: &AnyRobot,
+    b: &Bands,
+    label: &str,
+    progress: &Progress<'_>,
+) -> Vec<Outcome> {
     use rayon::prelude::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let done = AtomicUsize::new(0);
     let pred: Vec<Prediction> = all.iter().map(|c| c.decomposition.prediction()).collect();
     // A ring in concentric passes is the one-pass ring's fallback: it
     // starts a round of its own, so it is compiled only when nothing
@@ -220,7 +230,11 @@ fn measure_ranked(all: &[Imported], robot: &AnyRobot, b: &Bands, label: &str) ->
         }
         let got: Vec<(usize, Option<Measured>)> = todo
             .par_iter()
-            .map(|&j| (j, measure(&all[j], robot, b, label)))
+            .map(|&j| {
+                let m = measure(&all[j], robot, b, label);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1, all.len());
+                (j, m)
+            })
             .collect();
         let good = got.iter().any(|(_, m)| m.is_some_and(|m| m.good()));
         for (j, m) in got {
@@ -269,10 +283,24 @@ fn pick(outcomes: &[Outcome]) -> usize {
 /// ([`measure_ranked`]); the decomposition's notes list every candidate's
 /// measured film or why it was not measured.
 pub fn import_measured(path: &Path, size: Size, robot: &AnyRobot) -> Result<Imported, ShapeError> {
+    import_measured_with_progress(path, size, robot, &|_, _| {})
+}
+
+/// How far a long search has got: `(done, total)`, from any thread.
+pub type Progress<'a> = dyn Fn(usize, usize) + Sync + 'a;
+
+/// [`import_measured`], telling `progress` of each candidate measured (a
+/// shape's search compiles and previews several: 30–60 s).
+pub fn import_measured_with_progress(
+    path: &Path,
+    size: Size,
+    robot: &AnyRobot,
+    progress: &Progress<'_>,
+) -> Result<Imported, ShapeError> {
     let b = bands(robot);
     let mut all = shape::import_candidates(path, size, &b)?;
     let label = label_of(path);
-    let outcomes = measure_ranked(&all, robot, &b, &label);
+    let outcomes = measure_ranked(&all, robot, &b, &label, progress);
     let pick = pick(&outcomes);
     let notes = measured_notes(&all, &outcomes, pick);
     let chosen = all.swap_remove(pick);
@@ -287,7 +315,18 @@ pub fn import_to_file(
     robot: &AnyRobot,
     output: &Path,
 ) -> anyhow::Result<Imported> {
-    let imported = import_measured(path, size, robot)?;
+    import_to_file_with_progress(path, size, robot, output, &|_, _| {})
+}
+
+/// [`import_to_file`], telling `progress` of each candidate measured.
+pub fn import_to_file_with_progress(
+    path: &Path,
+    size: Size,
+    robot: &AnyRobot,
+    output: &Path,
+    progress: &Progress<'_>,
+) -> anyhow::Result<Imported> {
+    let imported = import_measured_with_progress(path, size, robot, progress)?;
     imported.font(&output.display().to_string())?;
     crate::io::write_atomic(output, imported.toml.as_bytes())?;
     Ok(imported)

@@ -353,6 +353,167 @@ pub fn axes_named(frame: &Frame, tick_m: f64, x_name: &str, y_name: &str) -> Gro
         )
 }
 
+/// Size of axis tick labels (px).
+pub const TICK_FONT_PX: f64 = 10.0;
+/// Clear space between two neighbouring tick labels (px).
+// assumed: a little under one digit's width keeps "0.5 1" from reading as one number.
+const TICK_LABEL_GAP_PX: f64 = 8.0;
+/// Ticks at least this far apart when the axis is long enough (px).
+// assumed: 60–150 px between ticks (the steps are 1, 2, 2.5, 5 apart) reads
+// as a ruler; a 4.8 m STOP panel at 158 px/m keeps its 0.5 m ticks.
+const TICK_TARGET_PX: f64 = 60.0;
+/// ...and at least this many intervals along an axis while the labels
+/// fit: a narrow panel once had a single x tick.
+const MIN_TICK_INTERVALS: f64 = 5.0;
+
+/// Width in px of `s` drawn at `size` px, over-estimated: per character the
+/// advance of DejaVu Sans (digits 0.636 em, `.` 0.32 em, `-` 0.361 em,
+/// others at most 0.7 em), the widest of the fonts the house family falls
+/// back to (Helvetica and Arial are narrower), so a label judged to fit
+/// fits in every viewer.
+pub fn text_width_px(s: &str, size: f64) -> f64 {
+    s.chars()
+        .map(|c| match c {
+            '0'..='9' => 0.636,
+            '.' | ',' | ' ' => 0.32,
+            '-' => 0.361,
+            _ => 0.7,
+        })
+        .sum::<f64>()
+        * size
+}
+
+/// The tick values `k · step` within `lo..=hi`.
+pub fn tick_values(lo: f64, hi: f64, step: f64) -> Vec<f64> {
+    if !(step > 0.0 && step.is_finite() && lo.is_finite() && hi.is_finite()) {
+        return Vec::new();
+    }
+    let (k0, k1) = ((lo / step).ceil(), (hi / step).floor());
+    if k1 < k0 || k1 - k0 > MAX_TICKS {
+        return Vec::new();
+    }
+    (k0 as i64..=k1 as i64).map(|k| k as f64 * step).collect()
+}
+
+/// The tick step (m) for an axis showing `lo..hi` at `px_per_m`, whose
+/// labels ([`num`] of each value) take `extent(label)` px along the axis:
+/// the smallest of 1, 2, 2.5, 5 × 10ⁿ (written exactly with [`num`]'s two
+/// decimals) that puts ticks [`TICK_TARGET_PX`] or more apart, or closer on a
+/// short axis, and leaves every pair of neighbouring labels
+/// [`TICK_LABEL_GAP_PX`] apart. 0 when no step fits a label (an axis
+/// shorter than one label), so the caller draws no ticks.
+pub fn tick_step(lo: f64, hi: f64, px_per_m: f64, extent: &dyn Fn(&str) -> f64) -> f64 {
+    let span = hi - lo;
+    if !(span > 0.0 && span.is_finite() && px_per_m > 0.0 && px_per_m.is_finite()) {
+        return 0.0;
+    }
+    let want_px = (span * px_per_m / MIN_TICK_INTERVALS).min(TICK_TARGET_PX);
+    let fits = |step: f64| {
+        let ticks = tick_values(lo, hi, step);
+        !ticks.is_empty()
+            && ticks.windows(2).all(|w| {
+                let room = (w[1] - w[0]) * px_per_m;
+                room >= (extent(&num(w[0])) + extent(&num(w[1]))) / 2.0 + TICK_LABEL_GAP_PX
+            })
+    };
+    // From the step that would give MAX_TICKS up to one past the span.
+    let n0 = ((span / MAX_TICKS).log10().floor() as i32).max(-2);
+    for n in n0..n0 + 16 {
+        for m in [1.0, 2.0, 2.5, 5.0] {
+            let step = m * 10f64.powi(n);
+            // Only steps num() writes exactly (0.025 would print as 0.03).
+            if ((step * 100.0).round() - step * 100.0).abs() > 1e-9 {
+                continue;
+            }
+            if step * px_per_m >= want_px && fits(step) {
+                return step;
+            }
+            if step > 2.0 * span {
+                return 0.0;
+            }
+        }
+    }
+    0.0
+}
+
+/// The tick steps [`axes_fitted`] draws on a frame and the room its labels
+/// and the y axis's name take to the left of the frame (px).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FittedAxes {
+    pub x_step: f64,
+    pub y_step: f64,
+    /// Room left of the frame's edge the y labels and name take (px).
+    pub left_px: f64,
+    /// Where the turned y-axis name's baseline sits, left of the frame (px).
+    y_name_px: f64,
+}
+
+/// Tick steps for `frame` chosen from its size in pixels and its labels'
+/// widths (x) and height (y), so no two labels touch.
+pub fn fit_axes(frame: &Frame) -> FittedAxes {
+    let f = frame;
+    let x_step = tick_step(f.road_min[0], f.road_max[0], f.px_per_m, &|s| {
+        text_width_px(s, TICK_FONT_PX)
+    });
+    let y_step = tick_step(f.road_min[1], f.road_max[1], f.px_per_m, &|_| TICK_FONT_PX);
+    let widest = tick_values(f.road_min[1], f.road_max[1], y_step)
+        .iter()
+        .map(|v| text_width_px(&num(*v), TICK_FONT_PX))
+        .fold(0.0, f64::max);
+    // Labels end 6 px left of the frame; the turned name's glyphs reach
+    // about 0.75 em left of its baseline and 0.25 em right of it.
+    let y_name_px = (6.0 + widest + 0.25 * TICK_FONT_PX + 4.0).max(34.0);
+    FittedAxes {
+        x_step,
+        y_step,
+        left_px: y_name_px + 0.75 * TICK_FONT_PX,
+        y_name_px,
+    }
+}
+
+/// Axes around a frame as [`axes_named`] draws them, with the tick steps of
+/// [`fit_axes`]: the x labels in a group of class `ticks-x`, the y labels
+/// in one of class `ticks-y`, and the y axis's name clear of the widest y
+/// label.
+pub fn axes_fitted(frame: &Frame, x_name: &str, y_name: &str) -> Group {
+    let fit = fit_axes(frame);
+    let (x0, y0) = frame.px([frame.road_min[0], frame.road_max[1]]);
+    let (x1, y1) = frame.px([frame.road_max[0], frame.road_min[1]]);
+    let mut xs = Group::new().set("class", "ticks-x");
+    for v in tick_values(frame.road_min[0], frame.road_max[0], fit.x_step) {
+        let (px, _) = frame.px([v, 0.0]);
+        xs = xs
+            .add(line(px, y1, px, y1 + 4.0, palette::INK, 0.8))
+            .add(text(px, y1 + 15.0, &num(v), TICK_FONT_PX, "middle"));
+    }
+    let mut ys = Group::new().set("class", "ticks-y");
+    for v in tick_values(frame.road_min[1], frame.road_max[1], fit.y_step) {
+        let (_, py) = frame.px([0.0, v]);
+        ys = ys
+            .add(line(x0 - 4.0, py, x0, py, palette::INK, 0.8))
+            .add(text(x0 - 6.0, py + 3.5, &num(v), TICK_FONT_PX, "end"));
+    }
+    let name_x = x0 - fit.y_name_px;
+    Group::new()
+        .add(
+            Rectangle::new()
+                .set("x", num(x0))
+                .set("y", num(y0))
+                .set("width", num(x1 - x0))
+                .set("height", num(y1 - y0))
+                .set("fill", "none")
+                .set("stroke", palette::INK)
+                .set("stroke-width", 0.8),
+        )
+        .add(xs)
+        .add(ys)
+        .add(text((x0 + x1) / 2.0, y1 + 28.0, x_name, 10.0, "middle"))
+        .add(text(name_x, (y0 + y1) / 2.0, y_name, 10.0, "middle").set(
+            "transform",
+            format!("rotate(-90 {} {})", num(name_x), num((y0 + y1) / 2.0)),
+        ))
+}
+
 /// A title line followed by `key: value` lines, from (`x`, `y`) down.
 pub fn title_block(x: f64, y: f64, title: &str, lines: &[(String, String)]) -> Group {
     let mut g = Group::new()
@@ -489,6 +650,97 @@ mod tests {
         assert!(n > 2 && n <= 2 * 101 + 2, "{n} labels");
         let endless = Frame::new(0.0, 0.0, 1e-300, [-1e300, 0.0], [1e300, 1.0]);
         assert!(labels(&endless, 50.0) <= 2 * 101 + 2);
+    }
+
+    /// Every neighbouring pair of labels of `step` on `lo..hi` at `ppm`
+    /// has `gap` px between them (x labels: their widths).
+    fn x_labels_clear(lo: f64, hi: f64, ppm: f64, step: f64, gap: f64) -> bool {
+        tick_values(lo, hi, step).windows(2).all(|w| {
+            let a = text_width_px(&num(w[0]), TICK_FONT_PX);
+            let b = text_width_px(&num(w[1]), TICK_FONT_PX);
+            (w[1] - w[0]) * ppm >= (a + b) / 2.0 + gap
+        })
+    }
+
+    fn x_step(lo: f64, hi: f64, ppm: f64) -> f64 {
+        tick_step(lo, hi, ppm, &|s| text_width_px(s, TICK_FONT_PX))
+    }
+
+    #[test]
+    fn tick_labels_of_a_wide_short_panel_do_not_run_together() {
+        // The scene preview's stop-line view: 4.3 m across at 64 px/m once
+        // took 0.1 m ticks for its 1 m height, 6 px apart under labels
+        // like "-1.8" 20 px wide.
+        let s = x_step(-2.15, 2.15, 64.0);
+        assert!(s >= 0.5, "{s}");
+        assert!(x_labels_clear(-2.15, 2.15, 64.0, s, TICK_LABEL_GAP_PX));
+        // ...and still at least three labels.
+        assert!(tick_values(-2.15, 2.15, s).len() >= 3, "{s}");
+    }
+
+    #[test]
+    fn ticks_are_60_px_or_more_apart_on_a_long_axis() {
+        // 20 m at 40 px/m: 1 m = 40 px < 60 ≤ 2 m.
+        assert_eq!(x_step(0.0, 20.0, 40.0), 2.0);
+        // STOP's panel: 4.8 m at 158 px/m → 0.5 m (79 px), not 0.25.
+        assert_eq!(x_step(-0.3, 4.5, 158.0), 0.5);
+        assert_eq!(tick_step(-0.3, 4.5, 158.0, &|_| TICK_FONT_PX), 0.5);
+    }
+
+    #[test]
+    fn a_short_axis_keeps_five_intervals_while_the_labels_fit() {
+        // 1 m at 200 px/m: 0.2 m = 40 px (five intervals), not 0.5.
+        let s = x_step(0.0, 1.0, 200.0);
+        assert_eq!(s, 0.2);
+        // The y axis (labels 10 px tall) of the same.
+        assert_eq!(tick_step(0.0, 1.0, 200.0, &|_| TICK_FONT_PX), 0.2);
+    }
+
+    #[test]
+    fn wide_labels_push_the_step_up() {
+        // Labels like "-26.25" (about 35 px) need more room than "-26".
+        let s = x_step(-31.0, -25.0, 60.0);
+        assert!(
+            x_labels_clear(-31.0, -25.0, 60.0, s, TICK_LABEL_GAP_PX),
+            "{s}"
+        );
+        for narrow in [0.25, 0.5] {
+            assert!(s > narrow || x_labels_clear(-31.0, -25.0, 60.0, narrow, 8.0));
+        }
+    }
+
+    #[test]
+    fn steps_are_written_exactly_and_tiny_axes_get_no_ticks() {
+        for (lo, hi, ppm) in [(0.0, 0.1, 3000.0), (-0.3, 0.2, 2000.0), (0.0, 1e4, 0.05)] {
+            let s = x_step(lo, hi, ppm);
+            assert!(s > 0.0, "{lo} {hi} {ppm}");
+            assert!(((s * 100.0).round() - s * 100.0).abs() < 1e-9, "{s}");
+        }
+        // 0.5 m at 20 px/m is 10 px: room for one label, not two.
+        let s = x_step(0.0, 0.5, 20.0);
+        assert_eq!(tick_values(0.0, 0.5, s).len(), 1, "{s}");
+        // 3 cm at 20 px/m: no label fits between 0.31 and 0.34.
+        assert_eq!(x_step(0.31, 0.34, 20.0), 0.0);
+        assert_eq!(x_step(0.0, 0.0, 20.0), 0.0);
+        assert_eq!(x_step(0.0, f64::NAN, 20.0), 0.0);
+    }
+
+    #[test]
+    fn fitted_axes_keep_the_y_name_clear_of_wide_labels() {
+        let narrow = fit_axes(&Frame::new(60.0, 0.0, 100.0, [0.0, 0.0], [2.0, 3.0]));
+        // y labels every 0.25 m: "-30.75" is about 32 px wide.
+        let wide = fit_axes(&Frame::new(60.0, 0.0, 250.0, [0.0, -31.0], [1.0, -28.0]));
+        assert_eq!(wide.y_step, 0.25);
+        assert_eq!(narrow.y_name_px, 34.0);
+        assert!(wide.y_name_px > 6.0 + text_width_px("-30.75", TICK_FONT_PX));
+        assert!(wide.left_px > wide.y_name_px);
+        let svg = axes_fitted(
+            &Frame::new(60.0, 0.0, 100.0, [0.0, 0.0], [2.0, 3.0]),
+            "x (m)",
+            "y (m)",
+        )
+        .to_string();
+        assert!(svg.contains("class=\"ticks-x\"") && svg.contains("class=\"ticks-y\""));
     }
 
     #[test]

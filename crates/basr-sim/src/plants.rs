@@ -164,13 +164,28 @@ pub fn run(
     opts: &Options,
     plants: &PlantsOptions,
 ) -> Result<PlantsSummary, SimError> {
+    run_with_progress(job, nominal, opts, plants, &|_, _| {})
+}
+
+/// [`run`], telling `progress(done, total)` of each plant simulated (from
+/// the worker threads, in any order).
+pub fn run_with_progress(
+    job: &Job,
+    nominal: &SimModel,
+    opts: &Options,
+    plants: &PlantsOptions,
+    progress: &(dyn Fn(u32, u32) + Sync),
+) -> Result<PlantsSummary, SimError> {
     plants.check()?;
+    let done = std::sync::atomic::AtomicU32::new(0);
     let results: Vec<Result<PlantRun, SimError>> = (0..plants.n)
         .into_par_iter()
         .map(|i| {
             let f = draw(plants.seed, i, plants.spread);
             let m = scaled(nominal, &f);
             let o = simulate_plant(job, nominal, &m, opts, &mut |_, _| {})?;
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress(n, plants.n);
             Ok((o.report.max_error_m, o.report.passed(), f))
         })
         .collect();
