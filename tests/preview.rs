@@ -30,11 +30,7 @@ fn preview_json(job: &Path, svg: &Path, extra: &[&str]) -> Value {
         .args(extra)
         .output()
         .unwrap();
-    assert!(
-        preview_common::ran_to_a_verdict(&out),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    preview_common::assert_ran_to_a_verdict(&out);
     serde_json::from_slice(&out.stdout).unwrap()
 }
 

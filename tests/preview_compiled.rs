@@ -36,11 +36,7 @@ fn preview(job: &Path, extra: &[&str]) -> Value {
         .args(extra)
         .output()
         .unwrap();
-    assert!(
-        preview_common::ran_to_a_verdict(&out),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    preview_common::assert_ran_to_a_verdict(&out);
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
@@ -217,11 +213,7 @@ fn compare_refuses_a_job_of_another_font_without_that_font() {
     );
 
     let out = run(&["--font", "copy.toml"]);
-    assert!(
-        preview_common::ran_to_a_verdict(&out),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    preview_common::assert_ran_to_a_verdict(&out);
     // The job's own tilt needs no re-planning, so no font either.
     let out = Command::cargo_bin("basr")
         .unwrap()
@@ -231,11 +223,7 @@ fn compare_refuses_a_job_of_another_font_without_that_font() {
         .args(["-o", "c.svg", "--compare", "quadrilateral"])
         .output()
         .unwrap();
-    assert!(
-        preview_common::ran_to_a_verdict(&out),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    preview_common::assert_ran_to_a_verdict(&out);
 }
 
 #[test]

@@ -21,11 +21,7 @@ fn from_sim_previews_the_film_the_arm_lays() {
             "sim.svg",
         ],
     );
-    assert!(
-        preview_common::ran_to_a_verdict(&out),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    preview_common::assert_ran_to_a_verdict(&out);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let coverage = v["coverage"].as_f64().unwrap();
     let laid = v["volume_laid_m3"].as_f64().unwrap();

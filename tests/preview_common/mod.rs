@@ -274,6 +274,15 @@ pub fn tilted_job(w: f64, len: f64, beta: f64) -> Job {
     job_with("I", "trapezoid", &rungs, glyph)
 }
 
+/// Asserts [`ran_to_a_verdict`], showing the run's stderr if not.
+pub fn assert_ran_to_a_verdict(out: &std::process::Output) {
+    assert!(
+        ran_to_a_verdict(out),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// `basr preview` ran to its verdict: exit 0 when the film passes, 1 when
 /// it fails (the metrics are printed either way); 2 would be bad input.
 pub fn ran_to_a_verdict(out: &std::process::Output) -> bool {
