@@ -1,7 +1,7 @@
 //! The `basr` command line: parse arguments, call the library, print results.
 //!
 //! Each subcommand lives in `src/cmd/<name>.rs` with its own `Args` and `run`.
-//! Exit codes (SPEC §1): 0 success, 1 negative verdict, 2 bad input or usage,
+//! Exit codes (README.md): 0 success, 1 negative verdict, 2 bad input or usage,
 //! 128 + signal interrupted (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP, 131 SIGQUIT).
 
 // println!/eprintln! panic when the reader has gone (`| head`): machine

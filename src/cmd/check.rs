@@ -1,7 +1,7 @@
 //! `basr check FILE...`: validate font, robot, marking, job and CSV files,
 //! reporting every problem found (exit 1 when any file has problems, 2 when
 //! any could not be read; the others are still checked). A CSV given with
-//! its job is checked to be the one written with it (SPEC §7).
+//! its job is checked to be the one written with it (docs/signed-jobs.md).
 
 use std::path::PathBuf;
 

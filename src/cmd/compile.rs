@@ -76,7 +76,7 @@ pub struct Args {
     /// Job file to write [default: <MESSAGE>.job.json].
     #[arg(short, long, value_name = "JOB")]
     pub output: Option<PathBuf>,
-    /// Also write the setpoints as CSV (SPEC §3 columns).
+    /// Also write the setpoints as CSV (columns: docs/csv.md).
     #[arg(long, value_name = "CSV")]
     pub csv: Option<PathBuf>,
     /// Also write an Adept V+ program (move trans / speed lines, mm and degrees).

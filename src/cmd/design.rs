@@ -24,7 +24,7 @@ use super::{Global, Outcome};
 /// over 12 m or extending over 4× its retracted length) exit 2 saying why.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  basr design --kind telescopic --points lane.toml -o arm.toml\n  basr pose 1.83 3 --height 0.15 --robot arm.toml   # each point is reachable\n  basr design --kind telescopic --points lane.toml -o arm.toml --margin-m 0.2 --json\n\nA points file holds, in metres in the base frame (SPEC §8):\n  points_m = [[-1.83, 3.0, 0.15], [-0.61, 3.0, 0.15], [0.61, 3.0, 0.15], [1.83, 3.0, 0.15]]\n\nExit codes: 0 designed and written, 2 bad input or no arm of the kind reaches the points."
+    after_help = "Examples:\n  basr design --kind telescopic --points lane.toml -o arm.toml\n  basr pose 1.83 3 --height 0.15 --robot arm.toml   # each point is reachable\n  basr design --kind telescopic --points lane.toml -o arm.toml --margin-m 0.2 --json\n\nA points file holds, in metres in the base frame (docs/robot-kinds.md):\n  points_m = [[-1.83, 3.0, 0.15], [-0.61, 3.0, 0.15], [0.61, 3.0, 0.15], [1.83, 3.0, 0.15]]\n\nExit codes: 0 designed and written, 2 bad input or no arm of the kind reaches the points."
 )]
 pub struct Args {
     /// Robot kind to design; `telescopic` (seed 002) is the one with a design method.

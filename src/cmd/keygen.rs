@@ -1,4 +1,4 @@
-//! `basr keygen -o NAME`: a new Ed25519 key pair for signing jobs (SPEC §7).
+//! `basr keygen -o NAME`: a new Ed25519 key pair for signing jobs (docs/signed-jobs.md).
 
 use std::path::{Path, PathBuf};
 

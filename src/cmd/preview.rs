@@ -121,7 +121,7 @@ pub struct Args {
 /// shows nothing new; STOP took 23 s at 1 mm and 3.5 min (560 MB) at 0.5 mm.
 const MIN_RESOLUTION_MM: f64 = 1.0;
 /// Coarsest raster cell, mm: a fifth of the narrowest stroke of an 8 ft
-/// letter (one grid unit, 2.44 m / 25 = 97.6 mm; SPEC §4 layout). Coarser,
+/// letter (one grid unit, 2.44 m / 25 = 97.6 mm; docs/marking.md). Coarser,
 /// few cells lie inside a stroke with all their neighbours: STOP's cv 0.070
 /// at 5 mm read 0.017 at 25 mm and overspray 0.026 → 0.077, and at 10⁹ mm
 /// the metrics were empty.
@@ -409,7 +409,7 @@ fn hydraulic_track(
                 actual: [
                     r.x_m,
                     r.y_m,
-                    // Vertical joint is positive down (SPEC §3).
+                    // Vertical joint is positive down (docs/job.md).
                     -(r.vertical_m - r.vertical_desired_m),
                     (r.ee_yaw_rad - r.ee_yaw_desired_rad)
                         + (r.base_rot_rad - r.base_rot_desired_rad),

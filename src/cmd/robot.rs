@@ -6,7 +6,7 @@ use super::{Global, Outcome};
 
 /// Print the effective robot description (TOML or JSON).
 ///
-/// The description is the embedded BASR (SPEC §4) or the file given with --robot, after validation. The TOML form reads back to an
+/// The description is the embedded BASR (docs/robot.md) or the file given with --robot, after validation. The TOML form reads back to an
 /// identical robot, so it is a starting point for a customised description.
 #[derive(clap::Args)]
 #[command(

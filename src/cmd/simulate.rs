@@ -37,7 +37,7 @@ impl From<ControllerArg> for ControllerKind {
 /// of the pantograph arm, its hydraulic motor and cylinder, servovalves,
 /// end-effector servos and linkage compliance, and measures how far the
 /// nozzle strays from the planned path while painting. A job for a
-/// telescopic or articulated robot (SPEC §8) runs that kind's servo plant
+/// telescopic or articulated robot (docs/robot-kinds.md) runs that kind's servo plant
 /// instead: each joint's inertia under PID + feed-forward with its drive's
 /// torque and speed limits (docs/robot-kinds.md).
 #[derive(clap::Args)]
@@ -90,7 +90,7 @@ pub struct Args {
 
     /// Simulate this many plants drawn around the robot description (1 = the
     /// description alone); the verdict is then on the 95th percentile of
-    /// their max errors (SPEC §6).
+    /// their max errors (docs/simulate.md).
     #[arg(long, default_value_t = 1, value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..=10000))]
     pub plants: u32,

@@ -60,7 +60,7 @@ pub fn check_source(text: &str, origin: &str) -> Vec<String> {
     let names: Vec<&str> = header.trim_end().split(',').collect();
     if names.len() < COLUMNS.len() || names[..COLUMNS.len()] != *COLUMNS {
         return vec![format!(
-            "{origin}:1: the header is not SPEC §3's setpoint columns ({}…): write it \
+            "{origin}:1: the header is not the setpoint columns of docs/csv.md ({}…): write it \
              again with `basr compile … --csv FILE`",
             COLUMNS[..4].join(",")
         )];

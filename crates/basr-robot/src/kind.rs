@@ -574,7 +574,7 @@ fn shipped_or<T: Serialize + PartialEq + for<'de> Deserialize<'de>>(
     }
     let body = toml::to_string(r).expect("a robot serialises to TOML");
     format!(
-        "# Robot description for basr, kind {kind} (SPEC §8). Sources of the shipped values: \
+        "# Robot description for basr, kind {kind} (docs/robot-kinds.md). Sources of the shipped values: \
          robots/{kind}.toml in the basr sources.\n{body}"
     )
 }

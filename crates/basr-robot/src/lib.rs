@@ -332,7 +332,7 @@ impl Robot {
     pub fn to_toml_string(&self) -> String {
         let body = toml::to_string(self).expect("a robot serialises to TOML");
         format!(
-            "# Robot description for basr (SPEC §4). Sources of the default values: \
+            "# Robot description for basr (docs/robot.md). Sources of the default values: \
              robots/basr.toml in the basr sources.\n{body}"
         )
     }
