@@ -536,6 +536,22 @@ fn r7_imports_are_bounded_before_the_work() {
         2,
         &["1.2e6 m wide", "at most 10 m"],
     );
+    // Arcs and circles of vast radius: usvg would make trillions of curves
+    // of one (a fuzzer's find); counted as those curves, before usvg.
+    for (name, shape) in [
+        ("arc.svg", r#"<path d="M0 0 A1e75 1e75 0 1 1 1e75 0Z"/>"#),
+        ("circle.svg", r#"<circle cx="5" cy="5" r="3e38"/>"#),
+    ] {
+        s.write(
+            name,
+            format!(r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10">{shape}</svg>"#),
+        );
+        s.expect(
+            &["import", name, "--shape-height-m", "1", "-o", "a.toml"],
+            2,
+            &["vertices", "20000", "arc"],
+        );
+    }
 }
 
 /// A DXF of one closed LWPOLYLINE (handle 2A) through `pts`.

@@ -18,8 +18,18 @@ pub fn read_svg(text: &str, origin: &str) -> Result<Outline, ShapeError> {
     }
     super::limits::check_svg_text(text, origin)?;
     refuse_text(text, origin)?;
+    // basr paints no images: usvg is not to read what an <image> names. Its
+    // default reads any path on disk (an href of /dev/zero reads forever)
+    // and parses an embedded SVG without the limits above.
+    let options = usvg::Options {
+        image_href_resolver: usvg::ImageHrefResolver {
+            resolve_data: Box::new(|_, _, _| None),
+            resolve_string: Box::new(|_, _| None),
+        },
+        ..usvg::Options::default()
+    };
     let parse = |text: &str| -> Result<Vec<Element>, ShapeError> {
-        let tree = usvg::Tree::from_str(text, &usvg::Options::default()).map_err(|e| {
+        let tree = usvg::Tree::from_str(text, &options).map_err(|e| {
             ShapeError::invalid(
                 origin,
                 format!("not a readable SVG ({e}); export it again as plain SVG"),
@@ -238,4 +248,26 @@ fn element(p: &usvg::Path, origin: &str, k: usize) -> Result<Option<Element>, Sh
         return Err(refuse_open(start));
     }
     Ok(Some(Element { name, rule, path }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An `<image>` is neither read from disk nor parsed: `/dev/zero` would
+    /// read until memory ran out, and the embedded SVG (an arc of radius
+    /// 3e38, percent-encoded) would run for minutes in usvg.
+    #[test]
+    fn images_are_not_loaded() {
+        let bomb = "%3Csvg xmlns='http://www.w3.org/2000/svg'%3E%3Cpath \
+                    d='M0 0 A3e38 3e38 0 1 1 1 0'/%3E%3C/svg%3E";
+        let svg = format!(
+            r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink">
+               <image href="/dev/zero" width="5" height="5"/>
+               <image xlink:href="data:image/svg+xml,{bomb}" width="5" height="5"/>
+               <rect width="10" height="20"/></svg>"#
+        );
+        let outline = read_svg(&svg, "x.svg").unwrap();
+        assert_eq!(outline.elements.len(), 1);
+    }
 }

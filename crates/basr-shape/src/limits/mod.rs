@@ -6,11 +6,12 @@
 //! size on the road. An audit's hostile files (issue 31, R4 and R7) ran
 //! for minutes, took gigabytes or overflowed the stack without them.
 
-use std::collections::HashMap;
-
 use kurbo::{PathEl, Point};
 
 use super::{Outline, ShapeError};
+
+mod svg;
+pub use svg::check_svg_text;
 
 /// Deepest nesting of SVG elements. assumed: drawing programs nest a few
 /// groups (Inkscape layers, Illustrator clip groups: under 20); 20,000
@@ -39,132 +40,6 @@ fn too_many(origin: &str, what: &str, found: u64, limit: u64, fix: &str) -> Shap
         origin,
         format!("the file holds {found} {what}, more than the {limit} basr imports: {fix}"),
     )
-}
-
-/// An SVG's nesting depth and element count, every `<use>` expanded as
-/// often as it is used, from its XML alone: before usvg, whose walk
-/// recurses per level and copies each use. A file that is no XML is left
-/// for usvg to report with its position.
-pub fn check_svg_text(text: &str, origin: &str) -> Result<(), ShapeError> {
-    // Before any XML parser: roxmltree's tokenizer recurses per level too.
-    if let Some((depth, at)) = too_deep(text) {
-        let line = text[..at].matches('\n').count() + 1;
-        return Err(ShapeError::invalid(
-            origin,
-            format!(
-                "line {line}: an element nested {depth} deep, more than the {MAX_DEPTH} levels \
-                 basr imports: ungroup the drawing (Inkscape: Edit ▸ Select All, Object ▸ \
-                 Ungroup)"
-            ),
-        ));
-    }
-    let Ok(doc) = usvg::roxmltree::Document::parse(text) else {
-        return Ok(());
-    };
-    let ids: HashMap<&str, usvg::roxmltree::Node> = doc
-        .descendants()
-        .filter_map(|n| n.attribute("id").map(|i| (i, n)))
-        .collect();
-    let mut memo = HashMap::new();
-    let count = expanded(doc.root_element(), &ids, &mut memo, 0);
-    if count > MAX_ELEMENTS {
-        return Err(too_many(
-            origin,
-            "elements (each <use> counted as what it copies)",
-            count,
-            MAX_ELEMENTS,
-            "simplify the drawing, or split it into several shapes",
-        ));
-    }
-    Ok(())
-}
-
-/// The first element nested deeper than [`MAX_DEPTH`] (its depth and byte
-/// offset), by a scan of the tags alone: comments, CDATA, processing
-/// instructions and declarations skipped, quoted attribute values honoured,
-/// `<a/>` opening nothing. Exact for well-formed XML; for other text it
-/// only decides whether the parser gets to say what is wrong.
-fn too_deep(text: &str) -> Option<(usize, usize)> {
-    let b = text.as_bytes();
-    let skip_to = |from: usize, end: &str| {
-        text[from..]
-            .find(end)
-            .map_or(b.len(), |k| from + k + end.len())
-    };
-    let (mut i, mut depth) = (0usize, 0usize);
-    while i < b.len() {
-        if b[i] != b'<' {
-            i += 1;
-            continue;
-        }
-        let rest = &text[i..];
-        if rest.starts_with("<!--") {
-            i = skip_to(i + 4, "-->");
-        } else if rest.starts_with("<![CDATA[") {
-            i = skip_to(i + 9, "]]>");
-        } else if rest.starts_with("<?") {
-            i = skip_to(i + 2, "?>");
-        } else if rest.starts_with("<!") || rest.starts_with("</") {
-            depth = depth.saturating_sub(usize::from(rest.starts_with("</")));
-            i = skip_to(i + 2, ">");
-        } else {
-            let start = i;
-            let mut quote: Option<u8> = None;
-            i += 1;
-            while i < b.len() {
-                match (quote, b[i]) {
-                    (Some(q), c) if c == q => quote = None,
-                    (None, c @ (b'"' | b'\'')) => quote = Some(c),
-                    (None, b'>') => break,
-                    _ => {}
-                }
-                i += 1;
-            }
-            if b.get(i.wrapping_sub(1)) != Some(&b'/') {
-                depth += 1;
-                if depth > MAX_DEPTH {
-                    return Some((depth, start));
-                }
-            }
-            i += 1;
-        }
-    }
-    None
-}
-
-/// Elements under `n` (itself included) with each `<use>` counting what it
-/// refers to; saturating, and a use past the depth bound (a chain or a
-/// cycle of uses) counts as over the limit.
-fn expanded<'a>(
-    n: usvg::roxmltree::Node<'a, 'a>,
-    ids: &HashMap<&str, usvg::roxmltree::Node<'a, 'a>>,
-    memo: &mut HashMap<usvg::roxmltree::NodeId, u64>,
-    uses: usize,
-) -> u64 {
-    if let Some(c) = memo.get(&n.id()) {
-        return *c;
-    }
-    if uses > MAX_DEPTH {
-        return MAX_ELEMENTS + 1;
-    }
-    let mut count: u64 = 1;
-    if n.tag_name().name() == "use" {
-        let href = n
-            .attributes()
-            .find(|a| a.name() == "href")
-            .map(|a| a.value().trim_start_matches('#'));
-        if let Some(target) = href.and_then(|h| ids.get(h)) {
-            count = count.saturating_add(expanded(*target, ids, memo, uses + 1));
-        }
-    }
-    for c in n.children().filter(|c| c.is_element()) {
-        count = count.saturating_add(expanded(c, ids, memo, uses));
-        if count > MAX_ELEMENTS {
-            break;
-        }
-    }
-    memo.insert(n.id(), count);
-    count
 }
 
 /// A DXF's entities and vertices counted on its group codes (code 0 starts
@@ -282,22 +157,4 @@ pub fn check_scaled(outline: &Outline, scale: f64, width_m: f64) -> Result<(), S
         }
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn nesting_is_measured_on_the_tags() {
-        let nest = |n: usize| format!("<svg>{}{}</svg>", "<g>".repeat(n), "</g>".repeat(n));
-        assert_eq!(too_deep(&nest(MAX_DEPTH - 1)), None);
-        assert_eq!(too_deep(&nest(MAX_DEPTH)).map(|d| d.0), Some(MAX_DEPTH + 1));
-        // Self-closing tags, comments, CDATA and a quoted '>' open nothing.
-        let flat = format!(
-            "<?xml version=\"1.0\"?><!-- <g><g> --><svg>{}<![CDATA[<g><g>]]><g a=\"x>y\"/></svg>",
-            "<rect/>".repeat(500)
-        );
-        assert_eq!(too_deep(&flat), None);
-    }
 }
