@@ -22,51 +22,72 @@ fn samples(job: &Path) -> serde_json::Value {
     v["samples"].clone()
 }
 
+// Every test shape, each its own test so the harness runs them side by side.
 #[test]
-fn every_test_shape_imports_checks_and_compiles() {
+fn the_star_imports_checks_and_compiles() {
+    imports_checks_and_compiles("star.svg", Some("2.4"));
+}
+
+#[test]
+fn the_ring_imports_checks_and_compiles() {
+    imports_checks_and_compiles("ring.svg", Some("2"));
+}
+
+#[test]
+fn the_heart_imports_checks_and_compiles() {
+    imports_checks_and_compiles("heart.svg", Some("2"));
+}
+
+#[test]
+fn the_arch_imports_checks_and_compiles() {
+    imports_checks_and_compiles("arch.svg", Some("2"));
+}
+
+#[test]
+fn the_arrow_dxf_imports_checks_and_compiles() {
+    imports_checks_and_compiles("arrow.dxf", None);
+}
+
+#[test]
+fn the_shield_dxf_imports_checks_and_compiles() {
+    imports_checks_and_compiles("shield.dxf", None);
+}
+
+fn imports_checks_and_compiles(name: &str, size: Option<&str>) {
     let dir = tempfile::tempdir().expect("tmp");
-    for (name, size) in [
-        ("star.svg", Some("2.4")),
-        ("ring.svg", Some("2")),
-        ("heart.svg", Some("2")),
-        ("arch.svg", Some("2")),
-        ("arrow.dxf", None),
-        ("shield.dxf", None),
-    ] {
-        let toml = dir.path().join(format!("{name}.toml"));
-        let mut cmd = basr();
-        cmd.arg("import").arg(data(name)).arg("-o").arg(&toml);
-        if let Some(h) = size {
-            cmd.args(["--shape-height-m", h]);
-        }
-        cmd.assert().success();
-        basr().arg("check").arg(&toml).assert().success();
-        let job = dir.path().join(format!("{name}.job.json"));
-        let mut cmd = basr();
-        cmd.args(["compile", "--shape"])
-            .arg(data(name))
-            .arg("-o")
-            .arg(&job);
-        if let Some(h) = size {
-            cmd.args(["--shape-height-m", h]);
-        }
-        let out = cmd.output().expect("run");
-        assert!(
-            compiled(&out, &job),
-            "{name}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let text = std::fs::read_to_string(&job).expect("job");
-        assert!(
-            text.contains("\"kind\": \"shape\""),
-            "{name}: the job names the method"
-        );
-        // The job's message and layout name the shape by its file's stem.
-        let v: serde_json::Value = serde_json::from_str(&text).expect("json");
-        let stem = name.split('.').next().expect("stem");
-        assert_eq!(v["message"], format!("[{stem}]"), "{name}");
-        assert_eq!(v["layout"]["glyphs"][0]["char"], stem, "{name}");
+    let toml = dir.path().join(format!("{name}.toml"));
+    let mut cmd = basr();
+    cmd.arg("import").arg(data(name)).arg("-o").arg(&toml);
+    if let Some(h) = size {
+        cmd.args(["--shape-height-m", h]);
     }
+    cmd.assert().success();
+    basr().arg("check").arg(&toml).assert().success();
+    let job = dir.path().join(format!("{name}.job.json"));
+    let mut cmd = basr();
+    cmd.args(["compile", "--shape"])
+        .arg(data(name))
+        .arg("-o")
+        .arg(&job);
+    if let Some(h) = size {
+        cmd.args(["--shape-height-m", h]);
+    }
+    let out = cmd.output().expect("run");
+    assert!(
+        compiled(&out, &job),
+        "{name}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&job).expect("job");
+    assert!(
+        text.contains("\"kind\": \"shape\""),
+        "{name}: the job names the method"
+    );
+    // The job's message and layout name the shape by its file's stem.
+    let v: serde_json::Value = serde_json::from_str(&text).expect("json");
+    let stem = name.split('.').next().expect("stem");
+    assert_eq!(v["message"], format!("[{stem}]"), "{name}");
+    assert_eq!(v["layout"]["glyphs"][0]["char"], stem, "{name}");
 }
 
 #[test]
