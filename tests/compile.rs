@@ -461,3 +461,47 @@ fn lower_case_gives_the_upper_case_job() {
     let read = |d: &tempfile::TempDir| std::fs::read(d.path().join("STOP.job.json")).unwrap();
     assert!(read(&lower) == read(&upper), "one job for stop and STOP");
 }
+
+/// Issue 27's honest advice: above 8 ft STOP's bowls are wider than one
+/// sweep of the fan, and the narrow bands at the seams are told to take
+/// smaller letters (by how much), never larger ones.
+#[test]
+fn strokes_split_into_sweeps_are_advised_smaller_letters() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = basr()
+        .current_dir(dir.path())
+        .args(["compile", "STOP", "--letter-height", "9ft", "-q"])
+        .output()
+        .unwrap();
+    assert!(
+        matches!(out.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let job: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("STOP.job.json")).unwrap()).unwrap();
+    let warnings = job["summary"]["warnings"].as_array().unwrap();
+    let split: Vec<&serde_json::Value> = warnings
+        .iter()
+        .filter(|w| w["kind"] == "passes")
+        .map(|w| &w["stroke"])
+        .collect();
+    let seams: Vec<&str> = warnings
+        .iter()
+        .filter(|w| w["kind"] == "height_clamped" && w["severity"] != "info")
+        .filter(|w| split.contains(&&w["stroke"]))
+        .map(|w| w["message"].as_str().unwrap())
+        .collect();
+    assert!(!seams.is_empty(), "STOP at 9 ft has seams: {warnings:?}");
+    for m in seams {
+        // 9 ft × 0.89 = 8 ft, where STOP's widest stroke fits one sweep.
+        assert!(
+            m.contains("Letters at most 8") || m.contains("Letters at most 9"),
+            "{m}"
+        );
+        assert!(
+            !m.contains("Larger letters (--letter-height) avoid it"),
+            "{m}"
+        );
+    }
+}

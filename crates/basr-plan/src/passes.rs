@@ -160,6 +160,10 @@ pub fn passes(
                 worst_ratio: worst,
                 outside_share: 0.0,
                 job_outside_share: 0.0,
+                one_sweep_scale: (split.len() > 1).then(|| {
+                    let widest = stroke_rungs.iter().map(Rung::width).fold(0.0, f64::max);
+                    law.max_width_m() / widest
+                }),
             });
             outside.push(outside_m2);
         }

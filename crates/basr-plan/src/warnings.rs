@@ -6,6 +6,7 @@
 //! wording lives here and nowhere else.
 
 use basr_job::{self as job, Warning, WarningKind};
+use std::borrow::Cow;
 
 pub use basr_job::{Owner, OwnerKind, Severity};
 
@@ -85,6 +86,12 @@ pub enum Note {
         outside_share: f64,
         /// The same summed over every stroke of the job.
         job_outside_share: f64,
+        /// Where the stroke is wider than one sweep of the fan and painted
+        /// in side-by-side sweeps (whose seams leave these narrow bands):
+        /// widest fan / widest rung, the letter size (as a share of this
+        /// one) at which the whole stroke fits one sweep. Larger letters
+        /// only widen the bands' mismatch there, so the advice differs.
+        one_sweep_scale: Option<f64>,
     },
     /// A limit holds the nozzle below the painting speed over paint.
     Slowed {
@@ -180,9 +187,24 @@ impl Note {
     }
 
     /// What the crew should do about it, by severity.
-    fn todo(&self) -> &'static str {
-        match (self, self.severity()) {
+    fn todo(&self) -> Cow<'static, str> {
+        let fixed = match (self, self.severity()) {
             (_, Severity::Info) => "Nothing to do.",
+            // Seams of side-by-side sweeps: smaller letters paint the
+            // stroke in one sweep; larger ones would make it worse.
+            (
+                Note::HeightClamped {
+                    one_sweep_scale: Some(k),
+                    ..
+                },
+                _,
+            ) => {
+                return Cow::Owned(format!(
+                    "Letters at most {:.0} % of this size paint this stroke in one sweep, \
+                     without the narrow seams; larger letters do not help.",
+                    (k * 100.0).floor()
+                ))
+            }
             (Note::Layout { .. }, _) => "Check that this is what was asked for.",
             (Note::HeightClamped { worst_ratio, .. }, Severity::Notice)
                 if *worst_ratio <= WIDER_LARGE =>
@@ -198,8 +220,9 @@ impl Note {
             }
             (Note::Film { .. }, _) => {
                 "Do not paint it as it is: `basr preview` of the job shows where; tell the \
-                 engineer who planned it (a larger --letter-height or --shape-height-m often \
-                 paints more evenly)."
+                 engineer who planned it (the job's other notes say which way a different \
+                 size helps: strokes narrower than the fan want larger letters, strokes \
+                 painted in side-by-side sweeps smaller ones)."
             }
             (Note::Slowed { .. }, Severity::Notice) => {
                 "It dries a little slower there; check it before opening the lane."
@@ -208,7 +231,8 @@ impl Note {
                 "Expect a heavy, slow-drying line there: check it before opening the lane and \
                  tell the engineer who planned the job."
             }
-        }
+        };
+        Cow::Borrowed(fixed)
     }
 
     /// The job's entry for this note: the one place a note becomes text.
@@ -262,6 +286,7 @@ impl Note {
                 worst_ratio,
                 outside_share,
                 job_outside_share,
+                ..
             } => Warning {
                 kind: WarningKind::HeightClamped,
                 owner: Some(owner.clone()),
@@ -490,10 +515,27 @@ mod tests {
             worst_ratio,
             outside_share: 0.004,
             job_outside_share,
+            one_sweep_scale: None,
         };
         assert_eq!(clamped(1.009, 0.02).severity(), Severity::Info);
         assert_eq!(clamped(1.1, 0.02).severity(), Severity::Notice);
         assert_eq!(clamped(1.297, 0.02).severity(), Severity::Problem);
+        // Seams of side-by-side sweeps: the advice is smaller letters,
+        // by how much, and never larger ones.
+        let mut seams = clamped(1.297, 0.02);
+        if let Note::HeightClamped {
+            one_sweep_scale, ..
+        } = &mut seams
+        {
+            *one_sweep_scale = Some(0.893);
+        }
+        let m = seams.render().message;
+        assert!(m.contains("Letters at most 89 % of this size"), "{m}");
+        assert!(
+            !m.to_lowercase()
+                .contains("larger letters (--letter-height)"),
+            "{m}"
+        );
         let w = clamped(1.297, 0.02).render();
         assert!(!w.message.contains("rung"), "jargon: {}", w.message);
         assert_eq!(w.severity, Some(Severity::Problem));
