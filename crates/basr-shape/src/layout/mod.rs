@@ -73,11 +73,25 @@ pub const MAX_LANE_WIDTH_M: f64 = 30.0;
 
 /// [`LayoutError::TooWide`]'s message: the word's own width, and where
 /// it is anchored off the centre, what that anchor leaves of the lane (a
-/// 2.147 m word anchored 1 m off centre was once called 4.147 m wide).
-fn too_wide(word: &str, width_m: f64, anchor_x_m: f64, lane_m: f64) -> String {
+/// 2.147 m word anchored 1 m off centre was once called 4.147 m wide); the
+/// lane it needs and the letter height at which it fits this one, so the
+/// crew chooses with figures (smaller letters can paint less evenly: the
+/// job's verdict then says so).
+fn too_wide(word: &str, width_m: f64, anchor_x_m: f64, lane_m: f64, fits: Option<f64>) -> String {
     use basr_io::show_num;
-    let fix = "use a wider lane (--lane-width), a smaller letter height (--letter-height) or \
-               a shorter word";
+    let need = width_m + 2.0 * anchor_x_m.abs();
+    let smaller = fits.map_or(String::new(), |h| {
+        format!(
+            ", letters at most {} m ({:.1} ft) tall (--letter-height)",
+            show_num((h * 1000.0).floor() / 1000.0),
+            (h / 0.3048 * 10.0).floor() / 10.0
+        )
+    });
+    let fix = format!(
+        "use a lane at least {} m wide (--lane-width; a two-lane word spans both lanes){smaller}, \
+         or a shorter word",
+        show_num((need * 1000.0).ceil() / 1000.0)
+    );
     if anchor_x_m == 0.0 {
         let (w, l) = basr_io::show_apart(width_m, lane_m);
         format!("{word:?} is {w} m wide but the lane is {l} m: {fix}")
@@ -127,7 +141,7 @@ pub enum LayoutError {
         position: usize,
         message: String,
     },
-    #[error("{}", too_wide(word, *width_m, *anchor_x_m, *lane_m))]
+    #[error("{}", too_wide(word, *width_m, *anchor_x_m, *lane_m, *fits_at_height_m))]
     TooWide {
         word: String,
         /// The word's own width (m).
@@ -135,6 +149,9 @@ pub enum LayoutError {
         /// How far off the lane's centre it is anchored (m).
         anchor_x_m: f64,
         lane_m: f64,
+        /// The largest letter height at which the word fits where it is
+        /// anchored (m); `None` where the letter spacing alone overfills it.
+        fits_at_height_m: Option<f64>,
     },
     #[error(
         "clear space between lines is {} m but must be at least {} m \
@@ -650,11 +667,26 @@ pub fn place(
         // The word must fit the lane where it is anchored.
         let reach = width / 2.0 + m.anchor_x_m.abs();
         if reach > m.lane_width_m / 2.0 + 1e-12 {
+            // The glyphs scale with the letter height; so does the spacing
+            // unless the marking file set it in metres.
+            let h = m.letter_height_m;
+            let default_spacing = DEFAULT_LETTER_SPACING_UNITS * h / GRID_HEIGHT_UNITS;
+            let fixed = if (m.letter_spacing_m - default_spacing).abs() <= 1e-9 * h {
+                0.0
+            } else {
+                m.letter_spacing_m * n.saturating_sub(1) as f64
+            };
+            let room = m.lane_width_m - 2.0 * m.anchor_x_m.abs() - fixed;
+            let glyphs = width - fixed;
+            let fits = (room > 0.0 && glyphs > 0.0)
+                .then(|| m.letter_height_m * room / glyphs)
+                .filter(|h| *h >= LETTER_HEIGHT_RANGE_M.0);
             return Err(LayoutError::TooWide {
                 word: word.to_uppercase(),
                 width_m: width,
                 anchor_x_m: m.anchor_x_m,
                 lane_m: m.lane_width_m,
+                fits_at_height_m: fits,
             });
         }
         // Grid origin of this line: the first on the anchor, the next ones
@@ -813,6 +845,37 @@ mod tests {
         };
         let m = Marking::from_message("STOP AHEAD", &wide).unwrap();
         assert_eq!(place(&m, grid).unwrap().warnings.len(), 1);
+    }
+
+    /// A word too wide is told the height at which it fits: that height
+    /// places, a hair more does not; and the lane it would need.
+    #[test]
+    fn too_wide_names_the_height_that_fits() {
+        let at = |h: f64| {
+            let o = Overrides {
+                letter_height_m: Some(h),
+                ..Overrides::default()
+            };
+            place(&Marking::from_message("SCHOOL", &o).unwrap(), grid)
+        };
+        let e = at(3.048).unwrap_err();
+        let LayoutError::TooWide {
+            fits_at_height_m: Some(h),
+            width_m,
+            ..
+        } = e
+        else {
+            panic!("{e}")
+        };
+        assert!(h < 3.048 && at(h).is_ok(), "{h}");
+        assert!(at(h * 1.001).is_err(), "{h}");
+        let text = at(3.048).unwrap_err().to_string();
+        assert!(text.contains("letters at most"), "{text}");
+        let need = basr_io::show_num((width_m * 1000.0).ceil() / 1000.0);
+        assert!(
+            text.contains(&format!("a lane at least {need} m wide")),
+            "{text}"
+        );
     }
 
     #[test]
