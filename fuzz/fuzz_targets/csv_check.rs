@@ -7,8 +7,8 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
-        let found = basr::job::csv::check_source(text, "fuzz");
-        let csv = basr::job::csv::looks_like_csv(text);
+        let found = basr_job::csv::check_source(text, "fuzz");
+        let csv = basr_job::csv::looks_like_csv(text);
         assert!(
             csv || !found.is_empty(),
             "check_source passed a text looks_like_csv refuses"

@@ -4,7 +4,7 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(text) = std::str::from_utf8(data) {
-        let _ = basr::font::Font::from_toml_str(text, "fuzz");
-        let _ = basr::font::check_source(text, "fuzz");
+        let _ = basr_shape::font::Font::from_toml_str(text, "fuzz");
+        let _ = basr_shape::font::check_source(text, "fuzz");
     }
 });

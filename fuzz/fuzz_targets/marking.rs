@@ -1,6 +1,6 @@
 //! Marking files: parsing and placing must refuse, never panic on, any text.
 #![no_main]
-use basr::layout::{place, GlyphBox, Marking, Overrides};
+use basr_shape::layout::{place, GlyphBox, Marking, Overrides};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -8,6 +8,6 @@ fuzz_target!(|data: &[u8]| {
         if let Ok(m) = Marking::from_toml(text, "fuzz", &Overrides::default()) {
             let _ = place(&m, |c| c.is_ascii_alphanumeric().then_some(GlyphBox::GRID));
         }
-        let _ = basr::layout::check_marking_source(text, "fuzz");
+        let _ = basr_shape::layout::check_marking_source(text, "fuzz");
     }
 });

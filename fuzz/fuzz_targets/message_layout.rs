@@ -1,6 +1,6 @@
 //! Messages typed on the command line: any string is laid out or refused.
 #![no_main]
-use basr::layout::{place, GlyphBox, Marking, Overrides};
+use basr_shape::layout::{place, GlyphBox, Marking, Overrides};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -9,8 +9,8 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let _ = basr::robot::check_source(text, "fuzz");
-    if let Ok(robot) = basr::robot::AnyRobot::from_toml_str(text, "fuzz") {
+    let _ = basr_robot::check_source(text, "fuzz");
+    if let Ok(robot) = basr_robot::AnyRobot::from_toml_str(text, "fuzz") {
         let q = robot.limits().map(|l| 0.5 * (l.min + l.max));
         let pose = robot.fk(&q);
         let _ = robot.ik(&pose);

@@ -4,8 +4,8 @@
 //! each shape item imported from that SVG at the size the item asks, for
 //! the embedded robot's fan. Must never panic.
 #![no_main]
-use basr::layout::{ShapeSize, ShapeStrokes};
-use basr::shape::Size;
+use basr_shape::layout::{ShapeItemError, ShapeSize, ShapeStrokes};
+use basr_shape::{Bands, Size};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -13,16 +13,15 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let (scene, svg) = text.split_once('\0').unwrap_or((text, ""));
-    let robot = basr::robot::AnyRobot::load_or_default(None).expect("embedded robot");
-    let bands = basr::plan::shapes::bands(&robot);
-    let shapes = |_: &std::path::Path, size: ShapeSize| -> Result<ShapeStrokes, String> {
+    let robot = basr_robot::AnyRobot::load_or_default(None).expect("embedded robot");
+    let bands = Bands::of(&robot);
+    let shapes = |_: &std::path::Path, size: ShapeSize| -> Result<ShapeStrokes, ShapeItemError> {
         let size = match size {
             ShapeSize::HeightM(h) => Size::HeightM(h),
             ShapeSize::WidthM(w) => Size::WidthM(w),
         };
-        let outline = basr::shape::read_str(svg, "svg", "fuzz.svg").map_err(|e| e.to_string())?;
-        let mut all =
-            basr::shape::import_outline(&outline, size, &bands).map_err(|e| e.to_string())?;
+        let outline = basr_shape::read_str(svg, "svg", "fuzz.svg")?;
+        let mut all = basr_shape::import_outline(&outline, size, &bands)?;
         let first = all.swap_remove(0);
         Ok(ShapeStrokes {
             strokes: first.decomposition.strokes,
@@ -30,5 +29,5 @@ fuzz_target!(|data: &[u8]| {
             height_m: first.height_m,
         })
     };
-    let _ = basr::layout::check_marking_source_with(scene, "fuzz.toml", &shapes);
+    let _ = basr_shape::layout::check_marking_source_with(scene, "fuzz.toml", &shapes);
 });

@@ -13,10 +13,10 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let ext = if first % 2 == 0 { "svg" } else { "dxf" };
-    let Ok(outline) = basr::shape::read_str(text, ext, "fuzz") else {
+    let Ok(outline) = basr_shape::read_str(text, ext, "fuzz") else {
         return;
     };
-    let robot = basr::robot::AnyRobot::load_or_default(None).expect("embedded robot");
-    let bands = basr::plan::shapes::bands(&robot);
-    let _ = basr::shape::import_outline(&outline, basr::shape::Size::HeightM(1.0), &bands);
+    let robot = basr_robot::AnyRobot::load_or_default(None).expect("embedded robot");
+    let bands = basr_shape::Bands::of(&robot);
+    let _ = basr_shape::import_outline(&outline, basr_shape::Size::HeightM(1.0), &bands);
 });

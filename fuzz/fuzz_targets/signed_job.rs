@@ -5,18 +5,18 @@
 #![no_main]
 use std::sync::OnceLock;
 
-use basr::job::trust::{PublicKey, SecretKey};
-use basr::job::Job;
+use basr_job::trust::{PublicKey, SecretKey};
+use basr_job::Job;
 use libfuzzer_sys::fuzz_target;
 
 fn signed() -> &'static (Vec<u8>, PublicKey) {
     static JOB: OnceLock<(Vec<u8>, PublicKey)> = OnceLock::new();
     JOB.get_or_init(|| {
         let key = SecretKey::from_seed([7; 32]);
-        let mut job = basr::sim::synthetic::letter_job();
+        let mut job = basr_sim::synthetic::letter_job();
         // A short job keeps each run fast; the edits reach every byte.
         let keep = 8.min(job.samples.len());
-        let mut s = basr::job::Samples::default();
+        let mut s = basr_job::Samples::default();
         for i in 0..keep {
             s.push(&job.samples.row(i).expect("row in range"));
         }

@@ -3,7 +3,7 @@
 //! sealed for it) or a job (JSON, simulated when `basr check` passes it and
 //! it has at most 400 rows, as the command would).
 #![no_main]
-use basr::sim;
+use basr_sim as sim;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -14,18 +14,18 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let job = if mode % 2 == 0 {
-        let Ok(robot) = basr::robot::Robot::from_toml_str(text, "fuzz") else {
+        let Ok(robot) = basr_robot::Robot::from_toml_str(text, "fuzz") else {
             return;
         };
         let mut job = sim::synthetic::retracted_then_extending_job();
-        job.robot = robot;
+        job.robot = basr_robot::AnyRobot::Basr(robot);
         job.seal();
         job
     } else {
-        let Ok(job) = basr::job::Job::from_str_verified(text, "fuzz") else {
+        let Ok(job) = basr_job::Job::from_str_verified(text, "fuzz") else {
             return;
         };
-        if job.samples.len() > 400 || !basr::job::verify::problems(&job, "fuzz").is_empty() {
+        if job.samples.len() > 400 || !basr_job::verify::problems(&job, "fuzz").is_empty() {
             return;
         }
         job
