@@ -16,8 +16,9 @@ pub fn read_svg(text: &str, origin: &str) -> Result<Outline, ShapeError> {
             "the file is empty: an SVG with filled paths is needed",
         ));
     }
-    super::limits::check_svg_text(text, origin)?;
-    refuse_text(text, origin)?;
+    if let Some(doc) = super::limits::check_svg_text(text, origin)? {
+        refuse_text(&doc, origin)?;
+    }
     // basr paints no images: usvg is not to read what an <image> names. Its
     // default reads any path on disk (an href of /dev/zero reads forever)
     // and parses an embedded SVG without the limits above.
@@ -119,10 +120,7 @@ fn why_nothing_filled(text: &str) -> String {
 
 /// usvg (without its text feature) drops `<text>`; say so instead of
 /// painting the rest of the file without it.
-fn refuse_text(text: &str, origin: &str) -> Result<(), ShapeError> {
-    let Ok(doc) = usvg::roxmltree::Document::parse(text) else {
-        return Ok(()); // usvg reports the syntax error with its position
-    };
+fn refuse_text(doc: &usvg::roxmltree::Document, origin: &str) -> Result<(), ShapeError> {
     if let Some(n) = doc
         .descendants()
         .find(|n| n.is_element() && n.tag_name().name() == "text")

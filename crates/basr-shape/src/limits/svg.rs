@@ -18,8 +18,9 @@ use crate::ShapeError;
 /// An SVG's nesting depth, element count and segment count, every
 /// `<use>` expanded as often as it is used, and its circles' and
 /// rectangles' radii in absolute units: from its XML alone, before usvg.
-/// A file that is no XML is left for usvg to report with its position.
-pub fn check_svg_text(text: &str, origin: &str) -> Result<(), ShapeError> {
+/// A file that is no XML is left for usvg to report with its position
+/// (`None`); otherwise the parsed XML, for the reader's other checks.
+pub fn check_svg_text<'t>(text: &'t str, origin: &str) -> Result<Option<Document<'t>>, ShapeError> {
     // Before any XML parser: roxmltree's tokenizer recurses per level too.
     if let Some((depth, at)) = too_deep(text) {
         let line = text[..at].matches('\n').count() + 1;
@@ -33,7 +34,7 @@ pub fn check_svg_text(text: &str, origin: &str) -> Result<(), ShapeError> {
         ));
     }
     let Ok(doc) = Document::parse(text) else {
-        return Ok(());
+        return Ok(None);
     };
     relative_radii(&doc, origin)?;
     let ids: HashMap<&str, Node> = doc
@@ -62,7 +63,7 @@ pub fn check_svg_text(text: &str, origin: &str) -> Result<(), ShapeError> {
              vast size down before export",
         ));
     }
-    Ok(())
+    Ok(Some(doc))
 }
 
 /// The first element nested deeper than [`MAX_DEPTH`] (its depth and byte
