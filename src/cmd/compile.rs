@@ -562,7 +562,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         job.bind_output("csv", csv, sha256);
     }
     if let Some(adept) = &args.adept {
-        let sha256 = basr::job::adept::write(&job.message, &job.samples, &job.stations, adept)?;
+        let sha256 =
+            basr::job::adept::write(&job.message, &job.samples, &job.stations, &job.road, adept)?;
         job.bind_output("adept", adept, sha256);
     }
     if !job.outputs.is_empty() {

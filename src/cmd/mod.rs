@@ -5,6 +5,7 @@ pub mod check;
 pub mod compile;
 pub mod design;
 pub mod export;
+pub mod fit;
 pub mod glyphs;
 pub mod import;
 pub mod keygen;

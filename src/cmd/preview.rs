@@ -208,12 +208,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             &format!("re-planning under {} tilt methods", tilts.len()),
         );
         let plan = if tilts.iter().any(|t| t.name() != job.layout.tilt_method) {
-            let font = replan::replan_font(&job, &origin, args.font.as_deref())?;
+            let font = replan::replan_font(&job, &origin, args.font.as_deref(), "--compare")?;
             Some(replan::recover(
                 &job,
                 &origin,
                 font,
                 args.marking.as_deref(),
+                "--compare",
             )?)
         } else {
             None
@@ -488,14 +489,19 @@ fn preview_simulated(
     };
     let trace = &track;
     let actual: Vec<[f64; 5]> = track.iter().map(|t| t.actual).collect();
-    let pose = |t: f64, a: &[f64; 5], plan: (f64, f64, f64), gun: bool| Pose {
-        t_s: t,
-        x_m: a[0],
-        y_m: a[1],
-        z_m: plan.0 + a[2],
-        yaw_rad: plan.1 + a[3],
-        tilt_rad: plan.2 + a[4],
-        gun,
+    // On the job's road (docs/site.md): the station of the row at t.
+    let station_at = |t: f64| s.station[((t / dt).max(0.0).floor() as usize).min(n - 1)];
+    let pose = |t: f64, a: &[f64; 5], plan: (f64, f64, f64), gun: bool| {
+        let p = Pose {
+            t_s: t,
+            x_m: a[0],
+            y_m: a[1],
+            z_m: plan.0 + a[2],
+            yaw_rad: plan.1 + a[3],
+            tilt_rad: plan.2 + a[4],
+            gun,
+        };
+        basr::paint::preview::on_road(job, station_at(t) as usize, p)
     };
     let poses: Vec<Pose> = trace
         .iter()

@@ -49,13 +49,19 @@ pub struct Replan {
 
 /// The font to re-plan `job` with: the embedded one if the job was compiled
 /// with it, else `--font`, which must be the job's font.
-pub fn replan_font(job: &Job, origin: &str, font: Option<&str>) -> anyhow::Result<Option<String>> {
+/// `by` names the command re-planning in messages (`--compare`, `fit`).
+pub fn replan_font(
+    job: &Job,
+    origin: &str,
+    font: Option<&str>,
+    by: &str,
+) -> anyhow::Result<Option<String>> {
     use basr::font::Font;
     let want = &job.font;
     match font {
         None if want.sha256 == Font::embedded().sha256 => Ok(None),
         None => anyhow::bail!(
-            "{origin}: --compare re-plans the job, which was compiled with the font {:?} \
+            "{origin}: {by} re-plans the job, which was compiled with the font {:?} \
              (sha256 {}), not the embedded font; pass that font file with --font FILE",
             want.name,
             want.sha256
@@ -84,18 +90,20 @@ fn lone_symbol(job: &Job) -> Option<String> {
 }
 
 /// Find what `job` was compiled from and check that it lays out as the job
-/// did. `marking` is the `--marking` file (a scene, or a `lines` file).
+/// did. `marking` is the `--marking` file (a scene, or a `lines` file);
+/// `by` names the command re-planning in messages (`--compare`, `fit`).
 pub fn recover(
     job: &Job,
     origin: &str,
     font: Option<String>,
     marking: Option<&Path>,
+    by: &str,
 ) -> anyhow::Result<Replan> {
     use basr::robot::AnyRobot;
     // The job's description passed its hash check; read it back through the
     // validator so a sealed job with a broken robot is refused, not planned.
     let robot = AnyRobot::from_toml_str(&job.robot.to_toml_text(), "the job's robot description")
-        .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
+        .map_err(|e| anyhow::anyhow!("{by}: {e}"))?;
     let lane = Overrides {
         lane_width_m: Some(job.layout.lane_width_m),
         ..Overrides::default()
@@ -117,7 +125,7 @@ pub fn recover(
         (Source::Symbol(name), vec![lane])
     } else if job.message.contains('[') {
         anyhow::bail!(
-            "{origin}: the job was compiled from a scene (its items: {}); --compare re-plans \
+            "{origin}: the job was compiled from a scene (its items: {}); {by} re-plans \
              it from its marking file: pass that file with --marking FILE",
             job.message.replace('\n', ", ")
         );
@@ -137,7 +145,7 @@ pub fn recover(
         req.period_s = job.control_period_s;
         let inputs = basr::plan::inputs::read(&req).map_err(|e| anyhow::anyhow!("{e}"))?;
         let (_, strokes) = basr::pipeline::placed::lay_out(&req, &inputs.font)
-            .map_err(|e| anyhow::anyhow!("--compare: {e}"))?;
+            .map_err(|e| anyhow::anyhow!("{by}: {e}"))?;
         match first_difference(&job.layout.glyphs, &strokes.outlines()) {
             None => return Ok(Replan { req }),
             Some(d) => differs = d,
@@ -148,10 +156,10 @@ pub fn recover(
         None => format!("the job's message {:?}", job.message),
     };
     anyhow::bail!(
-        "{origin}: --compare cannot re-plan this job: {what} lays out differently from the \
+        "{origin}: {by} cannot re-plan this job: {what} lays out differently from the \
          job ({differs}); pass the marking file the job was compiled from with --marking \
          FILE (a job compiled with --line-gap, or a --shape job, cannot be re-planned: \
-         compile it again with --tilt METHOD instead)"
+         compile it again instead)"
     )
 }
 
@@ -187,6 +195,13 @@ fn first_difference(job: &[PlacedGlyph], laid: &[PlacedGlyph]) -> Option<String>
         }
     }
     None
+}
+
+impl Replan {
+    /// The compile request that lays the job's marking out again.
+    pub fn request(&self) -> &CompileRequest {
+        &self.req
+    }
 }
 
 /// The job re-planned with another tilt method.

@@ -36,14 +36,8 @@ pub fn compile_strokes(
     robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
-    let rungs = rungs::rungs(
-        strokes,
-        req.rung_spacing_m,
-        Some(&passes::turn_budget(&robot)),
-    );
     let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
-    let passes = passes::passes(strokes, &rungs, &robot, tilt.method())?;
-    let plan = stations::for_passes(&passes, marking.lane_width_m, req.reach_margin_m, &robot)?;
+    let (passes, plan) = passes_on_road(req, marking, strokes, &robot, tilt)?;
     let tours = tours::tours(&passes, &plan, &robot);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
     let n = paths.stations.len();
@@ -131,6 +125,158 @@ pub fn compile_strokes(
             paces[si] = p;
         }
     }
+}
+
+/// Rise of the surface above the base's level (m) the planner leaves to
+/// the joints' clamp (`joints::knot_pose` stops the nozzle at the top of
+/// its painting heights): the widest fans then land this much closer and
+/// their edges move in by this × tan(fan/2), 3.1 mm at the seed's 63.5°
+/// tip, half the 6.35 mm edge tolerance (source: the agency's 1/4 in).
+/// Beyond it, the paint law keeps the heights clear instead. A surface
+/// below the base is always kept clear: a nozzle stopped above its height
+/// lays a wider fan, and the tilt's lift needs the room. assumed: the
+/// seed's tip; a narrower fan moves its edge less.
+const CLAMP_FREE_M: f64 = 0.005;
+
+/// Rounds of planning the passes again for the road's surface: each round
+/// widens the heights kept clear by what the stations then found; the
+/// stations move by centimetres at most between rounds, so the second
+/// round already holds (one more is allowed).
+const SURFACE_ROUNDS: usize = 3;
+
+/// The marking's passes and the stations that paint them, on the road's
+/// surface: on a flat road one round; on a sloped or fitted one the paint
+/// law keeps clear the height by which the surface under the marking lies
+/// below or above each station's base (`AnyRobot::on_uneven_road`), so
+/// every planned height over the surface is one the vertical joint
+/// reaches (docs/site.md).
+fn passes_on_road(
+    req: &CompileRequest,
+    marking: &layout::Marking,
+    strokes: &PlacedStrokes,
+    robot: &crate::robot::AnyRobot,
+    tilt: request::Tilt,
+) -> Result<(passes::Passes, stations::StationPlan), CompileError> {
+    let plan_for = |planner: &crate::robot::AnyRobot| -> Result<passes::Passes, CompileError> {
+        let rungs = rungs::rungs(
+            strokes,
+            req.rung_spacing_m,
+            Some(&passes::turn_budget(planner)),
+        );
+        passes::passes(strokes, &rungs, planner, tilt.method())
+    };
+    let stations_for = |passes: &passes::Passes| -> Result<stations::StationPlan, CompileError> {
+        let mut plan =
+            stations::for_passes(passes, marking.lane_width_m, req.reach_margin_m, robot)?;
+        match &req.site {
+            None => plan.road = marking.road.clone(),
+            Some(site) => {
+                basr_plan::site::put_at_site(&mut plan, passes, site, robot, req.reach_margin_m)?
+            }
+        }
+        Ok(plan)
+    };
+    let flat = plan_for(robot)?;
+    let mut passes = flat.clone();
+    let mut plan = stations_for(&passes)?;
+    // Heights kept clear below and above, and the strokes they apply to:
+    // those over a surface that asks for it (the others keep the flat
+    // plan, so a fitted stop leaves the other stops as they were).
+    let mut kept = [0.0f64; 2];
+    let mut uneven: std::collections::BTreeSet<usize> = Default::default();
+    for _ in 0..SURFACE_ROUNDS {
+        let need = surface_excursion(&plan, &passes, robot);
+        let mut grew = false;
+        for (&stroke, &[below, above]) in &need {
+            let n = [below, above - CLAMP_FREE_M].map(|n| if n < 1e-6 { 0.0 } else { n });
+            if n[0] > kept[0] || n[1] > kept[1] {
+                kept = [kept[0].max(n[0]), kept[1].max(n[1])];
+                grew = true;
+            }
+            if n != [0.0, 0.0] {
+                grew |= uneven.insert(stroke);
+            }
+        }
+        if !grew {
+            break;
+        }
+        let planner = robot.on_uneven_road(kept[0], kept[1]);
+        let law = basr_robot::paint_law::paint_law(&planner);
+        if law.max_height_m <= law.min_height_m {
+            return Err(CompileError::Unreachable(format!(
+                "the road under the marking lies up to {:.0} mm below and {:.0} mm above the \
+                 plane the truck stands on: the vertical joint has no painting height left \
+                 that reaches all of it; check the [road] crown line or the fitted points",
+                kept[0] * 1e3,
+                (kept[1] + CLAMP_FREE_M) * 1e3
+            )));
+        }
+        passes = flat
+            .clone()
+            .with_strokes_from(plan_for(&planner)?, |s| uneven.contains(&s));
+        plan = stations_for(&passes)?;
+    }
+    if kept != [0.0, 0.0] {
+        let flat_law = basr_robot::paint_law::paint_law(robot);
+        let law = basr_robot::paint_law::paint_law(&robot.on_uneven_road(kept[0], kept[1]));
+        passes.notes.push(basr_plan::warnings::Note::Layout {
+            text: format!(
+                "the road under {} of the {} strokes lies up to {:.0} mm below and {:.0} mm \
+                 above the plane the truck stands on (a crown line, or the plane fit \
+                 measured): there the nozzle paints between {:.0} and {:.0} mm over the road \
+                 instead of {:.0} to {:.0} mm, so strokes narrower than its lowest fan get a \
+                 wider one",
+                uneven.len(),
+                strokes.strokes.len(),
+                kept[0] * 1e3,
+                (kept[1] + CLAMP_FREE_M) * 1e3,
+                law.min_height_m * 1e3,
+                law.max_height_m * 1e3,
+                flat_law.min_height_m * 1e3,
+                flat_law.max_height_m * 1e3
+            ),
+        });
+    }
+    Ok((passes, plan))
+}
+
+/// How far (m) the surface under each stroke lies below and above the base
+/// origin of the station painting it, with room for the nozzle's lean
+/// against the slope (`Road::place` stands it h / cos α over the surface,
+/// over a foot moved by h·sin α, and leans it α more); none on a flat road.
+fn surface_excursion(
+    plan: &stations::StationPlan,
+    passes: &passes::Passes,
+    robot: &crate::robot::AnyRobot,
+) -> std::collections::BTreeMap<usize, [f64; 2]> {
+    let mut out = std::collections::BTreeMap::new();
+    if plan.road.is_flat() {
+        return out;
+    }
+    for (pass, &si) in passes.passes.iter().zip(&plan.station_of) {
+        let Some(st) = plan.stations.get(si) else {
+            continue;
+        };
+        for k in &pass.knots {
+            let p = [k.tip.x, k.tip.y];
+            let z = plan.road.base_z(si, st, p);
+            let g = plan.road.rise_along(si, st, p, k.yaw_rad).abs();
+            // The tilt drive lifts the tip by more at the leaned tilt
+            // where the kind's does (BASR's four-bar).
+            let lift = match robot.tilt_limit() {
+                Some(_) => (robot.tilt_lift_m(k.tilt_rad.abs() + g.atan())
+                    - robot.tilt_lift_m(k.tilt_rad))
+                .max(0.0),
+                None => 0.0,
+            };
+            // h / cos α − h, and the surface's change over the foot's move.
+            let lean = k.z_m * ((1.0 + g * g).sqrt() - 1.0) + k.z_m * g * g + lift;
+            let e: &mut [f64; 2] = out.entry(pass.stroke).or_default();
+            e[0] = e[0].max(-z + lean);
+            e[1] = e[1].max(z + lean);
+        }
+    }
+    out
 }
 
 /// The rows of each station's own motion in the job (after the truck's

@@ -38,6 +38,7 @@ pub fn lay_out(req: &CompileRequest, font: &Font) -> Result<(Marking, PlacedStro
         line_gap_m: 0.0,
         anchor_x_m: 0.0,
         anchor_y_m: 0.0,
+        road: laid.road.clone(),
     };
     let mut placed = PlacedStrokes::from_laid(&laid);
     placed.notes.extend(shape_notes.into_inner());

@@ -186,6 +186,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             glyphs: vec![glyph],
         },
         stations: vec![STATION],
+        road: Default::default(),
         samples,
         summary: Summary::timed(duration, on, 1, on * FLOW),
         outputs: Default::default(),

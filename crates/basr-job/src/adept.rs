@@ -13,7 +13,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::{Samples, Station};
+use super::{Road, Samples, Station};
 
 /// Tilt resolution of the seed's Zworld interface (001 table 2.2: 0.2°/step).
 const TILT_STEP_DEG: f64 = 0.2;
@@ -21,7 +21,7 @@ const TILT_STEP_DEG: f64 = 0.2;
 const TILT_FIRST_SIGNAL: u32 = 9;
 
 /// The V+ program text of `samples` planned over `stations`.
-pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String {
+pub fn program(message: &str, samples: &Samples, stations: &[Station], road: &Road) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -72,7 +72,9 @@ pub fn program(message: &str, samples: &Samples, stations: &[Station]) -> String
             "move trans({:5.1},{:5.1},({:5.1}+offset),0,180,{:5.1})",
             b[0] * 1e3,
             b[1] * 1e3,
-            samples.z_m[i] * 1e3,
+            // The base frame's height: the road frame's less the height
+            // of the surface under the arm's axis.
+            (samples.z_m[i] - road.origin_z(s)) * 1e3,
             wrap_deg(yaw_b.to_degrees())
         );
         let _ = writeln!(
@@ -133,7 +135,7 @@ pub fn compare(job: &super::Job, text: &str, origin: &str, job_origin: &str) -> 
     if recorded.sha256 == actual {
         return vec![];
     }
-    let want = program(&job.message, &job.samples, &job.stations);
+    let want = program(&job.message, &job.samples, &job.stations, &job.road);
     let mut out = vec![format!(
         "{origin}: not the Adept program written with {job_origin} (its SHA-256 is {actual}, \
          the job records {} for {})",
@@ -159,9 +161,10 @@ pub fn write(
     message: &str,
     samples: &Samples,
     stations: &[Station],
+    road: &Road,
     path: &Path,
 ) -> Result<String, basr_io::WriteError> {
-    let text = program(message, samples, stations);
+    let text = program(message, samples, stations, road);
     basr_io::write_output(path, None, |w| w.write_all(text.as_bytes()))
 }
 
@@ -187,7 +190,7 @@ mod tests {
             paint: 1,
             ..Default::default()
         });
-        let p = program("STOP", &s, &stations);
+        let p = program("STOP", &s, &stations, &Road::default());
         assert!(
             p.contains("move trans(  0.0,2000.0,(200.0+offset),0,180,180.0)"),
             "{p}"

@@ -18,10 +18,13 @@ pub mod canonical;
 pub mod csv;
 mod read;
 pub use read::signed_bytes;
+pub mod reference;
+pub mod road;
 pub mod trust;
 pub mod verify;
 mod warning;
 
+pub use road::{Road, StopPlane};
 pub use warning::{Owner, OwnerKind, Severity, Warning, WarningKind};
 
 use std::collections::BTreeMap;
@@ -598,6 +601,10 @@ pub struct Job {
     pub control_period_s: f64,
     pub layout: Layout,
     pub stations: Vec<Station>,
+    /// The road surface under the marking (docs/site.md); absent on a
+    /// flat road, so flat-road jobs keep their bytes.
+    #[serde(default, skip_serializing_if = "Road::is_flat")]
+    pub road: Road,
     pub samples: Samples,
     pub summary: Summary,
     /// Files written with this job, by kind (`csv`, `adept`).
@@ -739,6 +746,7 @@ mod tests {
                 y_m: 4.0,
                 heading_rad: -std::f64::consts::FRAC_PI_2,
             }],
+            road: Road::default(),
             samples,
             summary: Summary::timed(0.064, 0.0, 0, 0.0),
             outputs: BTreeMap::new(),

@@ -293,7 +293,7 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
         );
         let dyaw = basr_robot::kinematics::wrap_pi(yaw - s.yaw_rad[i]);
         let dx = (r[0] - s.x_m[i]).hypot(r[1] - s.y_m[i]);
-        let dz = (pose.z_m - s.z_m[i]).abs();
+        let dz = (pose.z_m + job.road.origin_z(st) - s.z_m[i]).abs();
         if dx > FK_TOL || dz > FK_TOL || dyaw.abs() > FK_TOL {
             c.add(
                 "nozzle",
@@ -317,6 +317,9 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
 /// file gets, the paint block is that robot's (k = flow·efficiency/film,
 /// 001 eq. 2.6), and the stroke count is the layout's.
 fn settings(job: &Job, origin: &str, c: &mut Collector) {
+    if let Some(p) = job.road.problem(job.stations.len()) {
+        c.add("road", format!("{origin}: the job's road: {p}"));
+    }
     for (field, what) in job.robot.problems() {
         c.add(
             "robot",

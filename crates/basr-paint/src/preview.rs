@@ -63,6 +63,31 @@ pub fn poses_from_samples(s: &Samples) -> Vec<Pose> {
         .collect()
 }
 
+/// `pose`, painted from the job's station `station` (its index), as the
+/// flat-road pose that lays the same film on the job's road: the nozzle's
+/// height over the surface, its lean against it and the foot of the
+/// perpendicular (docs/site.md). The pose itself on a flat road.
+pub fn on_road(job: &Job, station: usize, pose: Pose) -> Pose {
+    let Some(st) = job.stations.get(station).filter(|_| !job.road.is_flat()) else {
+        return pose;
+    };
+    let r = job.road.relative(
+        station,
+        st,
+        [pose.x_m, pose.y_m],
+        pose.z_m,
+        pose.yaw_rad,
+        pose.tilt_rad,
+    );
+    Pose {
+        x_m: r.xy[0],
+        y_m: r.xy[1],
+        z_m: r.height_m,
+        tilt_rad: r.tilt_rad,
+        ..pose
+    }
+}
+
 fn check_paint(job: &Job) -> Result<(), PaintError> {
     let p = &job.paint;
     for (name, v) in [
@@ -98,7 +123,11 @@ pub fn preview_job_with_progress(
     progress: Progress,
 ) -> Result<Preview, PaintError> {
     check_paint(job)?;
-    let poses = poses_from_samples(&job.samples);
+    let poses: Vec<Pose> = poses_from_samples(&job.samples)
+        .into_iter()
+        .zip(&job.samples.station)
+        .map(|(p, &st)| on_road(job, st as usize, p))
+        .collect();
     let outlines: Vec<GlyphOutline> = job
         .layout
         .glyphs

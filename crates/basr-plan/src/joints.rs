@@ -109,9 +109,19 @@ pub fn joint_paths(
         for v in tour {
             let pass = &passes.passes[v.item];
             let id = 2 * ways.len();
-            let fwd = candidates(robot, station, &pass.knots, false, pass.stroke)
+            let at = Stop {
+                index: si,
+                station,
+                road: &plan.road,
+                tilt: robot.tilt_limit(),
+                heights: {
+                    let law = basr_robot::paint_law::paint_law(robot);
+                    [law.min_height_m, law.max_height_m]
+                },
+            };
+            let fwd = candidates(robot, &at, &pass.knots, false, pass.stroke)
                 .map(|c| Candidates { id, ..c });
-            let rev = candidates(robot, station, &pass.knots, true, pass.stroke)
+            let rev = candidates(robot, &at, &pass.knots, true, pass.stroke)
                 .map(|c| Candidates { id: id + 1, ..c });
             match (fwd, rev) {
                 (Err((k, e)), Err(_)) => {
@@ -246,7 +256,7 @@ fn improve(
 /// the pass's own order) where the last lead length tried fails, and why.
 fn candidates(
     robot: &AnyRobot,
-    station: &Station,
+    station: &Stop<'_>,
     knots: &[Knot],
     reversed: bool,
     stroke: usize,
@@ -357,15 +367,53 @@ fn travel(robot: &AnyRobot, a: &Q, b: &Q) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The nozzle pose of a knot in a station's base frame.
-fn knot_pose(station: &Station, k: &Knot) -> NozzlePose {
-    let b = station.road_to_base([k.tip.x, k.tip.y]);
+/// A station as the joints are solved from it: its place in the plan, its
+/// pose and the road surface under it.
+struct Stop<'a> {
+    index: usize,
+    station: &'a Station,
+    road: &'a basr_job::Road,
+    /// The tilt joint's range; `None`: the arm cannot lean its fan, and the
+    /// fan keeps its planned tilt whatever the surface.
+    tilt: Option<basr_robot::JointLimit>,
+    /// The painting heights the vertical joint reaches, base frame (m): a
+    /// surface a few millimetres above the base's level asks for more, and
+    /// the nozzle stops at the top (docs/site.md).
+    heights: [f64; 2],
+}
+
+/// The nozzle pose of a knot in a station's base frame: the knot's fan
+/// (planned on a flat road) placed on the road's surface, so it keeps its
+/// height over the surface and its lean against it (docs/site.md).
+fn knot_pose(at: &Stop<'_>, k: &Knot) -> NozzlePose {
+    let station = at.station;
+    let on = at.road.place(
+        at.index,
+        station,
+        [k.tip.x, k.tip.y],
+        k.yaw_rad,
+        k.z_m,
+        k.tilt_rad,
+    );
+    let b = station.road_to_base(on.xy);
+    // The lean the surface asks for, within the tilt's range: a rung
+    // already planned at the limit keeps it (the film check judges it).
+    let tilt_rad = match at.tilt {
+        Some(l) if on.tilt_rad != k.tilt_rad => on
+            .tilt_rad
+            .clamp(l.min.min(k.tilt_rad), l.max.max(k.tilt_rad)),
+        _ => k.tilt_rad,
+    };
     NozzlePose {
         x_m: b[0],
         y_m: b[1],
-        z_m: k.z_m,
+        z_m: if on.base_z_m == k.z_m {
+            on.base_z_m
+        } else {
+            on.base_z_m.min(at.heights[1].max(k.z_m))
+        },
         yaw_rad: k.yaw_rad - (station.heading_rad - FRAC_PI_2),
-        tilt_rad: k.tilt_rad,
+        tilt_rad,
     }
 }
 
@@ -399,7 +447,7 @@ fn jump(robot: &AnyRobot, p: &Q, j: &Q) -> Option<usize> {
 #[allow(clippy::type_complexity)]
 fn solve_branches(
     robot: &AnyRobot,
-    station: &Station,
+    station: &Stop<'_>,
     ks: &[Knot],
 ) -> Result<Vec<(f64, Vec<Q>)>, (usize, basr_robot::Unreachable)> {
     let first = knot_pose(station, &ks[0]);

@@ -35,6 +35,7 @@
 
 pub mod chain;
 pub mod error;
+pub mod fit;
 pub mod flight;
 pub mod inputs;
 pub mod joints;
@@ -49,6 +50,7 @@ pub mod request;
 pub mod rungs;
 pub mod samples;
 pub mod seal;
+pub mod site;
 pub mod stations;
 pub mod stow;
 pub mod tilt;

@@ -42,6 +42,69 @@ pub struct Passes {
     pub notes: Vec<Note>,
 }
 
+impl Passes {
+    /// These passes with the strokes `take` names taken from `other` (the
+    /// same marking planned under another paint law: on an uneven road,
+    /// the strokes of the stops whose surface asks for it): their passes,
+    /// balance and notes; the job-wide share of paint laid outside the
+    /// strokes summed again over the strokes kept.
+    pub fn with_strokes_from(self, other: Passes, take: impl Fn(usize) -> bool) -> Passes {
+        let stroke_of = |n: &Note| match n {
+            Note::Passes { stroke, .. }
+            | Note::HeightClamped { stroke, .. }
+            | Note::Slowed { stroke, .. } => Some(*stroke),
+            _ => None,
+        };
+        let mut passes: Vec<Pass> = self
+            .passes
+            .into_iter()
+            .filter(|p| !take(p.stroke))
+            .chain(other.passes.into_iter().filter(|p| take(p.stroke)))
+            .collect();
+        // Stable: a stroke's passes keep their order.
+        passes.sort_by_key(|p| p.stroke);
+        let mut balance: Vec<StrokeBalance> = self
+            .balance
+            .into_iter()
+            .filter(|b| !take(b.stroke))
+            .chain(other.balance.into_iter().filter(|b| take(b.stroke)))
+            .collect();
+        balance.sort_by_key(|b| b.stroke);
+        let mut notes: Vec<Note> = self
+            .notes
+            .into_iter()
+            .filter(|n| stroke_of(n).is_none_or(|s| !take(s)))
+            .chain(
+                other
+                    .notes
+                    .into_iter()
+                    .filter(|n| stroke_of(n).is_some_and(&take)),
+            )
+            .collect();
+        notes.sort_by_key(|n| stroke_of(n).unwrap_or(usize::MAX));
+        let job: f64 = notes
+            .iter()
+            .map(|n| match n {
+                Note::HeightClamped { outside_share, .. } => *outside_share,
+                _ => 0.0,
+            })
+            .sum();
+        for n in &mut notes {
+            if let Note::HeightClamped {
+                job_outside_share, ..
+            } = n
+            {
+                *job_outside_share = job;
+            }
+        }
+        Passes {
+            passes,
+            balance,
+            notes,
+        }
+    }
+}
+
 /// Knots of every stroke's passes (001 §2.4–2.5).
 pub fn passes(
     strokes: &PlacedStrokes,

@@ -111,6 +111,9 @@ pub struct CompileRequest {
     /// failed bound (`plan::film`); off where a job is only compiled to be
     /// measured by its caller (shape candidates, re-planned comparisons).
     pub film: bool,
+    /// Where the truck really stopped and the road under it (`basr fit`):
+    /// compile keeps these stops instead of planning its own.
+    pub site: Option<crate::site::Site>,
 }
 
 impl CompileRequest {
@@ -130,6 +133,7 @@ impl CompileRequest {
             reach_margin_m: stations::DEFAULT_MARGIN_M,
             verify: true,
             film: true,
+            site: None,
         }
     }
 }

@@ -52,8 +52,11 @@ pub fn sample(
         append_samples(
             &mut samples,
             robot,
-            station,
-            si as u32,
+            StationRows {
+                station,
+                index: si as u32,
+                origin_z: plan.road.origin_z(station),
+            },
             &paths.stations[si],
             &rows,
             period_s,
@@ -103,16 +106,30 @@ fn clamp_to_range(robot: &AnyRobot, timed: &mut [Timed]) -> Result<(), CompileEr
     Ok(())
 }
 
+/// The station whose rows are being appended.
+struct StationRows<'a> {
+    station: &'a Station,
+    /// Its index in the job (the `station` column).
+    index: u32,
+    /// The road-frame height of its base frame's origin: the z_m column is
+    /// the road frame's (docs/site.md).
+    origin_z: f64,
+}
+
 /// Append a station's samples to the job's columns.
 fn append_samples(
     samples: &mut Samples,
     robot: &AnyRobot,
-    station: &Station,
-    station_index: u32,
+    at: StationRows<'_>,
     runs: &[Run],
     timed: &[Timed],
     period: f64,
 ) {
+    let StationRows {
+        station,
+        index: station_index,
+        origin_z,
+    } = at;
     let t0 = samples.len();
     let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
     // Nozzle in the road frame at every sample.
@@ -156,7 +173,7 @@ fn append_samples(
             paint,
             x_m: r[0],
             y_m: r[1],
-            z_m: pose.z_m,
+            z_m: pose.z_m + origin_z,
             yaw_rad: *yaw,
             tilt_rad: pose.tilt_rad,
             speed_mps: speed,

@@ -90,6 +90,7 @@ pub fn assemble(p: Planned<'_>) -> Job {
             glyphs: p.strokes.outlines(),
         },
         stations: p.stations.stations,
+        road: p.stations.road,
         samples: p.samples,
         summary,
         outputs: Default::default(),

@@ -89,6 +89,9 @@ pub struct StationPlan {
     pub station_of: Vec<usize>,
     /// Worst margin (m) of each station over its items.
     pub margin_m: Vec<f64>,
+    /// The road surface the stations stand on and paint (flat unless the
+    /// marking describes it or `basr fit` measured it).
+    pub road: basr_job::Road,
 }
 
 /// Plan stations for `items` (each a set of road-frame points that must be
@@ -114,6 +117,7 @@ pub fn plan(
         stations: vec![],
         station_of: vec![0; items.len()],
         margin_m: vec![],
+        road: basr_job::Road::default(),
     };
     let mut group: Vec<usize> = vec![];
     let mut best: Option<(Station, f64)> = None;
@@ -278,7 +282,7 @@ fn worst_margin(
     worst
 }
 
-fn worst_point(
+pub(crate) fn worst_point(
     pts: &[[f64; 2]],
     s: &Station,
     reach_margin: &impl Fn(f64, f64) -> f64,
@@ -379,7 +383,7 @@ pub fn for_passes(
 }
 
 /// Up to `STATION_POINTS_PER_PASS` knot tips, both ends included.
-fn thin_tips(knots: &[Knot]) -> Vec<[f64; 2]> {
+pub(crate) fn thin_tips(knots: &[Knot]) -> Vec<[f64; 2]> {
     let n = knots.len();
     if n == 0 {
         return vec![];

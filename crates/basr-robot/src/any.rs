@@ -125,6 +125,32 @@ impl AnyRobot {
         }
     }
 
+    /// This robot as the planner sees it on an uneven road: the painting
+    /// heights the nozzle keeps over the surface wherever the marking lies,
+    /// when the surface there lies up to `below_m` under the level of the
+    /// base's origin and up to `above_m` over it (docs/site.md). For the
+    /// paint law only: the joints are solved with the real ranges, which
+    /// reach that much further down and up.
+    pub fn on_uneven_road(&self, below_m: f64, above_m: f64) -> AnyRobot {
+        let mut r = self.clone();
+        match &mut r {
+            AnyRobot::Basr(b) => {
+                // IK: vertical = top + rise(β) − z; a lower tip is a longer stroke.
+                b.limits.vertical_m.max -= below_m;
+                b.limits.vertical_m.min += above_m;
+            }
+            AnyRobot::Telescopic(t) => {
+                t.arm.tip_height_min_m += below_m;
+                t.arm.tip_height_max_m -= above_m;
+            }
+            AnyRobot::Articulated(a) => {
+                a.arm.tip_height_min_m += below_m;
+                a.arm.tip_height_max_m -= above_m;
+            }
+        }
+        r
+    }
+
     /// Tip heights over the road the nozzle paints at with zero tilt.
     pub fn tip_heights_m(&self) -> [f64; 2] {
         self.arm().tip_heights_m()

@@ -272,6 +272,7 @@ fn sealed(
             }],
         },
         stations: vec![station],
+        road: Default::default(),
         samples,
         summary: Summary::timed(
             (n - 1) as f64 * period,

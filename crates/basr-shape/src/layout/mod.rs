@@ -229,6 +229,41 @@ pub struct Marking {
     /// near edge of the first line (SPEC §2); (0, 0) unless a file moves it.
     pub anchor_x_m: f64,
     pub anchor_y_m: f64,
+    /// The road surface the file describes (`[road]`); flat by default.
+    #[serde(default)]
+    pub road: basr_job::Road,
+}
+
+/// A marking file's `[road]` table (docs/site.md): the surface's cross
+/// slope in percent, falling to the driver's right, and an optional crown
+/// line where it changes sign. Unknown keys are errors.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RoadToml {
+    cross_slope_pct: Option<f64>,
+    crown_x_m: Option<f64>,
+}
+
+impl RoadToml {
+    /// The surface described, or what is wrong with the table.
+    pub(crate) fn road(table: Option<RoadToml>) -> Result<basr_job::Road, String> {
+        let Some(t) = table else {
+            return Ok(basr_job::Road::default());
+        };
+        let Some(pct) = t.cross_slope_pct else {
+            return Err("[road] needs cross_slope_pct (the surface's fall to the driver's                         right, in percent: cross_slope_pct = 2.0)"
+                .into());
+        };
+        let road = basr_job::Road {
+            cross_slope: pct / 100.0,
+            crown_x_m: t.crown_x_m,
+            planes: vec![],
+        };
+        match road.problem(0) {
+            Some(p) => Err(format!("[road]: {p}")),
+            None => Ok(road),
+        }
+    }
 }
 
 /// Optional overrides of a marking's settings (the compile command line).
@@ -262,6 +297,7 @@ struct MarkingToml {
 #[serde(deny_unknown_fields)]
 struct MarkingFileToml {
     marking: MarkingToml,
+    road: Option<RoadToml>,
 }
 
 /// Metres per foot (exact by definition).
@@ -287,6 +323,7 @@ impl Marking {
             line_gap_m: o.line_gap_m.unwrap_or(MIN_LINE_GAP_HEIGHTS * h),
             anchor_x_m: 0.0,
             anchor_y_m: 0.0,
+            road: basr_job::Road::default(),
         };
         m.validate_message(message)?;
         Ok(m)
@@ -311,6 +348,7 @@ impl Marking {
                 m.to_string()
             })
         })?;
+        let road = RoadToml::road(file.road).map_err(err)?;
         let t = file.marking;
         let h_file = match (t.letter_height_m, t.letter_height_ft) {
             (Some(_), Some(_)) => {
@@ -363,6 +401,7 @@ impl Marking {
                 .unwrap_or(MIN_LINE_GAP_HEIGHTS * h),
             anchor_x_m: t.anchor_x_m.unwrap_or(0.0),
             anchor_y_m: t.anchor_y_m.unwrap_or(0.0),
+            road,
         };
         let joined = m.message();
         m.validate_message(&joined)

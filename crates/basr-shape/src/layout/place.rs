@@ -42,6 +42,8 @@ pub struct Laid {
     pub message: String,
     pub letter_height_m: f64,
     pub lane_width_m: f64,
+    /// The road surface the marking file describes.
+    pub road: basr_job::Road,
 }
 
 /// Lay out a message or a `lines` marking file.
@@ -93,6 +95,7 @@ pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, La
         message: m.message(),
         letter_height_m: m.letter_height_m,
         lane_width_m: m.lane_width_m,
+        road: m.road.clone(),
     })
 }
 
@@ -188,6 +191,7 @@ pub fn lay_scene_with(
         message: s.message(),
         letter_height_m,
         lane_width_m: s.lane_width_m,
+        road: s.road.clone(),
     })
 }
 
@@ -228,6 +232,7 @@ fn item_marks(
                 line_gap_m: MIN_LINE_GAP_HEIGHTS * h,
                 anchor_x_m: 0.0,
                 anchor_y_m: 0.0,
+                road: basr_job::Road::default(),
             };
             let laid = lay_marking(&m, font, true)?;
             Ok(laid

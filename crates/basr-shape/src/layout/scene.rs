@@ -75,6 +75,8 @@ pub struct Scene {
     pub low_speed: bool,
     /// The lane is a mandatory turn lane (R11, R13 checks).
     pub turn_lane: bool,
+    /// The road surface the file describes (`[road]`); flat by default.
+    pub road: basr_job::Road,
 }
 
 impl Scene {
@@ -121,6 +123,7 @@ impl Scene {
             letter_height_m: o.letter_height_m.unwrap_or(DEFAULT_LETTER_HEIGHT_M),
             low_speed: o.low_speed,
             turn_lane: false,
+            road: basr_job::Road::default(),
         };
         check_lane(s.lane_width_m).map_err(|e| LayoutError::Marking {
             origin: "--lane-width".into(),
@@ -136,6 +139,7 @@ impl Scene {
             message,
         };
         let file: SceneFileToml = super::parse_marking(text).map_err(|e| err(e.to_string()))?;
+        let road = super::RoadToml::road(file.road).map_err(err)?;
         let m = file.marking.unwrap_or_default();
         if m.lines.is_some() {
             return Err(err(
@@ -170,6 +174,7 @@ impl Scene {
             letter_height_m: default_h,
             low_speed: o.low_speed || m.low_speed.unwrap_or(false),
             turn_lane: m.turn_lane.unwrap_or(false),
+            road,
         })
     }
 }
@@ -319,6 +324,7 @@ fn item(t: &ItemToml, default_h: f64, o: &Overrides) -> Result<Item, SceneError>
 #[serde(deny_unknown_fields)]
 struct SceneFileToml {
     marking: Option<SceneMarkingToml>,
+    road: Option<super::RoadToml>,
     #[serde(default)]
     item: Vec<ItemToml>,
 }

@@ -1,0 +1,201 @@
+//! The site: where the truck really stopped and the road under it, as
+//! `basr fit` measured them (docs/site.md). Compile keeps the job's stops
+//! and puts the fitted one where it is, instead of planning stops; a stop
+//! from which the arm cannot reach its marking is refused with the move
+//! that brings it into reach.
+
+use basr_job::{Road, Station};
+use basr_robot::AnyRobot;
+
+use super::error::StationError;
+use super::passes::Passes;
+use super::stations::{thin_tips, worst_point, StationPlan};
+
+/// Where the truck stood for each stop and the road under them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Site {
+    /// Every stop's pose, in the job's order (the fitted one among them).
+    pub stations: Vec<Station>,
+    /// The fitted stop (index from 0): the one whose reach is checked.
+    pub fitted: usize,
+    /// The road: the job's described surface and the plane fitted under
+    /// the stop.
+    pub road: Road,
+}
+
+/// Rings of the search for a truck position that reaches (m): every
+/// 50 mm out to 5 m. assumed: a crew repositions a truck to about a
+/// hand's width, and 5 m is more than the arm's reach; beyond it the stop
+/// is not the job's.
+const RING_STEP_M: f64 = 0.05;
+const RING_MAX_M: f64 = 5.0;
+/// Directions tried on each ring (5° apart).
+const RING_DIRECTIONS: usize = 72;
+
+/// `plan` with the site's stations and road: the stations compile planned
+/// must be as many as the site's, and the fitted stop must reach every
+/// point of its passes with `margin_m` to spare, or the move that does is
+/// named.
+pub fn put_at_site(
+    plan: &mut StationPlan,
+    passes: &Passes,
+    site: &Site,
+    robot: &AnyRobot,
+    margin_m: f64,
+) -> Result<(), StationError> {
+    if site.stations.len() != plan.stations.len() {
+        return Err(StationError::SiteStops {
+            job: site.stations.len(),
+            planned: plan.stations.len(),
+        });
+    }
+    plan.stations = site.stations.clone();
+    plan.road = site.road.clone();
+    let si = site.fitted;
+    let Some(st) = plan.stations.get(si).cloned() else {
+        return Ok(());
+    };
+    let region = robot.reach();
+    let margin = |x: f64, y: f64| region.margin(x, y);
+    let points: Vec<[f64; 2]> = passes
+        .passes
+        .iter()
+        .zip(&plan.station_of)
+        .filter(|(_, &s)| s == si)
+        .flat_map(|(p, _)| thin_tips(&p.knots))
+        .collect();
+    let worst = |s: &Station| {
+        points
+            .iter()
+            .map(|p| {
+                let b = s.road_to_base(*p);
+                margin(b[0], b[1])
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let here = worst(&st);
+    if let Some(m) = plan.margin_m.get_mut(si) {
+        *m = here;
+    }
+    // The arm reaches every point (the planning margin is for the
+    // controller's overshoot; simulation judges whether this stop keeps it).
+    if here >= 0.0 {
+        return Ok(());
+    }
+    let (px, py) = worst_point(&points, &st, &margin);
+    let advice = match nearest_reaching(&st, margin_m, &worst) {
+        Some(d) => move_words(&st, d),
+        None => format!(
+            "no truck position within {RING_MAX_M} m of it reaches the whole stop; check the \
+             points and the stop number"
+        ),
+    };
+    Err(StationError::SiteOutOfReach {
+        stop: si + 1,
+        x: st.x_m,
+        y: st.y_m,
+        heading_deg: st.heading_rad.to_degrees(),
+        px,
+        py,
+        short_m: -here,
+        advice,
+    })
+}
+
+/// The smallest road-frame move of `st` (same heading) after which every
+/// point keeps `margin_m`: the first ring with one, its best direction.
+fn nearest_reaching(
+    st: &Station,
+    margin_m: f64,
+    worst: &impl Fn(&Station) -> f64,
+) -> Option<[f64; 2]> {
+    let rings = (RING_MAX_M / RING_STEP_M).round() as usize;
+    for k in 1..=rings {
+        let r = k as f64 * RING_STEP_M;
+        let mut best: Option<(f64, [f64; 2])> = None;
+        for j in 0..RING_DIRECTIONS {
+            let a = std::f64::consts::TAU * j as f64 / RING_DIRECTIONS as f64;
+            let d = [r * a.cos(), r * a.sin()];
+            let moved = Station {
+                x_m: st.x_m + d[0],
+                y_m: st.y_m + d[1],
+                heading_rad: st.heading_rad,
+            };
+            let m = worst(&moved);
+            if m >= margin_m && best.is_none_or(|(b, _)| m > b) {
+                best = Some((m, d));
+            }
+        }
+        if let Some((_, d)) = best {
+            return Some(d);
+        }
+    }
+    None
+}
+
+/// A road-frame move `d` of the truck at `st` in the crew's words: forward
+/// or back along the truck, to its left or right.
+fn move_words(st: &Station, d: [f64; 2]) -> String {
+    // The truck faces away from the arm: +y of the base frame points back
+    // along the arm's symmetry axis (heading_rad), so forward is its
+    // opposite; the driver's right is forward turned a quarter clockwise.
+    let fwd = [-st.heading_rad.cos(), -st.heading_rad.sin()];
+    let right = [fwd[1], -fwd[0]];
+    let along = d[0] * fwd[0] + d[1] * fwd[1];
+    let across = d[0] * right[0] + d[1] * right[1];
+    let mut parts = vec![];
+    // assumed: under 1 cm is not a move a driver can make.
+    if along.abs() >= 0.01 {
+        let way = if along > 0.0 { "forward" } else { "back" };
+        parts.push(format!("{:.2} m {way}", along.abs()));
+    }
+    if across.abs() >= 0.01 {
+        let way = if across > 0.0 { "right" } else { "left" };
+        parts.push(format!("{:.2} m to the {way}", across.abs()));
+    }
+    format!(
+        "move the truck {} (road frame: x {:+.2} m, y {:+.2} m)",
+        parts.join(" and "),
+        d[0],
+        d[1]
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn moves_are_said_in_the_truck_frame() {
+        let st = Station {
+            x_m: 0.0,
+            y_m: 4.0,
+            heading_rad: -std::f64::consts::FRAC_PI_2,
+        };
+        // The truck drives with the traffic (+y): +y is forward, +x right.
+        let w = move_words(&st, [0.2, -2.5]);
+        assert!(
+            w.contains("2.50 m back") && w.contains("0.20 m to the right"),
+            "{w}"
+        );
+        let w = move_words(&st, [-0.3, 0.0]);
+        assert!(
+            w.contains("0.30 m to the left") && !w.contains("forward"),
+            "{w}"
+        );
+    }
+
+    #[test]
+    fn the_nearest_reaching_move_is_found() {
+        let st = Station {
+            x_m: 0.0,
+            y_m: 0.0,
+            heading_rad: -std::f64::consts::FRAC_PI_2,
+        };
+        // Reaches where the truck is at y ≥ 1.2: the move is 1.2 m along +y.
+        let worst = |s: &Station| s.y_m - 1.2;
+        let d = nearest_reaching(&st, 0.0, &worst).unwrap();
+        assert!((d[1] - 1.2).abs() < 1e-9 && d[0].abs() < 1e-9, "{d:?}");
+        assert!(nearest_reaching(&st, 0.0, &|_: &Station| -1.0).is_none());
+    }
+}

@@ -1,0 +1,376 @@
+//! `basr fit`: fit one stop of a job to where the truck really stopped and
+//! to the road under it, from reference points the crew measured with the
+//! arm, and re-plan that stop (docs/site.md).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context;
+use basr::job::{Job, Road, Station};
+use basr::pipeline::compile::{compile_job, Tilt};
+use basr::plan::fit::{self, Measured};
+use basr::plan::site::Site;
+use serde::Deserialize;
+use serde_json::json;
+
+use super::{replan, Global, Outcome};
+
+/// Fit a job's stop to where the truck stopped, and re-plan it.
+///
+/// At the stop, the crew chalks the reference points the job sheet lists
+/// for it, jogs the nozzle over each and reads the arm's base-frame
+/// position and the road's height there. Two or more points fix where the
+/// truck stands (its axis and heading, least squares); three or more not
+/// on a line also measure the road's surface as a plane. fit re-plans that
+/// stop for the fitted pose and surface (joints, timing, closed-loop
+/// verification, film), keeps the other stops, and writes a sealed job.
+///
+/// A point further than --tolerance-mm from where the others put it is
+/// refused by name; a stop from which the arm cannot reach its marking is
+/// refused with the move that brings it into reach.
+#[derive(clap::Args)]
+#[command(after_help = "Examples:
+  basr fit STOP.job.json --points stop1.toml -o STOP.fit.job.json
+  basr fit SCHOOL_XING.job.json --points stop2.toml --json
+  basr fit scene.job.json --marking scene.toml --points p.toml --sign crew.key
+
+The points file (TOML; lengths in metres):
+  stop = 1                       # the stop, counted from 1 as on the job sheet
+  [[point]]
+  name = \"near-left\"             # the job sheet's name (optional)
+  road_m = [-1.074, 0.0]         # where the point is on the marking (road frame)
+  base_m = [2.51, 3.88, 0.012]   # where the arm measured it (base frame):
+                                 # x, y, and the road's height z under the tip
+
+JSON (--json): {\"job\", \"stop\", \"station\", \"planned_station\", \"moved\",
+\"plane\", \"points\": [{\"name\", \"xy_m\", \"z_m\"}], \"verdict\", \"summary\"}.")]
+pub struct Args {
+    /// The job to fit (as compile wrote it).
+    pub job: PathBuf,
+    /// The measured points (TOML: `stop` and `[[point]]` tables).
+    #[arg(long, value_name = "FILE")]
+    pub points: PathBuf,
+    /// The stop the points were measured at, counted from 1 (default: the
+    /// file's `stop`).
+    #[arg(long, value_name = "N")]
+    pub stop: Option<usize>,
+    /// The fitted job (default: JOB with `.fit` before `.job.json`).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Sign the fitted job with this secret key (`basr keygen`).
+    #[arg(long, value_name = "KEY")]
+    pub sign: Option<PathBuf>,
+    /// Largest distance (mm) between a point and where the fit puts it.
+    #[arg(long, value_name = "MM", default_value_t = 10.0)]
+    pub tolerance_mm: f64,
+    /// The marking file a scene job was compiled from (a message or a
+    /// library symbol is re-laid from the job itself).
+    #[arg(long, value_name = "FILE")]
+    pub marking: Option<PathBuf>,
+    /// The font file the job was compiled with, if not the embedded one.
+    #[arg(long, value_name = "F")]
+    pub font: Option<String>,
+    /// Print the fit as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Most points a file may hold. assumed: a crew measures three to six; a
+/// hundred bounds the work of the outlier search (cubic in the points).
+const MAX_POINTS: usize = 100;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PointsFile {
+    stop: Option<usize>,
+    #[serde(default)]
+    point: Vec<PointToml>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PointToml {
+    name: Option<String>,
+    road_m: [f64; 2],
+    base_m: [f64; 3],
+}
+
+/// The points file read and checked: the stop (from 0) and its points.
+fn read_points(
+    path: &Path,
+    stop_arg: Option<usize>,
+    stops: usize,
+) -> anyhow::Result<(usize, Vec<Measured>)> {
+    let origin = path.display().to_string();
+    let text = basr::io::read_text(path)?;
+    let file: PointsFile = toml::from_str(&text).map_err(|e| {
+        anyhow::anyhow!(
+            "{origin}: {}; a points file is `stop = 1` and [[point]] tables with road_m = [x, y] \
+             and base_m = [x, y, z] (see basr fit --help)",
+            basr::io::one_line(e.message())
+        )
+    })?;
+    let stop = match (stop_arg, file.stop) {
+        (Some(a), Some(f)) if a != f => anyhow::bail!(
+            "{origin} says stop = {f} but --stop {a} was given; the points belong to one stop"
+        ),
+        (Some(s), _) | (None, Some(s)) => s,
+        (None, None) => anyhow::bail!(
+            "{origin}: which stop were the points measured at? write `stop = N` (counted from 1 \
+             as on the job sheet) or pass --stop N"
+        ),
+    };
+    anyhow::ensure!(
+        (1..=stops).contains(&stop),
+        "{origin}: stop {stop} is not one of the job's stops (1 to {stops})"
+    );
+    anyhow::ensure!(
+        file.point.len() <= MAX_POINTS,
+        "{origin}: {} points; at most {MAX_POINTS} are read (three to six is usual)",
+        file.point.len()
+    );
+    let mut out = Vec::with_capacity(file.point.len());
+    for (i, p) in file.point.iter().enumerate() {
+        let name = p.name.clone().unwrap_or_else(|| format!("point {}", i + 1));
+        let all = p.road_m.iter().chain(&p.base_m);
+        anyhow::ensure!(
+            all.clone().all(|v| v.is_finite()),
+            "{origin}: point {name:?} has a value that is not a number ({:?}, {:?}); give \
+             metres",
+            p.road_m,
+            p.base_m
+        );
+        anyhow::ensure!(
+            !out.iter().any(|m: &Measured| m.name == name),
+            "{origin}: two points are named {name:?}; give each its own name"
+        );
+        out.push(Measured {
+            name,
+            road: p.road_m,
+            base: p.base_m,
+        });
+    }
+    Ok((stop - 1, out))
+}
+
+/// Refuse points that cannot belong to stop `si`: a marking point the
+/// job's stop does not reach (saying which stop does), or a measurement
+/// the arm could not have made.
+fn check_frames(job: &Job, si: usize, points: &[Measured], origin: &str) -> anyhow::Result<()> {
+    let region = job.robot.reach();
+    let reaches = |st: &Station, p: [f64; 2]| {
+        let b = st.road_to_base(p);
+        region.margin(b[0], b[1]) >= 0.0
+    };
+    for p in points {
+        if !reaches(&job.stations[si], p.road) {
+            let other = (0..job.stations.len()).find(|&k| reaches(&job.stations[k], p.road));
+            match other {
+                Some(k) => anyhow::bail!(
+                    "{origin}: point {:?} at road ({:.3}, {:.3}) m is on stop {}'s part of the \
+                     marking, not stop {}'s; measure stop {}'s points (the job sheet lists \
+                     them) or set stop = {}",
+                    p.name,
+                    p.road[0],
+                    p.road[1],
+                    k + 1,
+                    si + 1,
+                    si + 1,
+                    k + 1
+                ),
+                None => anyhow::bail!(
+                    "{origin}: point {:?} at road ({:.3}, {:.3}) m is not on the marking any \
+                     stop of this job paints; check its road_m against the job sheet",
+                    p.name,
+                    p.road[0],
+                    p.road[1]
+                ),
+            }
+        }
+        // assumed: 0.1 m of slack for a truck's lean and the jog's aim.
+        if region.margin(p.base[0], p.base[1]) < -0.1 {
+            anyhow::bail!(
+                "{origin}: point {:?} measured at base ({:.3}, {:.3}) m is outside the arm's \
+                 reach, so the arm cannot have measured it there; base_m is the arm's own \
+                 reading at the stop (x, y, road height), not a road-frame position",
+                p.name,
+                p.base[0],
+                p.base[1]
+            );
+        }
+        anyhow::ensure!(
+            p.base[2].abs() <= basr::job::road::MAX_PLANE_OFFSET_M,
+            "{origin}: point {:?}'s road height {} m is more than {} m from the arm's base \
+             level: base_m's third value is the road surface's height under the tip (m)",
+            p.name,
+            p.base[2],
+            basr::job::road::MAX_PLANE_OFFSET_M
+        );
+    }
+    Ok(())
+}
+
+/// The fitted job's path: `X.job.json` → `X.fit.job.json`.
+fn default_output(job: &Path) -> PathBuf {
+    let name = job
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_else(|| "job.json".into());
+    let stem = name
+        .strip_suffix(".job.json")
+        .or_else(|| name.strip_suffix(".json"))
+        .unwrap_or(&name);
+    job.with_file_name(format!("{stem}.fit.job.json"))
+}
+
+/// The rows of each station after the truck's drive to it (the leading
+/// rows holding the stow pose), without their times: what must be the
+/// same in the fitted job for every stop not fitted.
+fn station_motion(job: &Job, si: usize) -> Vec<Vec<String>> {
+    let s = &job.samples;
+    let rows: Vec<Vec<String>> = (0..s.len())
+        .filter(|&i| s.station[i] as usize == si)
+        .map(|i| s.csv_fields(i).into_iter().skip(1).collect())
+        .collect();
+    let first = rows.first().cloned();
+    let lead = rows
+        .iter()
+        .take_while(|r| Some(*r) == first.as_ref())
+        .count();
+    rows.into_iter().skip(lead.saturating_sub(1)).collect()
+}
+
+pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
+    anyhow::ensure!(
+        args.tolerance_mm.is_finite() && args.tolerance_mm > 0.0 && args.tolerance_mm <= 1000.0,
+        "--tolerance-mm {} must be above 0 and at most 1000 (10 mm by default)",
+        args.tolerance_mm
+    );
+    let origin = args.job.display().to_string();
+    let job = Job::read(&args.job)?;
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| default_output(&args.job));
+    super::outputs::check("the fitted job", &out, &["json"])?;
+    super::refuse_clashes(
+        &[("the fitted job", &out)],
+        &[("the job", &args.job), ("the points", &args.points)],
+    )?;
+    let key = args
+        .sign
+        .as_deref()
+        .map(basr::job::trust::SecretKey::load)
+        .transpose()?;
+    basr::io::check_writable(&out)?;
+    let points_origin = args.points.display().to_string();
+    let (si, points) = read_points(&args.points, args.stop, job.stations.len())?;
+    check_frames(&job, si, &points, &points_origin)?;
+    let fitted = fit::fit(si + 1, &points, args.tolerance_mm * 1e-3)
+        .map_err(|e| anyhow::anyhow!("{points_origin}: stop {}: {e}", si + 1))?;
+
+    // The job's marking laid out again, with the fitted stop and road.
+    let font = replan::replan_font(&job, &origin, args.font.as_deref(), "fit")?;
+    let plan = replan::recover(&job, &origin, font, args.marking.as_deref(), "fit")?;
+    let mut req = plan.request().clone();
+    req.tilt = match job.layout.tilt_method.as_str() {
+        "none" => Tilt::None,
+        "trapezoid" => Tilt::Trapezoid,
+        _ => Tilt::Quadrilateral,
+    };
+    let mut stations = job.stations.clone();
+    stations[si] = fitted.station.clone();
+    let mut road: Road = job.road.clone();
+    road.planes.retain(|p| p.stop != si + 1);
+    road.planes.extend(fitted.plane.clone());
+    road.planes.sort_by_key(|p| p.stop);
+    req.site = Some(Site {
+        stations,
+        fitted: si,
+        road,
+    });
+    let spin = super::spinner(
+        !global.quiet && !args.json,
+        &format!("re-planning stop {} of {}", si + 1, job.stations.len()),
+    );
+    let planned = compile_job(&req);
+    spin.finish_and_clear();
+    let mut new = planned.with_context(|| format!("{origin}: re-planning stop {}", si + 1))?;
+    for k in (0..job.stations.len()).filter(|&k| k != si) {
+        anyhow::ensure!(
+            station_motion(&new, k) == station_motion(&job, k),
+            "{origin}: re-planned, stop {} is not the job's: the job was compiled with options \
+             it does not record ({}); compile it again and fit that job",
+            k + 1,
+            replan::NOT_RECORDED
+        );
+    }
+    if let Some(key) = &key {
+        new.sign(key);
+    }
+    new.write(&out)?;
+
+    let planned_st = &job.stations[si];
+    let st = &new.stations[si];
+    let verdict = super::compile::verdict_of(&new);
+    if args.json {
+        let v = json!({
+            "job": out.display().to_string(),
+            "stop": si + 1,
+            "station": st,
+            "planned_station": planned_st,
+            "moved": {
+                "x_m": st.x_m - planned_st.x_m,
+                "y_m": st.y_m - planned_st.y_m,
+                "heading_rad": basr::robot::kinematics::wrap_pi(st.heading_rad - planned_st.heading_rad),
+            },
+            "plane": fitted.plane,
+            "points": fitted.residuals,
+            "verdict": verdict,
+            "summary": new.summary,
+            "sha256": new.sha256,
+            "signed_by": new.signature.as_ref().map(|s| s.key_id.clone()),
+        });
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
+    }
+    if !global.quiet {
+        note!(
+            "stop {}: the truck's axis is at x {:.3} m, y {:.3} m, heading {:.2}° (planned {:.3}, {:.3}, {:.2}°)",
+            si + 1,
+            st.x_m,
+            st.y_m,
+            st.heading_rad.to_degrees(),
+            planned_st.x_m,
+            planned_st.y_m,
+            planned_st.heading_rad.to_degrees()
+        );
+        match &fitted.plane {
+            Some(p) => note!(
+                "road under the stop: a plane sloped {:.2} % across x and {:.2} % along y of the \
+                 arm, {:+.1} mm at its axis",
+                p.dz_dx * 100.0,
+                p.dz_dy * 100.0,
+                p.z_m * 1e3
+            ),
+            None => note!(
+                "road under the stop: as the job describes it (two points measure no plane; \
+                 give three not on a line to measure it)"
+            ),
+        }
+        for r in &fitted.residuals {
+            note!(
+                "  {:<12} off by {:.1} mm on the road, {:+.1} mm in height",
+                r.name,
+                r.xy_m * 1e3,
+                r.z_m * 1e3
+            );
+        }
+        note!(
+            "wrote {} ({}: {:.1} s, stop {} re-planned)",
+            out.display(),
+            verdict,
+            new.summary.duration_s,
+            si + 1
+        );
+    }
+    Ok(Outcome::Success)
+}
