@@ -153,8 +153,9 @@ fn read_points(
 }
 
 /// Refuse points that cannot belong to stop `si`: a marking point the
-/// job's stop does not reach (saying which stop does), or a measurement
-/// the arm could not have made.
+/// job's stop does not reach (saying which stop does), or a road height
+/// that is no road under the arm. (A measurement outside the arm's reach
+/// as planned is a truck that stopped off: the fit says where to move.)
 fn check_frames(job: &Job, si: usize, points: &[Measured], origin: &str) -> anyhow::Result<()> {
     let region = job.robot.reach();
     let reaches = |st: &Station, p: [f64; 2]| {
@@ -185,17 +186,6 @@ fn check_frames(job: &Job, si: usize, points: &[Measured], origin: &str) -> anyh
                     p.road[1]
                 ),
             }
-        }
-        // assumed: 0.1 m of slack for a truck's lean and the jog's aim.
-        if region.margin(p.base[0], p.base[1]) < -0.1 {
-            anyhow::bail!(
-                "{origin}: point {:?} measured at base ({:.3}, {:.3}) m is outside the arm's \
-                 reach, so the arm cannot have measured it there; base_m is the arm's own \
-                 reading at the stop (x, y, road height), not a road-frame position",
-                p.name,
-                p.base[0],
-                p.base[1]
-            );
         }
         anyhow::ensure!(
             p.base[2].abs() <= basr::job::road::MAX_PLANE_OFFSET_M,

@@ -127,15 +127,15 @@ pub fn compile_strokes(
     }
 }
 
-/// Rise of the surface above the base's level (m) the planner leaves to
-/// the joints' clamp (`joints::knot_pose` stops the nozzle at the top of
-/// its painting heights): the widest fans then land this much closer and
-/// their edges move in by this × tan(fan/2), 3.1 mm at the seed's 63.5°
-/// tip, half the 6.35 mm edge tolerance (source: the agency's 1/4 in).
-/// Beyond it, the paint law keeps the heights clear instead. A surface
-/// below the base is always kept clear: a nozzle stopped above its height
-/// lays a wider fan, and the tilt's lift needs the room. assumed: the
-/// seed's tip; a narrower fan moves its edge less.
+/// Excursion of the surface from the truck's plane (m) the planner leaves
+/// to the joints' clamp (`joints::knot_pose` stops the nozzle at the end
+/// of its painting heights) rather than narrowing those heights for a
+/// whole stroke: the fan then lands this much nearer or further, and its
+/// edges move by this × tan(fan/2), 3.1 mm at the seed's 63.5° tip, half
+/// the 6.35 mm edge tolerance (source: the agency's 1/4 in), and only
+/// where the surface is that far off. Beyond it, the paint law keeps the
+/// heights clear. assumed: the seed's tip; a narrower fan moves its edge
+/// less.
 const CLAMP_FREE_M: f64 = 0.005;
 
 /// Rounds of planning the passes again for the road's surface: each round
@@ -183,12 +183,21 @@ fn passes_on_road(
     // those over a surface that asks for it (the others keep the flat
     // plan, so a fitted stop leaves the other stops as they were).
     let mut kept = [0.0f64; 2];
+    // The largest excursions met, for the note.
+    let mut seen = [0.0f64; 2];
     let mut uneven: std::collections::BTreeSet<usize> = Default::default();
     for _ in 0..SURFACE_ROUNDS {
         let need = surface_excursion(&plan, &passes, robot);
         let mut grew = false;
         for (&stroke, &[below, above]) in &need {
-            let n = [below, above - CLAMP_FREE_M].map(|n| if n < 1e-6 { 0.0 } else { n });
+            seen = [seen[0].max(below), seen[1].max(above)];
+            let n = [below, above].map(|n| {
+                if n - CLAMP_FREE_M < 1e-6 {
+                    0.0
+                } else {
+                    n - CLAMP_FREE_M
+                }
+            });
             if n[0] > kept[0] || n[1] > kept[1] {
                 kept = [kept[0].max(n[0]), kept[1].max(n[1])];
                 grew = true;
@@ -207,8 +216,8 @@ fn passes_on_road(
                 "the road under the marking lies up to {:.0} mm below and {:.0} mm above the \
                  plane the truck stands on: the vertical joint has no painting height left \
                  that reaches all of it; check the [road] crown line or the fitted points",
-                kept[0] * 1e3,
-                (kept[1] + CLAMP_FREE_M) * 1e3
+                seen[0] * 1e3,
+                seen[1] * 1e3
             )));
         }
         passes = flat
@@ -219,7 +228,7 @@ fn passes_on_road(
     if kept != [0.0, 0.0] {
         let flat_law = basr_robot::paint_law::paint_law(robot);
         let law = basr_robot::paint_law::paint_law(&robot.on_uneven_road(kept[0], kept[1]));
-        passes.notes.push(basr_plan::warnings::Note::Layout {
+        passes.notes.push(basr_plan::warnings::Note::Surface {
             text: format!(
                 "the road under {} of the {} strokes lies up to {:.0} mm below and {:.0} mm \
                  above the plane the truck stands on (a crown line, or the plane fit \
@@ -228,8 +237,8 @@ fn passes_on_road(
                  wider one",
                 uneven.len(),
                 strokes.strokes.len(),
-                kept[0] * 1e3,
-                (kept[1] + CLAMP_FREE_M) * 1e3,
+                seen[0] * 1e3,
+                seen[1] * 1e3,
                 law.min_height_m * 1e3,
                 law.max_height_m * 1e3,
                 flat_law.min_height_m * 1e3,

@@ -162,6 +162,7 @@ fn kind_words(kind: WarningKind) -> String {
         WarningKind::Passes => "a stroke painted in side-by-side passes".into(),
         WarningKind::Shape => "how a shape is painted".into(),
         WarningKind::Stop => "the arm comes to rest".into(),
+        WarningKind::Surface => "the road's surface under the marking".into(),
     }
 }
 

@@ -8,6 +8,11 @@ use serde::Serialize;
 
 use super::Job;
 
+/// A point on the line's other side is listed when it lies at least this
+/// share as far from the line as the furthest one. assumed: a quarter; a
+/// nearer one adds a point to chalk for little spread.
+const SECOND_SIDE: f64 = 0.25;
+
 /// One point to chalk: a corner of a stroke's outline.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ReferencePoint {
@@ -19,9 +24,13 @@ pub struct ReferencePoint {
 }
 
 /// The reference points of stop `index` (counted from 0): among the
-/// outline points of the strokes painted from it, the nearest-left
-/// (least x + y), the nearest-right (greatest x − y) and the farthest
-/// (greatest y). Empty when the stop paints nothing.
+/// outline points of the strokes painted from it, the two furthest apart
+/// and the furthest from the line through them on each side, so the
+/// points span as much of the stop's strokes as they can (they fix the
+/// stop's heading, and the road's plane, best): three or four. Each is named by where it lies
+/// in the triangle as the approaching driver sees it (`near-left`,
+/// `far-right`, …). Empty when the stop paints nothing; fewer than three
+/// when its outline has fewer distinct points.
 pub fn reference_points(job: &Job, index: usize) -> Vec<ReferencePoint> {
     let s = &job.samples;
     let mut painted = std::collections::BTreeSet::new();
@@ -39,28 +48,72 @@ pub fn reference_points(job: &Job, index: usize) -> Vec<ReferencePoint> {
         .filter(|(k, _)| painted.contains(k))
         .flat_map(|(_, st)| st.left.iter().chain(&st.right).copied())
         .collect();
-    let pick = |key: &dyn Fn(&[f64; 2]) -> f64| {
-        pts.iter()
-            .copied()
-            .reduce(|a, b| if key(&b) > key(&a) { b } else { a })
-    };
-    let mut out = vec![];
-    for (name, key) in [
-        (
-            "near-left",
-            &(|p: &[f64; 2]| -(p[0] + p[1])) as &dyn Fn(&[f64; 2]) -> f64,
-        ),
-        ("near-right", &|p: &[f64; 2]| p[0] - p[1]),
-        ("far", &|p: &[f64; 2]| p[1]),
-    ] {
-        if let Some(p) = pick(key) {
-            if !out.iter().any(|r: &ReferencePoint| r.road_m == p) {
-                out.push(ReferencePoint {
-                    name: name.into(),
-                    road_m: p,
-                });
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    // The furthest pair (first found on ties: deterministic).
+    let mut pair: Option<(usize, usize, f64)> = None;
+    for i in 0..pts.len() {
+        for j in i + 1..pts.len() {
+            let d = dist(pts[i], pts[j]);
+            if pair.is_none_or(|(_, _, b)| d > b) {
+                pair = Some((i, j, d));
             }
         }
     }
+    let Some((i, j, d)) = pair.filter(|p| p.2 > 0.0) else {
+        return pts
+            .first()
+            .map(|&p| {
+                vec![ReferencePoint {
+                    name: "point".into(),
+                    road_m: p,
+                }]
+            })
+            .unwrap_or_default();
+    };
+    let (a, b) = (pts[i], pts[j]);
+    // Signed distance from the line a → b (left of it positive).
+    let side = |p: [f64; 2]| ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) / d;
+    let furthest = |sign: f64| {
+        pts.iter()
+            .copied()
+            .map(|p| (p, sign * side(p)))
+            .filter(|&(_, h)| h > 0.0)
+            .reduce(|x, y| if y.1 > x.1 { y } else { x })
+    };
+    let mut chosen = vec![a, b];
+    // The furthest point each side of the line: a quadrilateral over the
+    // stop's strokes, so the fitted plane is interpolated under them, not
+    // extrapolated. One side only where the other adds little.
+    let sides: Vec<([f64; 2], f64)> = [1.0, -1.0].into_iter().filter_map(furthest).collect();
+    let widest = sides.iter().map(|s| s.1).fold(0.0, f64::max);
+    chosen.extend(
+        sides
+            .iter()
+            .filter(|s| s.1 >= SECOND_SIDE * widest)
+            .map(|s| s.0),
+    );
+    // Names: near or far of the points' middle along the lane, left or
+    // right of it across (the approaching driver's view).
+    let n = chosen.len() as f64;
+    let mid = [
+        chosen.iter().map(|p| p[0]).sum::<f64>() / n,
+        chosen.iter().map(|p| p[1]).sum::<f64>() / n,
+    ];
+    let mut out: Vec<ReferencePoint> = vec![];
+    for p in chosen {
+        let along = if p[1] < mid[1] { "near" } else { "far" };
+        let across = if p[0] < mid[0] { "left" } else { "right" };
+        let mut name = format!("{along}-{across}");
+        if out.iter().any(|r| r.name == name) {
+            name = format!("{name}-{}", out.len() + 1);
+        }
+        out.push(ReferencePoint { name, road_m: p });
+    }
+    // Nearest the driver first: the order the crew walks them.
+    out.sort_by(|x, y| {
+        x.road_m[1]
+            .total_cmp(&y.road_m[1])
+            .then(x.road_m[0].total_cmp(&y.road_m[0]))
+    });
     out
 }

@@ -65,7 +65,7 @@ fn joints_at(job: &Job, i: usize) -> Joints {
 /// The joints of row `i` in the robot kind's order: BASR's SPEC §3
 /// columns, or an electric kind's own (`kind_joints`; zeros when missing,
 /// reported by `kind_columns`).
-fn q_at(job: &Job, i: usize) -> Q {
+pub fn q_at(job: &Job, i: usize) -> Q {
     match job.robot.basr() {
         Some(_) => joints_at(job, i).values(),
         None => job.samples.kind_joints.get(i).copied().unwrap_or([0.0; 5]),

@@ -53,6 +53,8 @@ pub enum WarningKind {
     Film,
     /// The arm comes to rest.
     Stop,
+    /// The road's surface under the marking off the truck's plane.
+    Surface,
 }
 
 impl WarningKind {
@@ -66,6 +68,7 @@ impl WarningKind {
             WarningKind::Slowed => "slowed",
             WarningKind::Film => "film",
             WarningKind::Stop => "stop",
+            WarningKind::Surface => "surface",
         }
     }
 }
@@ -241,6 +244,7 @@ mod tests {
             WarningKind::Slowed,
             WarningKind::Film,
             WarningKind::Stop,
+            WarningKind::Surface,
         ] {
             assert_eq!(serde_json::to_value(k).unwrap(), k.name());
         }

@@ -377,15 +377,15 @@ struct Stop<'a> {
     /// fan keeps its planned tilt whatever the surface.
     tilt: Option<basr_robot::JointLimit>,
     /// The painting heights the vertical joint reaches, base frame (m): a
-    /// surface a few millimetres above the base's level asks for more, and
-    /// the nozzle stops at the top (docs/site.md).
+    /// surface a few millimetres off the base's level asks for more, and
+    /// the nozzle stops at the end (docs/site.md).
     heights: [f64; 2],
 }
 
 /// The nozzle pose of a knot in a station's base frame: the knot's fan
 /// (planned on a flat road) placed on the road's surface, so it keeps its
 /// height over the surface and its lean against it (docs/site.md).
-fn knot_pose(at: &Stop<'_>, k: &Knot) -> NozzlePose {
+fn knot_pose(robot: &AnyRobot, at: &Stop<'_>, k: &Knot) -> NozzlePose {
     let station = at.station;
     let on = at.road.place(
         at.index,
@@ -407,10 +407,16 @@ fn knot_pose(at: &Stop<'_>, k: &Knot) -> NozzlePose {
     NozzlePose {
         x_m: b[0],
         y_m: b[1],
+        // Within the painting heights: the lowest as the tilt's drive lifts
+        // it at the leaned tilt (`passes::lift_for_tilt`); the highest, or
+        // the knot's own where the flat plan put it higher.
         z_m: if on.base_z_m == k.z_m {
             on.base_z_m
         } else {
-            on.base_z_m.min(at.heights[1].max(k.z_m))
+            let lift = robot.tilt_lift_m(tilt_rad);
+            let low = at.heights[0] + if lift.is_finite() { lift.max(0.0) } else { 0.0 };
+            let high = at.heights[1].max(k.z_m);
+            on.base_z_m.clamp(low.min(high), high)
         },
         yaw_rad: k.yaw_rad - (station.heading_rad - FRAC_PI_2),
         tilt_rad,
@@ -450,7 +456,7 @@ fn solve_branches(
     station: &Stop<'_>,
     ks: &[Knot],
 ) -> Result<Vec<(f64, Vec<Q>)>, (usize, basr_robot::Unreachable)> {
-    let first = knot_pose(station, &ks[0]);
+    let first = knot_pose(robot, station, &ks[0]);
     let starts = robot.ik(&first).map_err(|e| (0, e))?;
     let mut found = vec![];
     let mut last_err = None;
@@ -460,7 +466,7 @@ fn solve_branches(
         out.push(start);
         for (i, k) in ks.iter().enumerate().skip(1) {
             let p = *out.last().unwrap_or(&start);
-            match robot.ik_nearest(&knot_pose(station, k), &p) {
+            match robot.ik_nearest(&knot_pose(robot, station, k), &p) {
                 // The nearest solution is on another branch or yaw turn: the
                 // one this branch follows has left the yaw joint's range.
                 // Turning the fan half or whole way round between two knots

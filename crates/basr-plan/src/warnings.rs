@@ -61,6 +61,9 @@ pub struct HotSpot {
 pub enum Note {
     /// A layout rule the marking bends (the layout's own sentence).
     Layout { text: String },
+    /// The road under the marking lies off the plane the truck stands on,
+    /// and what that does to the painting heights (`pipeline::compile`).
+    Surface { text: String },
     /// How a scene's shape item was decomposed, and why (`plan::shapes`:
     /// the method kept per region, the candidates' measured film, the
     /// places narrower than the fan); `label` is the shape's file stem.
@@ -167,7 +170,9 @@ impl Note {
     pub fn severity(&self) -> Severity {
         match self {
             Note::Layout { .. } => Severity::Notice,
-            Note::Passes { .. } | Note::Stop { .. } | Note::Shape { .. } => Severity::Info,
+            Note::Passes { .. } | Note::Stop { .. } | Note::Shape { .. } | Note::Surface { .. } => {
+                Severity::Info
+            }
             // A fan visibly wider than the stroke is a problem only if the
             // paint it lays outside, measured over the whole job, could
             // carry the job past the preview's overspray bound.
@@ -248,6 +253,15 @@ impl Note {
                 t_s: None,
                 factor: None,
                 message: format!("{text}. {todo}"),
+            },
+            Note::Surface { text } => Warning {
+                kind: WarningKind::Surface,
+                owner: None,
+                severity,
+                stroke: None,
+                t_s: None,
+                factor: None,
+                message: format!("{text}."),
             },
             // As `plan::shapes::compile_shape` writes a `--shape` job's lines.
             Note::Shape { label, text } => Warning {

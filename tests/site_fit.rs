@@ -1,0 +1,410 @@
+//! `basr fit` end to end: a compiled job, a truck that stopped off its
+//! planned place on a sloped road, three reference points measured from
+//! that truth with ±2 mm of noise; the fitted job must put the paint on the
+//! marking when the arm runs it from the true pose, keep the nozzle's
+//! height over the true road, pass preview, simulate and check, and be the
+//! same bytes twice. And the refusals: an outlier named, a truck too far
+//! off told where to move, bad point files refused with nothing written.
+
+mod common;
+
+use std::path::Path;
+
+use basr::job::{Job, Road, Station, StopPlane};
+use common::{basr, stderr, succeeded};
+
+/// A deterministic ±1 noise source (a 64-bit LCG; Knuth's MMIX constants).
+struct Noise(u64);
+
+impl Noise {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
+/// Where the truck really stood and the road the arm saw there: a plane
+/// in the arm's base frame.
+struct Truth {
+    station: Station,
+    plane: StopPlane,
+}
+
+/// The job's stop `stop` (from 1) moved by (dx, dy, dθ).
+fn moved(job: &Job, stop: usize, d: [f64; 3], plane: StopPlane) -> Truth {
+    let s = &job.stations[stop - 1];
+    Truth {
+        station: Station {
+            x_m: s.x_m + d[0],
+            y_m: s.y_m + d[1],
+            heading_rad: s.heading_rad + d[2].to_radians(),
+        },
+        plane,
+    }
+}
+
+/// The job's own reference points for the stop, measured by the arm at the
+/// truth with ±`noise_m` on every coordinate, as a points file.
+fn points_file(job: &Job, stop: usize, truth: &Truth, noise_m: f64, seed: u64) -> String {
+    let refs = basr::job::reference::reference_points(job, stop - 1);
+    assert!(
+        refs.len() >= 3,
+        "three or four reference points for stop {stop}"
+    );
+    let mut n = Noise(seed);
+    let mut out = format!("stop = {stop}\n");
+    for r in refs {
+        let b = truth.station.road_to_base(r.road_m);
+        let z = truth.plane.z_at(b);
+        out += &format!(
+            "[[point]]\nname = \"{}\"\nroad_m = [{:?}, {:?}]\nbase_m = [{:?}, {:?}, {:?}]\n",
+            r.name,
+            r.road_m[0],
+            r.road_m[1],
+            b[0] + noise_m * n.next(),
+            b[1] + noise_m * n.next(),
+            z + noise_m * n.next()
+        );
+    }
+    out
+}
+
+/// What the fitted job does when the arm runs it from the true pose over
+/// the true road: the largest distance (m) between where the nozzle goes
+/// and where the job means it to go, over the fitted stop's painting rows,
+/// and the largest difference between its height over the true road and
+/// its planned height over the fitted one.
+fn run_from_truth(fitted: &Job, stop: usize, truth: &Truth) -> (f64, f64) {
+    let si = stop - 1;
+    let s = &fitted.samples;
+    let true_road = Road {
+        planes: vec![StopPlane {
+            stop,
+            ..truth.plane.clone()
+        }],
+        ..Road::default()
+    };
+    let (mut off, mut dh) = (0.0f64, 0.0f64);
+    let mut rows = 0;
+    for i in 0..s.len() {
+        if s.station[i] as usize != si || s.paint[i] != 1 {
+            continue;
+        }
+        rows += 1;
+        let q = basr::job::verify::q_at(fitted, i);
+        let pose = fitted.robot.fk(&q);
+        let at = truth.station.base_to_road([pose.x_m, pose.y_m]);
+        off = off.max((at[0] - s.x_m[i]).hypot(at[1] - s.y_m[i]));
+        // Heights over the surface, each road as its own stop sees it.
+        let yaw = pose.yaw_rad + truth.station.heading_rad - std::f64::consts::FRAC_PI_2;
+        let real = true_road.relative(si, &truth.station, at, pose.z_m, yaw, pose.tilt_rad);
+        let planned = fitted.road.relative(
+            si,
+            &fitted.stations[si],
+            [s.x_m[i], s.y_m[i]],
+            s.z_m[i],
+            s.yaw_rad[i],
+            s.tilt_rad[i],
+        );
+        let d = (real.height_m - planned.height_m).abs();
+        if d > dh && d > 0.003 {
+            eprintln!(
+                "row {i}: real {:.4} planned {:.4} at {:?} z {:.4} tilt {:.4} planned tilt {:.4}",
+                real.height_m, planned.height_m, at, pose.z_m, pose.tilt_rad, s.tilt_rad[i]
+            );
+        }
+        dh = dh.max(d);
+    }
+    assert!(rows > 100, "the stop paints ({rows} rows)");
+    (off, dh)
+}
+
+/// Compile, fit from the truth, and check every acceptance point.
+fn fit_case(
+    dir: &Path,
+    compile: &[&str],
+    marking: Option<&str>,
+    stop: usize,
+    truth_of: impl Fn(&Job) -> Truth,
+) {
+    succeeded(basr(dir, compile));
+    let job = Job::read(&dir.join("j.job.json")).unwrap();
+    let truth = truth_of(&job);
+    std::fs::write(
+        dir.join("p.toml"),
+        points_file(&job, stop, &truth, 0.002, 7),
+    )
+    .unwrap();
+    let mut args = vec![
+        "fit",
+        "j.job.json",
+        "--points",
+        "p.toml",
+        "-o",
+        "f.job.json",
+    ];
+    if let Some(m) = marking {
+        args.extend(["--marking", m]);
+    }
+    succeeded(basr(dir, &args));
+    let fitted = Job::read(&dir.join("f.job.json")).unwrap();
+    let st = &fitted.stations[stop - 1];
+    let (dx, dy) = (st.x_m - truth.station.x_m, st.y_m - truth.station.y_m);
+    let dth = (st.heading_rad - truth.station.heading_rad).to_degrees();
+    assert!(
+        dx.hypot(dy) <= 0.005,
+        "fitted axis {:.1} mm off",
+        dx.hypot(dy) * 1e3
+    );
+    assert!(dth.abs() <= 0.1, "fitted heading {dth:.3}° off");
+    // The other stops are the job's.
+    for (k, (a, b)) in job.stations.iter().zip(&fitted.stations).enumerate() {
+        if k != stop - 1 {
+            assert_eq!(a, b, "stop {} moved", k + 1);
+        }
+    }
+    let (off, dh) = run_from_truth(&fitted, stop, &truth);
+    assert!(off <= 0.005, "paint lands {:.1} mm off the plan", off * 1e3);
+    assert!(dh <= 0.003, "nozzle height {:.1} mm off the plan", dh * 1e3);
+    // preview and simulate pass, check accepts.
+    succeeded(basr(dir, &["preview", "f.job.json", "-o", "f.svg"]));
+    succeeded(basr(dir, &["simulate", "f.job.json"]));
+    succeeded(basr(dir, &["check", "f.job.json"]));
+    // The same bytes again.
+    let mut again = args.clone();
+    *again.iter_mut().find(|a| **a == "f.job.json").unwrap() = "g.job.json";
+    succeeded(basr(dir, &again));
+    assert_eq!(
+        std::fs::read(dir.join("f.job.json")).unwrap(),
+        std::fs::read(dir.join("g.job.json")).unwrap(),
+        "fit is deterministic"
+    );
+}
+
+/// The move: +0.25 m across, −0.30 m along, +2.5°.
+const MOVE: [f64; 3] = [0.25, -0.30, 2.5];
+
+/// A plane in the arm's frame falling 2 % across the lane (road x; base
+/// −x at heading −90°) with the truck's axis 4 mm above it.
+fn against_the_truck() -> StopPlane {
+    StopPlane {
+        stop: 1,
+        z_m: -0.004,
+        dz_dx: 0.02,
+        dz_dy: 0.0,
+    }
+}
+
+/// STOP at 8 ft uses the vertical joint's whole stroke, so its truck
+/// stands on the sloped road it paints (the arm's frame leans with it: the
+/// plane is level in that frame, through the base's origin).
+#[test]
+fn fit_a_word() {
+    let dir = tempfile::tempdir().unwrap();
+    fit_case(
+        dir.path(),
+        &["compile", "STOP", "-o", "j.job.json"],
+        None,
+        1,
+        |j| {
+            moved(
+                j,
+                1,
+                MOVE,
+                StopPlane {
+                    stop: 1,
+                    z_m: -0.003,
+                    dz_dx: 0.0,
+                    dz_dy: 0.0,
+                },
+            )
+        },
+    );
+}
+
+/// A symbol on a road sloped 2 % against the truck's own plane.
+#[test]
+fn fit_a_symbol_on_a_slope() {
+    let dir = tempfile::tempdir().unwrap();
+    fit_case(
+        dir.path(),
+        &["compile", "--symbol", "arrow-through", "-o", "j.job.json"],
+        None,
+        1,
+        |j| moved(j, 1, MOVE, against_the_truck()),
+    );
+}
+
+/// The third of a scene's four stops, sloped against the truck: the
+/// others stay as they were.
+#[test]
+fn fit_a_scene_stop() {
+    let dir = tempfile::tempdir().unwrap();
+    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
+    let m = marking.to_str().unwrap();
+    fit_case(
+        dir.path(),
+        &["compile", "--marking", m, "-o", "j.job.json"],
+        Some(m),
+        3,
+        |j| {
+            moved(
+                j,
+                3,
+                [0.10, 0.05, 1.0],
+                StopPlane {
+                    stop: 3,
+                    ..against_the_truck()
+                },
+            )
+        },
+    );
+}
+
+fn stop_job(dir: &Path) -> Job {
+    succeeded(basr(dir, &["compile", "STOP", "-o", "j.job.json"]));
+    Job::read(&dir.join("j.job.json")).unwrap()
+}
+
+/// Runs fit with `points` and asserts exit 2, no output, and that stderr
+/// says each of `says`.
+fn refused(dir: &Path, points: &str, says: &[&str]) {
+    std::fs::write(dir.join("p.toml"), points).unwrap();
+    let out = basr(
+        dir,
+        &[
+            "fit",
+            "j.job.json",
+            "--points",
+            "p.toml",
+            "-o",
+            "f.job.json",
+        ],
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(!dir.join("f.job.json").exists(), "no file left: {err}");
+    for s in says {
+        assert!(err.contains(s), "{s:?} not in: {err}");
+    }
+}
+
+#[test]
+fn an_outlier_is_named_with_its_residual() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = stop_job(dir.path());
+    let truth = moved(&job, 1, MOVE, against_the_truck());
+    let mut text = points_file(&job, 1, &truth, 0.0, 1);
+    // Move the last point 0.15 m along the base frame's x.
+    let name = basr::job::reference::reference_points(&job, 0)[2]
+        .name
+        .clone();
+    let at = text.find(&format!("name = \"{name}\"")).unwrap();
+    let base = at + text[at..].find("base_m = [").unwrap() + "base_m = [".len();
+    let end = base + text[base..].find(',').unwrap();
+    let x: f64 = text[base..end].parse().unwrap();
+    text.replace_range(base..end, &format!("{:?}", x + 0.15));
+    refused(
+        dir.path(),
+        &text,
+        &[&format!(
+            "point \"{name}\" is 150.0 mm from where the other points put it"
+        )],
+    );
+}
+
+#[test]
+fn a_truck_far_off_is_told_where_to_move() {
+    let dir = tempfile::tempdir().unwrap();
+    let job = stop_job(dir.path());
+    // 2.5 m further along the lane than planned.
+    let truth = moved(&job, 1, [0.0, 2.5, 0.0], against_the_truck());
+    refused(
+        dir.path(),
+        &points_file(&job, 1, &truth, 0.0, 1),
+        &[
+            "cannot reach the marking from where the truck stopped",
+            "m back",
+            "then chalk",
+        ],
+    );
+}
+
+#[test]
+fn bad_point_files_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let job = stop_job(d);
+    let truth = moved(&job, 1, MOVE, against_the_truck());
+    let good = points_file(&job, 1, &truth, 0.0, 1);
+    // One point only.
+    let one = good
+        .split("[[point]]")
+        .take(2)
+        .collect::<Vec<_>>()
+        .join("[[point]]");
+    refused(d, &one, &["1 point(s) given", "at least two"]);
+    // Not a number.
+    let at = good.find("base_m = [").unwrap() + "base_m = [".len();
+    let comma = at + good[at..].find(',').unwrap();
+    let mut nan = good.clone();
+    nan.replace_range(at..comma, "nan");
+    refused(d, &nan, &["not a number"]);
+    // Another stop of a one-stop job.
+    refused(
+        d,
+        &good.replace("stop = 1", "stop = 2"),
+        &["stop 2 is not one of the job's stops (1 to 1)"],
+    );
+    // No stop.
+    refused(d, &good.replace("stop = 1\n", ""), &["which stop"]);
+    // Not a points file.
+    refused(d, "[[point]]\nroad = [0, 0]\n", &["points file"]);
+}
+
+/// Points chalked on another stop's part of a scene are named as such.
+#[test]
+fn points_of_another_stop_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
+    let m = marking.to_str().unwrap();
+    succeeded(basr(d, &["compile", "--marking", m, "-o", "j.job.json"]));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let truth = moved(
+        &job,
+        4,
+        [0.0; 3],
+        StopPlane {
+            stop: 4,
+            z_m: 0.0,
+            dz_dx: 0.0,
+            dz_dy: 0.0,
+        },
+    );
+    let text = points_file(&job, 4, &truth, 0.0, 1).replace("stop = 4", "stop = 1");
+    std::fs::write(d.join("p.toml"), text).unwrap();
+    let out = basr(
+        d,
+        &[
+            "fit",
+            "j.job.json",
+            "--marking",
+            m,
+            "--points",
+            "p.toml",
+            "-o",
+            "f.job.json",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("is on stop 4's part of the marking, not stop 1's"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!d.join("f.job.json").exists());
+}
