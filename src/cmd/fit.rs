@@ -69,9 +69,15 @@ pub struct Args {
     /// The font file the job was compiled with, if not the embedded one.
     #[arg(long, value_name = "F")]
     pub font: Option<String>,
+    /// Also write the fitted job's setpoints as CSV (what the truck's
+    /// controller loads; bound into the job as compile binds its own).
+    #[arg(long, value_name = "CSV")]
+    pub csv: Option<PathBuf>,
     /// Print the fit as JSON on stdout.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub trust: basr::job::trust::TrustOptions,
 }
 
 /// Most points a file may hold. assumed: a crew measures three to six; a
@@ -236,14 +242,19 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         args.tolerance_mm
     );
     let origin = args.job.display().to_string();
-    let job = Job::read(&args.job)?;
+    let job = super::read_job(&args.job, &args.trust)?;
     let out = args
         .output
         .clone()
         .unwrap_or_else(|| default_output(&args.job));
     super::outputs::check("the fitted job", &out, &["json"])?;
+    let mut outputs: Vec<(&str, &Path)> = vec![("the fitted job", &out)];
+    if let Some(csv) = &args.csv {
+        super::outputs::check("the setpoint CSV", csv, &["csv"])?;
+        outputs.push(("the setpoint CSV", csv));
+    }
     super::refuse_clashes(
-        &[("the fitted job", &out)],
+        &outputs,
         &[("the job", &args.job), ("the points", &args.points)],
     )?;
     let key = args
@@ -251,7 +262,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         .as_deref()
         .map(basr::job::trust::SecretKey::load)
         .transpose()?;
-    basr::io::check_writable(&out)?;
+    for (_, p) in &outputs {
+        basr::io::check_writable(p)?;
+    }
     let points_origin = args.points.display().to_string();
     let (si, points) = read_points(&args.points, args.stop, job.stations.len())?;
     check_frames(&job, si, &points, &points_origin)?;
@@ -293,6 +306,12 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             k + 1,
             replan::NOT_RECORDED
         );
+    }
+    // As compile: the CSV first, bound into the job, which is written last.
+    if let Some(csv) = &args.csv {
+        let sha256 = basr::job::csv::write(&new.samples, csv)?;
+        new.bind_output("csv", csv, sha256);
+        new.seal();
     }
     if let Some(key) = &key {
         new.sign(key);

@@ -37,6 +37,10 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; }
 .pass { color: #1a7f37; font-weight: bold; } .fail { color: #cf222e; font-weight: bold; }
 .problem { color: #cf222e; } .notice { color: #9a6700; } .info { color: #57606a; }
 ol.stops li { margin-bottom: 0.5em; }
+.chalk { display: flex; gap: 0.6em; align-items: flex-start; margin: 0.2em 0; }
+.chalk svg { flex: none; border: 1px solid #ccc; width: 130px; height: 130px; }
+.chalk p { margin: 0; font-size: 0.85em; }
+p.fit { font-size: 0.85em; }
 figure { margin: 0.5em 0; }
 figure svg { max-width: 100%; height: auto; border: 1px solid #ccc; }
 section { break-inside: avoid; }
@@ -48,7 +52,10 @@ h2.appendix { border-bottom: 3px double #1a1a1a; }
 
 .sign td { height: 2.2em; min-width: 14em; }
 @media print { body { margin: 0; max-width: none; font-size: 10pt; line-height: 1.25; }
-                a { color: inherit; } h2 { margin-top: 0.8em; }
+                a { color: inherit; } h2 { margin-top: 0.6em; } .sign td { height: 1.7em; }
+                table { margin: 0.2em 0; } ol.stops li { margin-bottom: 0.3em; }
+                h1 { margin: 0 0 0.1em; } p.fit { margin: 0.2em 0; } .sign { break-inside: avoid; }
+                .chalk svg { width: 64px; height: 64px; }
                 #appendix { break-before: page; }
                 #appendix figure svg { max-height: 9.5cm; width: auto; } }
 ";
@@ -150,15 +157,23 @@ fn sim_text(sim: Option<&SimVerdict>) -> String {
 fn stops(out: &mut String, s: &Sheet) {
     out.push_str("<section id=\"stops\"><h2>Where the truck stops</h2><ol class=\"stops\">\n");
     for st in &s.stops {
-        let _ = writeln!(
+        let _ = write!(
             out,
-            "<li><strong>Stop {}.</strong> {} <em>The arm works here {}.</em></li>",
+            "<li><strong>Stop {}.</strong> {} <em>The arm works here {}.</em>",
             st.number,
             escape(&st.instruction),
             minutes(st.work_s)
         );
+        if let Some(c) = s.chalk.iter().find(|c| c.stop == st.number) {
+            super::site::render(out, c);
+        }
+        out.push_str("</li>\n");
     }
-    out.push_str("</ol></section>\n");
+    let _ = writeln!(
+        out,
+        "</ol><p class=\"fit\" id=\"fit\"><strong>If the truck stops off its place:</strong> {}</p></section>",
+        escape(&s.fit_steps)
+    );
 }
 
 fn film(out: &mut String, s: &Sheet) {
@@ -285,11 +300,16 @@ pub fn render(s: &Sheet) -> String {
     }
     out.push_str("</ol></section>\n");
     grouped(&mut out, s);
-    out.push_str("<section id=\"job\"><h2>The job</h2><table>\n");
-    for (k, v) in &s.facts {
-        row(&mut out, k, &escape(v));
-    }
-    out.push_str("</table>\n</section>\n");
+    // One line: the crew checks the file name and the signature; the rest
+    // identifies the job for the engineer.
+    out.push_str("<section id=\"job\"><h2>The job</h2><p class=\"facts\">");
+    let facts: Vec<String> = s
+        .facts
+        .iter()
+        .map(|(k, v)| format!("{}: <strong>{}</strong>", escape(k), escape(v)))
+        .collect();
+    out.push_str(&facts.join(" · "));
+    out.push_str("</p>\n</section>\n");
     out.push_str(
         "<table class=\"sign\"><tr><th>checked by</th><td></td><th>date</th><td></td>\
          </tr><tr><th>painted by</th><td></td><th>date</th><td></td></tr></table>\n",

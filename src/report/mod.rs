@@ -5,6 +5,7 @@
 //! self-contained HTML page (inline CSS and SVG, nothing fetched).
 
 pub mod html;
+pub mod site;
 pub mod tally;
 
 use crate::job::{Job, Severity, Station, WarningKind};
@@ -137,6 +138,10 @@ pub struct Sheet {
     /// Problems and notices grouped by kind, most frequent first: (severity,
     /// how many, what, the first one's text).
     pub groups: Vec<Group>,
+    /// Each stop's reference points to chalk for `basr fit`.
+    pub chalk: Vec<site::Chalk>,
+    /// The fit procedure in plain words.
+    pub fit_steps: String,
 }
 
 /// Warnings of one kind and severity, as one line of the sheet.
@@ -545,6 +550,8 @@ pub fn build(input: &Input) -> Sheet {
         groups,
         notes,
         overall,
+        chalk: site::chalk(job, input.units),
+        fit_steps: site::steps(input.job_name),
     }
 }
 
