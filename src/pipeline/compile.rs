@@ -130,13 +130,13 @@ pub fn compile_strokes(
 /// Excursion of the surface from the truck's plane (m) the planner leaves
 /// to the joints' clamp (`joints::knot_pose` stops the nozzle at the end
 /// of its painting heights) rather than narrowing those heights for a
-/// whole stroke: the fan then lands this much nearer or further, and its
-/// edges move by this × tan(fan/2), 3.1 mm at the seed's 63.5° tip, half
-/// the 6.35 mm edge tolerance (source: the agency's 1/4 in), and only
-/// where the surface is that far off. Beyond it, the paint law keeps the
-/// heights clear. assumed: the seed's tip; a narrower fan moves its edge
-/// less.
-const CLAMP_FREE_M: f64 = 0.005;
+/// whole stroke. source: the nozzle's height over the road is to stay
+/// within 3 mm of plan (issue 29's bound); the fan then lands at most this
+/// much nearer or further, and its edges move by at most this ×
+/// tan(fan/2), 1.9 mm at the seed's 63.5° tip (under a third of the agency's
+/// 1/4 in), and only where the surface is that far off. Beyond it, the
+/// paint law keeps the heights clear.
+const CLAMP_FREE_M: f64 = 0.003;
 
 /// Rounds of planning the passes again for the road's surface: each round
 /// widens the heights kept clear by what the stations then found; the

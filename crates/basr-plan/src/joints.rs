@@ -522,3 +522,86 @@ fn unreachable_pose() -> basr_robot::Unreachable {
         flipped: false,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use basr_job::{Road, StopPlane};
+    use basr_robot::Robot;
+    use kurbo::Point;
+
+    fn knot(x: f64, y: f64, z: f64, yaw: f64, tilt: f64) -> Knot {
+        Knot {
+            mid: Point::new(x, y),
+            tip: Point::new(x, y),
+            z_m: z,
+            yaw_rad: yaw,
+            tilt_rad: tilt,
+            width_m: 0.2,
+            fan_width_m: 0.2,
+            swept_width_m: 0.2,
+            speed_mps: 0.2,
+        }
+    }
+
+    /// A knot placed on a fitted plane reads back, as the film sees it
+    /// (`Road::relative`), as the knot: its foot, its height over the
+    /// surface and its lean against it; and where the joint stops the
+    /// nozzle, its height is off by the surface's excursion at most.
+    #[test]
+    fn a_knot_keeps_its_fan_over_the_surface() {
+        let robot = AnyRobot::Basr(Robot::basr());
+        let law = basr_robot::paint_law::paint_law(&robot);
+        let station = Station {
+            x_m: 0.1,
+            y_m: 4.6,
+            heading_rad: -FRAC_PI_2 + 0.03,
+        };
+        let road = Road {
+            planes: vec![StopPlane {
+                stop: 1,
+                z_m: -0.002,
+                dz_dx: 0.02,
+                dz_dy: 0.01,
+            }],
+            ..Road::default()
+        };
+        let at = Stop {
+            index: 0,
+            station: &station,
+            road: &road,
+            tilt: robot.tilt_limit(),
+            heights: [law.min_height_m, law.max_height_m],
+        };
+        for k in [
+            knot(0.5, 1.0, 0.15, 0.3, 0.1),
+            knot(-0.8, 2.0, 0.2, -1.2, -0.05),
+            knot(0.0, 0.5, 0.12, 2.5, 0.0),
+        ] {
+            let pose = knot_pose(&robot, &at, &k);
+            let xy = station.base_to_road([pose.x_m, pose.y_m]);
+            let yaw = pose.yaw_rad + station.heading_rad - FRAC_PI_2;
+            let r = road.relative(0, &station, xy, pose.z_m, yaw, pose.tilt_rad);
+            assert!(
+                (r.height_m - k.z_m).abs() < 1e-5,
+                "{} vs {}",
+                r.height_m,
+                k.z_m
+            );
+            assert!((r.tilt_rad - k.tilt_rad).abs() < 1e-9);
+            assert!((r.xy[0] - k.tip.x).hypot(r.xy[1] - k.tip.y) < 1e-5);
+        }
+        // At the lowest height over a surface 2 mm under the base's level
+        // (as it is near the axis here), the nozzle stops at its lowest:
+        // 2 mm over the plan, not more.
+        let low = knot(0.0, 4.0, law.min_height_m, 0.0, 0.0);
+        let pose = knot_pose(&robot, &at, &low);
+        let xy = station.base_to_road([pose.x_m, pose.y_m]);
+        let r = road.relative(0, &station, xy, pose.z_m, 0.0, pose.tilt_rad);
+        assert!(
+            r.height_m > low.z_m && r.height_m - low.z_m <= 0.003,
+            "{}",
+            r.height_m
+        );
+    }
+}
