@@ -408,3 +408,68 @@ fn points_of_another_stop_are_refused() {
     );
     assert!(!d.join("f.job.json").exists());
 }
+
+/// The crew may give the arm's encoder counts instead of its base-frame
+/// reading: the nozzle held 0.1 m over each point (`basr pose` gives the
+/// counts of that pose), the gap written with them.
+#[test]
+fn points_may_be_encoder_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let job = stop_job(d);
+    let truth = moved(&job, 1, MOVE, against_the_truck());
+    let mut text = String::from("stop = 1\n");
+    for r in basr::job::reference::reference_points(&job, 0) {
+        let b = truth.station.road_to_base(r.road_m);
+        let z = truth.plane.z_at(b) + 0.1;
+        let (x, y, h) = (
+            format!("{:.6}", b[0]),
+            format!("{:.6}", b[1]),
+            format!("{z:.6}"),
+        );
+        let pose = common::json_of(basr(d, &["pose", &x, &y, "--height", &h, "--json"]));
+        let enc: Vec<String> = pose["encoders"]
+            .as_object()
+            .unwrap()
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect();
+        text += &format!(
+            "[[point]]\nname = \"{}\"\nroad_m = [{:?}, {:?}]\nencoders = {{ {} }}\ntip_gap_m = 0.1\n",
+            r.name,
+            r.road_m[0],
+            r.road_m[1],
+            enc.join(", ")
+        );
+    }
+    std::fs::write(d.join("p.toml"), &text).unwrap();
+    let out = common::json_of(basr(
+        d,
+        &[
+            "fit",
+            "j.job.json",
+            "--points",
+            "p.toml",
+            "-o",
+            "f.job.json",
+            "--json",
+        ],
+    ));
+    let st = &out["station"];
+    let dx = st["x_m"].as_f64().unwrap() - truth.station.x_m;
+    let dy = st["y_m"].as_f64().unwrap() - truth.station.y_m;
+    assert!(
+        dx.hypot(dy) < 0.002,
+        "{:.2} mm off\n{text}",
+        dx.hypot(dy) * 1e3
+    );
+    let plane = &out["plane"];
+    assert!(
+        (plane["dz_dx"].as_f64().unwrap() - 0.02).abs() < 0.002,
+        "{plane}"
+    );
+    // A count that is not one of the robot's, and a missing one.
+    std::fs::remove_file(d.join("f.job.json")).unwrap();
+    let bad = text.replacen("enc_base", "enc_basse", 1);
+    refused(d, &bad, &["encoders lacks enc_base"]);
+}

@@ -40,6 +40,11 @@ The points file (TOML; lengths in metres):
   road_m = [-1.074, 0.0]         # where the point is on the marking (road frame)
   base_m = [2.51, 3.88, 0.012]   # where the arm measured it (base frame):
                                  # x, y, and the road's height z under the tip
+  # or, instead of base_m, the arm's encoder counts (named as the CSV's
+  # enc_ columns) and the tip's height over the road when read:
+  # encoders = { enc_base = 21500, enc_extension = 1234, enc_vertical = 800,
+  #              enc_yaw = 0, enc_tilt = 0 }
+  # tip_gap_m = 0.01
 
 JSON (--json): {\"job\", \"stop\", \"station\", \"planned_station\", \"moved\",
 \"plane\", \"points\": [{\"name\", \"xy_m\", \"z_m\"}], \"verdict\", \"summary\"}.")]
@@ -97,13 +102,84 @@ struct PointsFile {
 struct PointToml {
     name: Option<String>,
     road_m: [f64; 2],
-    base_m: [f64; 3],
+    /// The arm's own reading: x, y, road height (m).
+    base_m: Option<[f64; 3]>,
+    /// Or its encoder counts, keyed by the setpoint CSV's column names.
+    encoders: Option<std::collections::BTreeMap<String, i64>>,
+    /// With `encoders`: the tip's height over the road when they were read
+    /// (m; a shim's thickness, 0 touching).
+    tip_gap_m: Option<f64>,
+}
+
+/// Where a point was measured, base frame: given, or from encoder counts
+/// through the job's robot (forward kinematics; the road lies `tip_gap_m`
+/// under the tip).
+fn base_of(
+    p: &PointToml,
+    name: &str,
+    robot: &basr::robot::AnyRobot,
+    origin: &str,
+) -> anyhow::Result<[f64; 3]> {
+    match (&p.base_m, &p.encoders) {
+        (Some(b), None) => {
+            anyhow::ensure!(
+                p.tip_gap_m.is_none(),
+                "{origin}: point {name:?}: tip_gap_m goes with encoders, not base_m (base_m's \
+                 z is the road's height already)"
+            );
+            Ok(*b)
+        }
+        (None, Some(e)) => {
+            // The names the setpoint CSV gives the counts (and `basr pose
+            // --json`): BASR's own columns, another kind's kind columns.
+            let names: [String; 5] = match robot.basr() {
+                Some(_) => ["enc_base", "enc_extension", "enc_vertical", "enc_yaw", "enc_tilt"]
+                    .map(String::from),
+                None => robot.encoder_names(),
+            };
+            let mut counts = [0i64; 5];
+            for (k, n) in names.iter().enumerate() {
+                counts[k] = *e.get(n).ok_or_else(|| {
+                    anyhow::anyhow!(
+                        "{origin}: point {name:?}: encoders lacks {n}; give all five: {}",
+                        names.join(", ")
+                    )
+                })?;
+            }
+            if let Some(extra) = e.keys().find(|k| !names.contains(k)) {
+                anyhow::bail!(
+                    "{origin}: point {name:?}: encoders has {extra:?}, not a column of this \
+                     robot; its encoders are {}",
+                    names.join(", ")
+                );
+            }
+            let gap = p.tip_gap_m.unwrap_or(0.0);
+            anyhow::ensure!(
+                gap.is_finite() && (0.0..=0.5).contains(&gap),
+                "{origin}: point {name:?}: tip_gap_m {gap} m must be between 0 (touching) and \
+                 0.5 m"
+            );
+            let q = robot.joints_from_encoders(&counts).map_err(|e| {
+                anyhow::anyhow!("{origin}: point {name:?}: these counts are no pose: {e}")
+            })?;
+            let pose = robot.fk(&q);
+            Ok([pose.x_m, pose.y_m, pose.z_m - gap])
+        }
+        (Some(_), Some(_)) => {
+            anyhow::bail!("{origin}: point {name:?} gives both base_m and encoders; give one")
+        }
+        (None, None) => anyhow::bail!(
+            "{origin}: point {name:?} gives neither base_m = [x, y, z] nor encoders = {{ ... }}: \
+             say where the arm measured it"
+        ),
+    }
 }
 
 /// The points file read and checked: the stop (from 0) and its points.
 fn read_points(
     path: &Path,
     stop_arg: Option<usize>,
+    robot: &basr::robot::AnyRobot,
     stops: usize,
 ) -> anyhow::Result<(usize, Vec<Measured>)> {
     let origin = path.display().to_string();
@@ -137,13 +213,13 @@ fn read_points(
     let mut out = Vec::with_capacity(file.point.len());
     for (i, p) in file.point.iter().enumerate() {
         let name = p.name.clone().unwrap_or_else(|| format!("point {}", i + 1));
-        let all = p.road_m.iter().chain(&p.base_m);
+        let base = base_of(p, &name, robot, &origin)?;
         anyhow::ensure!(
-            all.clone().all(|v| v.is_finite()),
+            p.road_m.iter().chain(&base).all(|v| v.is_finite()),
             "{origin}: point {name:?} has a value that is not a number ({:?}, {:?}); give \
              metres",
             p.road_m,
-            p.base_m
+            base
         );
         anyhow::ensure!(
             !out.iter().any(|m: &Measured| m.name == name),
@@ -152,7 +228,7 @@ fn read_points(
         out.push(Measured {
             name,
             road: p.road_m,
-            base: p.base_m,
+            base,
         });
     }
     Ok((stop - 1, out))
@@ -266,7 +342,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::check_writable(p)?;
     }
     let points_origin = args.points.display().to_string();
-    let (si, points) = read_points(&args.points, args.stop, job.stations.len())?;
+    let (si, points) = read_points(&args.points, args.stop, &job.robot, job.stations.len())?;
     check_frames(&job, si, &points, &points_origin)?;
     let fitted = fit::fit(si + 1, &points, args.tolerance_mm * 1e-3)
         .map_err(|e| anyhow::anyhow!("{points_origin}: stop {}: {e}", si + 1))?;

@@ -294,6 +294,9 @@ impl ArmKind for Articulated {
     fn encoders(&self, q: &Q) -> [i64; 5] {
         servo_counts(self.joints.all(), q)
     }
+    fn joints_from_encoders(&self, counts: &[i64; 5]) -> Result<Q, Unreachable> {
+        Ok(crate::kind::servo_joints(self.joints.all(), counts))
+    }
     fn tip_heights_m(&self) -> [f64; 2] {
         [self.arm.tip_height_min_m, self.arm.tip_height_max_m]
     }

@@ -136,6 +136,10 @@ pub trait ArmKind {
     fn ik(&self, pose: &NozzlePose) -> Result<Vec<Q>, Unreachable>;
     /// Encoder counts of each joint (nearest count), in [`Q`] order.
     fn encoders(&self, q: &Q) -> [i64; 5];
+    /// The joints at encoder counts `counts` (in [`Q`] order): the inverse
+    /// of [`ArmKind::encoders`] to within a count. Err where no joint
+    /// value gives the count (BASR's tilt nut beyond its linkage).
+    fn joints_from_encoders(&self, counts: &[i64; 5]) -> Result<Q, Unreachable>;
     /// Tip heights over the road the kind can paint at with zero tilt.
     fn tip_heights_m(&self) -> [f64; 2];
     /// The point whose workspace seed 002 studies (the wrist, or for BASR
@@ -368,6 +372,11 @@ pub(crate) fn electric_problems(
     out
 }
 
+/// Joints of servo encoder counts (count 0 at joint 0).
+pub(crate) fn servo_joints(joints: [&ServoJoint; 5], counts: &[i64; 5]) -> Q {
+    std::array::from_fn(|k| counts[k] as f64 / joints[k].counts_per_unit)
+}
+
 /// Encoder counts of servo joints (nearest count, count 0 at joint 0).
 pub(crate) fn servo_counts(joints: [&ServoJoint; 5], q: &Q) -> [i64; 5] {
     // `as` saturates; joints are finite by contract (IK never returns NaN).
@@ -423,6 +432,16 @@ impl ArmKind for Robot {
     fn encoders(&self, q: &Q) -> [i64; 5] {
         let e = Robot::encoders(self, &joints_of(q));
         [e.base, e.extension, e.vertical, e.yaw, e.tilt]
+    }
+    fn joints_from_encoders(&self, c: &[i64; 5]) -> Result<Q, Unreachable> {
+        let e = crate::kinematics::Encoders {
+            base: c[0],
+            extension: c[1],
+            vertical: c[2],
+            yaw: c[3],
+            tilt: c[4],
+        };
+        Ok(Robot::joints_from_encoders(self, &e)?.values())
     }
     fn tip_heights_m(&self) -> [f64; 2] {
         self.region().z_range_m
