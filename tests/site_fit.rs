@@ -417,7 +417,15 @@ fn points_may_be_encoder_counts() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let job = stop_job(d);
-    let truth = moved(&job, 1, MOVE, against_the_truck());
+    // STOP at 8 ft uses the whole stroke: its truck stands on the road it
+    // paints (a level plane in the arm's frame, through the base's origin).
+    let level = StopPlane {
+        stop: 1,
+        z_m: 0.0,
+        dz_dx: 0.0,
+        dz_dy: 0.0,
+    };
+    let truth = moved(&job, 1, MOVE, level);
     let mut text = String::from("stop = 1\n");
     for r in basr::job::reference::reference_points(&job, 0) {
         let b = truth.station.road_to_base(r.road_m);
@@ -464,12 +472,69 @@ fn points_may_be_encoder_counts() {
         dx.hypot(dy) * 1e3
     );
     let plane = &out["plane"];
-    assert!(
-        (plane["dz_dx"].as_f64().unwrap() - 0.02).abs() < 0.002,
-        "{plane}"
-    );
+    assert!(plane["dz_dx"].as_f64().unwrap().abs() < 0.002, "{plane}");
+    assert!(plane["z_m"].as_f64().unwrap().abs() < 0.002, "{plane}");
     // A count that is not one of the robot's, and a missing one.
     std::fs::remove_file(d.join("f.job.json")).unwrap();
     let bad = text.replacen("enc_base", "enc_basse", 1);
     refused(d, &bad, &["encoders lacks enc_base"]);
+}
+
+/// A job compiled with its own options is fitted with them (the job
+/// records them), and a point 13 mm off where the others put it is refused
+/// at the 10 mm tolerance even when it drags the fit its way.
+#[test]
+fn fit_keeps_the_jobs_options_and_its_tolerance() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    succeeded(basr(
+        d,
+        &[
+            "compile",
+            "--symbol",
+            "arrow-through",
+            "--gun-lead-s",
+            "0.1",
+            "-o",
+            "j.job.json",
+        ],
+    ));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let options = job
+        .layout
+        .options
+        .clone()
+        .expect("the job records its gun lead");
+    assert_eq!(options.gun_lead_s, 0.1);
+    let truth = moved(&job, 1, [0.1, -0.1, 1.0], against_the_truck());
+    let text = points_file(&job, 1, &truth, 0.0, 1);
+    std::fs::write(d.join("p.toml"), &text).unwrap();
+    succeeded(basr(
+        d,
+        &[
+            "fit",
+            "j.job.json",
+            "--points",
+            "p.toml",
+            "-o",
+            "f.job.json",
+        ],
+    ));
+    let fitted = Job::read(&d.join("f.job.json")).unwrap();
+    assert_eq!(fitted.layout.options, Some(options));
+    std::fs::remove_file(d.join("f.job.json")).unwrap();
+    // The last point 13 mm along the base frame's y.
+    let name = basr::job::reference::reference_points(&job, 0)
+        .last()
+        .unwrap()
+        .name
+        .clone();
+    let at = text.find(&format!("name = \"{name}\"")).unwrap();
+    let base = at + text[at..].find("base_m = [").unwrap() + "base_m = [".len();
+    let comma = base + text[base..].find(", ").unwrap() + 2;
+    let end = comma + text[comma..].find(',').unwrap();
+    let y: f64 = text[comma..end].parse().unwrap();
+    let mut off = text.clone();
+    off.replace_range(comma..end, &format!("{:?}", y + 0.013));
+    refused(d, &off, &[&format!("point \"{name}\" is 13.")]);
 }

@@ -27,6 +27,10 @@ use super::{replan, Global, Outcome};
 /// A point further than --tolerance-mm from where the others put it is
 /// refused by name; a stop from which the arm cannot reach its marking is
 /// refused with the move that brings it into reach.
+///
+/// Exit 0: the fitted job is written and READY (or READY WITH NOTES); 1:
+/// it is written but NOT READY (its film or its arm fails there: `basr
+/// report` says why); 2: bad input, nothing written.
 #[derive(clap::Args)]
 #[command(after_help = "Examples:
   basr fit STOP.job.json --points stop1.toml -o STOP.fit.job.json
@@ -36,7 +40,7 @@ use super::{replan, Global, Outcome};
 The points file (TOML; lengths in metres):
   stop = 1                       # the stop, counted from 1 as on the job sheet
   [[point]]
-  name = \"near-left\"             # the job sheet's name (optional)
+  name = \"A\"                     # the job sheet's name (optional)
   road_m = [-1.074, 0.0]         # where the point is on the marking (road frame)
   base_m = [2.51, 3.88, 0.012]   # where the arm measured it (base frame):
                                  # x, y, and the road's height z under the tip
@@ -47,15 +51,16 @@ The points file (TOML; lengths in metres):
   # tip_gap_m = 0.01
 
 JSON (--json): {\"job\", \"stop\", \"station\", \"planned_station\", \"moved\",
-\"plane\", \"points\": [{\"name\", \"xy_m\", \"z_m\"}], \"verdict\", \"summary\"}.")]
+\"plane\", \"points\": [{\"name\", \"xy_m\", \"z_m\"}], \"verdict\", \"summary\",
+\"sha256\", \"signed_by\"}; z_m is null without a plane.")]
 pub struct Args {
     /// The job to fit (as compile wrote it).
     pub job: PathBuf,
     /// The measured points (TOML: `stop` and `[[point]]` tables).
     #[arg(long, value_name = "FILE")]
     pub points: PathBuf,
-    /// The stop the points were measured at, counted from 1 (default: the
-    /// file's `stop`).
+    /// The stop the points were measured at, counted from 1, where the
+    /// file gives no `stop` (both given must agree).
     #[arg(long, value_name = "N")]
     pub stop: Option<usize>,
     /// The fitted job (default: JOB with `.fit` before `.job.json`).
@@ -78,6 +83,9 @@ pub struct Args {
     /// controller loads; bound into the job as compile binds its own).
     #[arg(long, value_name = "CSV")]
     pub csv: Option<PathBuf>,
+    /// Also write the fitted job as an Adept V+ program (as compile's).
+    #[arg(long, value_name = "FILE")]
+    pub adept: Option<PathBuf>,
     /// Print the fit as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -101,9 +109,9 @@ struct PointsFile {
 #[serde(deny_unknown_fields)]
 struct PointToml {
     name: Option<String>,
-    road_m: [f64; 2],
+    road_m: Vec<f64>,
     /// The arm's own reading: x, y, road height (m).
-    base_m: Option<[f64; 3]>,
+    base_m: Option<Vec<f64>>,
     /// Or its encoder counts, keyed by the setpoint CSV's column names.
     encoders: Option<std::collections::BTreeMap<String, i64>>,
     /// With `encoders`: the tip's height over the road when they were read
@@ -127,14 +135,27 @@ fn base_of(
                 "{origin}: point {name:?}: tip_gap_m goes with encoders, not base_m (base_m's \
                  z is the road's height already)"
             );
-            Ok(*b)
+            match b[..] {
+                [x, y, z] => Ok([x, y, z]),
+                _ => anyhow::bail!(
+                    "{origin}: point {name:?}: base_m has {} values; give three: [x, y, z] \
+                     (m, the road's height under the tip third)",
+                    b.len()
+                ),
+            }
         }
         (None, Some(e)) => {
             // The names the setpoint CSV gives the counts (and `basr pose
             // --json`): BASR's own columns, another kind's kind columns.
             let names: [String; 5] = match robot.basr() {
-                Some(_) => ["enc_base", "enc_extension", "enc_vertical", "enc_yaw", "enc_tilt"]
-                    .map(String::from),
+                Some(_) => [
+                    "enc_base",
+                    "enc_extension",
+                    "enc_vertical",
+                    "enc_yaw",
+                    "enc_tilt",
+                ]
+                .map(String::from),
                 None => robot.encoder_names(),
             };
             let mut counts = [0i64; 5];
@@ -213,23 +234,41 @@ fn read_points(
     let mut out = Vec::with_capacity(file.point.len());
     for (i, p) in file.point.iter().enumerate() {
         let name = p.name.clone().unwrap_or_else(|| format!("point {}", i + 1));
+        anyhow::ensure!(
+            !name.trim().is_empty(),
+            "{origin}: point {} has an empty name; name it as the job sheet does, or leave \
+             name out",
+            i + 1
+        );
+        let road: [f64; 2] = match p.road_m[..] {
+            [x, y] => [x, y],
+            _ => anyhow::bail!(
+                "{origin}: point {name:?}: road_m has {} values; give two: [x, y] (m, from \
+                 the job sheet)",
+                p.road_m.len()
+            ),
+        };
         let base = base_of(p, &name, robot, &origin)?;
         anyhow::ensure!(
-            p.road_m.iter().chain(&base).all(|v| v.is_finite()),
+            road.iter().chain(&base).all(|v| v.is_finite()),
             "{origin}: point {name:?} has a value that is not a number ({:?}, {:?}); give \
              metres",
-            p.road_m,
+            road,
             base
+        );
+        // assumed: no marking lies 1 km from its anchor, and no arm reaches
+        // 20 m; larger values are a unit or a typing slip.
+        anyhow::ensure!(
+            road.iter().all(|v| v.abs() <= 1000.0) && base.iter().all(|v| v.abs() <= 20.0),
+            "{origin}: point {name:?} at road {road:?}, base {base:?} is not where a marking \
+             and an arm are: give metres (road_m within 1 km of the anchor, base_m within \
+             20 m of the arm's axis)"
         );
         anyhow::ensure!(
             !out.iter().any(|m: &Measured| m.name == name),
             "{origin}: two points are named {name:?}; give each its own name"
         );
-        out.push(Measured {
-            name,
-            road: p.road_m,
-            base,
-        });
+        out.push(Measured { name, road, base });
     }
     Ok((stop - 1, out))
 }
@@ -329,6 +368,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         super::outputs::check("the setpoint CSV", csv, &["csv"])?;
         outputs.push(("the setpoint CSV", csv));
     }
+    if let Some(adept) = &args.adept {
+        outputs.push(("the Adept program", adept));
+    }
     super::refuse_clashes(
         &outputs,
         &[("the job", &args.job), ("the points", &args.points)],
@@ -377,16 +419,24 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for k in (0..job.stations.len()).filter(|&k| k != si) {
         anyhow::ensure!(
             station_motion(&new, k) == station_motion(&job, k),
-            "{origin}: re-planned, stop {} is not the job's: the job was compiled with options \
-             it does not record ({}); compile it again and fit that job",
-            k + 1,
-            replan::NOT_RECORDED
+            "{origin}: re-planned, stop {} is not the job's, so fit cannot keep it as it was \
+             (the marking file given with --marking, the font or the robot is not the one \
+             the job was compiled from); give the job's own files",
+            k + 1
         );
     }
-    // As compile: the CSV first, bound into the job, which is written last.
+    // As compile: the CSV and the program first, bound into the job,
+    // which is written last.
     if let Some(csv) = &args.csv {
         let sha256 = basr::job::csv::write(&new.samples, csv)?;
         new.bind_output("csv", csv, sha256);
+    }
+    if let Some(adept) = &args.adept {
+        let sha256 =
+            basr::job::adept::write(&new.message, &new.samples, &new.stations, &new.road, adept)?;
+        new.bind_output("adept", adept, sha256);
+    }
+    if !new.outputs.is_empty() {
         new.seal();
     }
     if let Some(key) = &key {
@@ -418,44 +468,69 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
     if !global.quiet {
+        // As the job sheet says a stop: from the anchor, turned from the lane.
+        let turned = |h: f64| (h + std::f64::consts::FRAC_PI_2).to_degrees() + 0.0;
         note!(
-            "stop {}: the truck's axis is at x {:.3} m, y {:.3} m, heading {:.2}° (planned {:.3}, {:.3}, {:.2}°)",
+            "stop {}: the truck's axis is at x {:.3} m, y {:.3} m, turned {:+.2}° from the lane \
+             direction (planned x {:.3} m, y {:.3} m, turned {:+.2}°)",
             si + 1,
-            st.x_m,
-            st.y_m,
-            st.heading_rad.to_degrees(),
-            planned_st.x_m,
-            planned_st.y_m,
-            planned_st.heading_rad.to_degrees()
+            st.x_m + 0.0,
+            st.y_m + 0.0,
+            turned(st.heading_rad),
+            planned_st.x_m + 0.0,
+            planned_st.y_m + 0.0,
+            turned(planned_st.heading_rad)
         );
         match &fitted.plane {
             Some(p) => note!(
-                "road under the stop: a plane sloped {:.2} % across x and {:.2} % along y of the \
-                 arm, {:+.1} mm at its axis",
-                p.dz_dx * 100.0,
-                p.dz_dy * 100.0,
-                p.z_m * 1e3
+                "road under the stop: a plane sloped {:.2} % along the arm's x and {:.2} % along \
+                 its y, {:+.1} mm at its axis",
+                p.dz_dx * 100.0 + 0.0,
+                p.dz_dy * 100.0 + 0.0,
+                p.z_m * 1e3 + 0.0
             ),
             None => note!(
-                "road under the stop: as the job describes it (two points measure no plane; \
-                 give three not on a line to measure it)"
+                "road under the stop: as the job describes it (the points span no plane: give \
+                 three or more, not on a line, at least {} m apart across it)",
+                basr::plan::fit::MIN_PLANE_WIDTH_M
             ),
         }
         for r in &fitted.residuals {
+            match r.z_m {
+                Some(z) => note!(
+                    "  {:<12} off by {:.1} mm on the road, {:+.1} mm in height",
+                    r.name,
+                    r.xy_m * 1e3,
+                    z * 1e3 + 0.0
+                ),
+                None => note!("  {:<12} off by {:.1} mm on the road", r.name, r.xy_m * 1e3),
+            }
+        }
+        if job.signature.is_some() && key.is_none() {
             note!(
-                "  {:<12} off by {:.1} mm on the road, {:+.1} mm in height",
-                r.name,
-                r.xy_m * 1e3,
-                r.z_m * 1e3
+                "note: {origin} was signed; the fitted job is not (a truck that trusts only \
+                 signed jobs refuses it): fit again with --sign KEY"
+            );
+        }
+        if args.csv.is_none() && job.outputs.contains_key("csv") {
+            note!(
+                "note: the job's CSV is for the planned stop, not this one: write the fitted \
+                 job's with --csv FILE and load that"
             );
         }
         note!(
             "wrote {} ({}: {:.1} s, stop {} re-planned)",
             out.display(),
-            verdict,
+            verdict.to_uppercase(),
             new.summary.duration_s,
             si + 1
         );
     }
-    Ok(Outcome::Success)
+    // NOT READY is a negative verdict, as compile's: the job is written for
+    // `basr report` to say why, and the exit code says not to paint it.
+    Ok(if verdict == "not ready" {
+        Outcome::Negative
+    } else {
+        Outcome::Success
+    })
 }

@@ -18,11 +18,11 @@ use basr::pipeline::compile::{compile_job, CompileRequest, Source, Tilt};
 
 /// What `--compare` carries from the job into the re-planned ones.
 pub const REPLANNED_FROM: &str = "the job's message or symbol (a scene: --marking), robot, \
-     font, letter height, lane width and period";
-/// What it cannot: the job does not record these compile options, so the
-/// re-planned jobs use compile's defaults for them.
-pub const NOT_RECORDED: &str = "rung spacing, gun lead/lag and reach margin (the job does \
-     not record them): compile's defaults";
+     font, letter height, lane width, period, rung spacing, gun lead/lag and reach margin";
+/// What it cannot: jobs written before they recorded their planning options
+/// (`layout.options`) are re-planned with compile's defaults for them.
+pub const NOT_RECORDED: &str = "nothing (a job written before jobs recorded their rung \
+     spacing, gun lead/lag and reach margin: compile's defaults for those)";
 
 /// Largest difference (m) between a re-laid outline point and the job's
 /// for the layout to count as the job's. assumed: the job stores outlines
@@ -143,6 +143,7 @@ pub fn recover(
         req.robot_description = Some(robot.clone());
         req.font = font.clone();
         req.period_s = job.control_period_s;
+        let req = req.with_options(job.layout.options.as_ref());
         let inputs = basr::plan::inputs::read(&req).map_err(|e| anyhow::anyhow!("{e}"))?;
         let (_, strokes) = basr::pipeline::placed::lay_out(&req, &inputs.font)
             .map_err(|e| anyhow::anyhow!("{by}: {e}"))?;

@@ -77,6 +77,7 @@ pub fn compile_strokes(
             samples,
             balance: passes.balance.clone(),
             notes,
+            options: req.recorded_options(),
         });
         if !req.verify {
             job.seal();

@@ -217,11 +217,11 @@ mod tests {
         let shapes = vec![vec![[0.0, 0.0], [0.3, 0.0], [0.3, 2.0], [0.0, 2.0]]];
         let pts = vec![
             ReferencePoint {
-                name: "near-left".into(),
+                name: "A".into(),
                 road_m: [0.0, 0.0],
             },
             ReferencePoint {
-                name: "far-right".into(),
+                name: "B".into(),
                 road_m: [0.3, 2.0],
             },
         ];

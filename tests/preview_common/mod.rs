@@ -184,6 +184,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             lane_width_m: 3.66,
             tilt_method: tilt_method.into(),
             glyphs: vec![glyph],
+            options: None,
         },
         stations: vec![STATION],
         road: Default::default(),

@@ -320,6 +320,25 @@ pub struct Layout {
     /// `none`, `trapezoid` or `quadrilateral`.
     pub tilt_method: String,
     pub glyphs: Vec<PlacedGlyph>,
+    /// Planning options given to compile other than its defaults, so that
+    /// `basr fit` and `preview --compare` plan again with them; absent
+    /// when compile ran with its defaults (and in jobs written before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub options: Option<PlanOptions>,
+}
+
+/// The planning options a job was compiled with (docs/job.md).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanOptions {
+    /// Largest distance between rungs (m).
+    pub rung_spacing_m: f64,
+    /// The gun opens this long before the first rung (s).
+    pub gun_lead_s: f64,
+    /// The gun closes this long before the last rung (s).
+    pub gun_lag_s: f64,
+    /// Margin kept from the edge of the arm's reach (m).
+    pub reach_margin_m: f64,
 }
 
 /// One control period's setpoint: a row of the CSV.
@@ -740,6 +759,7 @@ mod tests {
                 lane_width_m: 3.66,
                 tilt_method: "quadrilateral".into(),
                 glyphs: vec![],
+                options: None,
             },
             stations: vec![Station {
                 x_m: 0.0,

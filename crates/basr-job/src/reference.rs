@@ -16,8 +16,7 @@ const SECOND_SIDE: f64 = 0.25;
 /// One point to chalk: a corner of a stroke's outline.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ReferencePoint {
-    /// `near-left`, `near-right` or `far` (as the approaching driver sees
-    /// the marking).
+    /// `A` to `D`, nearest the approaching driver first.
     pub name: String,
     /// Road frame (m).
     pub road_m: [f64; 2],
@@ -27,10 +26,9 @@ pub struct ReferencePoint {
 /// outline points of the strokes painted from it, the two furthest apart
 /// and the furthest from the line through them on each side, so the
 /// points span as much of the stop's strokes as they can (they fix the
-/// stop's heading, and the road's plane, best): three or four. Each is named by where it lies
-/// in the triangle as the approaching driver sees it (`near-left`,
-/// `far-right`, …). Empty when the stop paints nothing; fewer than three
-/// when its outline has fewer distinct points.
+/// stop's heading, and the road's plane, best): three or four, named `A`
+/// to `D` nearest the driver first. Empty when the stop paints nothing;
+/// fewer than three when its outline has fewer distinct points.
 pub fn reference_points(job: &Job, index: usize) -> Vec<ReferencePoint> {
     let s = &job.samples;
     let mut painted = std::collections::BTreeSet::new();
@@ -92,28 +90,17 @@ pub fn reference_points(job: &Job, index: usize) -> Vec<ReferencePoint> {
             .filter(|s| s.1 >= SECOND_SIDE * widest)
             .map(|s| s.0),
     );
-    // Names: near or far of the points' middle along the lane, left or
-    // right of it across (the approaching driver's view).
-    let n = chosen.len() as f64;
-    let mid = [
-        chosen.iter().map(|p| p[0]).sum::<f64>() / n,
-        chosen.iter().map(|p| p[1]).sum::<f64>() / n,
-    ];
-    let mut out: Vec<ReferencePoint> = vec![];
-    for p in chosen {
-        let along = if p[1] < mid[1] { "near" } else { "far" };
-        let across = if p[0] < mid[0] { "left" } else { "right" };
-        let mut name = format!("{along}-{across}");
-        if out.iter().any(|r| r.name == name) {
-            name = format!("{name}-{}", out.len() + 1);
-        }
-        out.push(ReferencePoint { name, road_m: p });
-    }
-    // Nearest the driver first: the order the crew walks them.
-    out.sort_by(|x, y| {
-        x.road_m[1]
-            .total_cmp(&y.road_m[1])
-            .then(x.road_m[0].total_cmp(&y.road_m[0]))
-    });
+    // Nearest the driver first (the order the crew walks them), then left
+    // to right; named A, B, C, D in that order (the picture numbers them
+    // alike), their places said in words beside them.
+    chosen.sort_by(|x, y| x[1].total_cmp(&y[1]).then(x[0].total_cmp(&y[0])));
+    let out: Vec<ReferencePoint> = chosen
+        .into_iter()
+        .zip(["A", "B", "C", "D"])
+        .map(|(p, name)| ReferencePoint {
+            name: name.into(),
+            road_m: p,
+        })
+        .collect();
     out
 }

@@ -415,7 +415,8 @@ fn derived_columns(job: &Job, origin: &str, c: &mut Collector) {
             c.add(
                 "speed",
                 format!(
-                    "{origin}: row {i} (t {:.3} s): speed_mps is {} but the nozzle columns                      move at {speed:.6} m/s there",
+                    "{origin}: row {i} (t {:.3} s): speed_mps is {} but the nozzle columns \
+                     move at {speed:.6} m/s there",
                     s.t_s[i], s.speed_mps[i]
                 ),
             );

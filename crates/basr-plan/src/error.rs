@@ -54,11 +54,14 @@ pub enum StationError {
         margin_m: f64,
     },
     #[error(
-        "the marking now needs {planned} stops, but the job being fitted has {job}; re-plan          it from the same marking and options it was compiled with"
+        "the marking now needs {planned} stops, but the job being fitted has {job}; re-plan \
+         it from the same marking and options it was compiled with"
     )]
     SiteStops { job: usize, planned: usize },
     #[error(
-        "stop {stop}: the arm cannot reach the marking from where the truck stopped (axis at          x {x:.3} m, y {y:.3} m, heading {heading_deg:.1}°): the point ({px:.3}, {py:.3}) m is          {short_m:.3} m outside its reach; {advice}, then chalk and measure the points again"
+        "stop {stop}: the arm cannot reach the marking from where the truck stopped (axis at \
+         x {x:.3} m, y {y:.3} m, heading {heading_deg:.1}°): the point ({px:.3}, {py:.3}) m is \
+         {short_m:.3} m outside its reach; {advice}, then chalk and measure the points again"
     )]
     SiteOutOfReach {
         stop: usize,

@@ -25,8 +25,9 @@ pub struct Residual {
     /// Distance on the road between the point and where the fitted pose
     /// puts its measurement (m).
     pub xy_m: f64,
-    /// Height of the measurement above the fitted plane (m; 0 without one).
-    pub z_m: f64,
+    /// Height of the measurement above the fitted plane (m; none without
+    /// one).
+    pub z_m: Option<f64>,
 }
 
 /// A stop's fitted pose and surface.
@@ -80,6 +81,13 @@ pub enum FitError {
         min_m: f64,
     },
     #[error(
+        "the measured road heights put the road {offset_mm:+.0} mm from the arm's base level at \
+         its axis (at most ±{max_mm:.0} mm: the base frame's origin is on the road): check the \
+         z of each point (base_m's third value, or tip_gap_m with encoders) and the arm's \
+         vertical calibration"
+    )]
+    Offset { offset_mm: f64, max_mm: f64 },
+    #[error(
         "the measured road heights make a plane sloped {slope_pct:.1} %: not a road (at most \
          {max_pct:.0} %); check the z of each point (base_m's third value: the road's height \
          under the tip, m)"
@@ -92,10 +100,16 @@ pub enum FitError {
 /// may be off; the job sheet lists points metres apart.
 pub const MIN_SPAN_M: f64 = 0.5;
 
+/// A fitted road more than this above or below the base's level at the
+/// arm's axis (m) is a reading or calibration error: the base frame's
+/// origin is on the road. assumed: a truck's load and tyres move its bed
+/// by a few centimetres.
+pub const MAX_AXIS_OFFSET_M: f64 = 0.05;
+
 /// Three points span a plane only if their triangle is at least this
 /// tall (m) over its longest side. assumed: 2 mm of height error over
 /// 0.3 m tilts the plane by under 1 %.
-const MIN_PLANE_WIDTH_M: f64 = 0.3;
+pub const MIN_PLANE_WIDTH_M: f64 = 0.3;
 
 /// The rigid motion road = R(φ)·base + t that best maps the measurements
 /// onto the marking (least squares: the 2-D Kabsch solution), as a
@@ -204,12 +218,31 @@ pub fn fit(stop: usize, points: &[Measured], tolerance_m: f64) -> Result<Fitted,
         });
     }
     let st = pose_of(&all);
-    let worst = all.iter().map(|p| miss(&st, p)).fold(0.0, f64::max);
+    // Each point against where the others put it (with three or more; two
+    // can only be checked against each other): a point that pulls the fit
+    // its way hides half its miss in the fit with it.
+    let worst = if all.len() >= 3 {
+        (0..all.len())
+            .map(|k| {
+                let rest: Vec<&Measured> =
+                    (0..all.len()).filter(|&i| i != k).map(|i| all[i]).collect();
+                miss(&pose_of(&rest), all[k])
+            })
+            .fold(0.0, f64::max)
+    } else {
+        all.iter().map(|p| miss(&st, p)).fold(0.0, f64::max)
+    };
     if worst > tolerance_m {
         return Err(culprit(&all, tolerance_m));
     }
     let plane = plane_of(stop, &all);
     if let Some(p) = &plane {
+        if p.z_m.abs() > MAX_AXIS_OFFSET_M {
+            return Err(FitError::Offset {
+                offset_mm: p.z_m * 1e3,
+                max_mm: MAX_AXIS_OFFSET_M * 1e3,
+            });
+        }
         let slope = p.dz_dx.hypot(p.dz_dy);
         if slope > basr_job::road::MAX_CROSS_SLOPE {
             return Err(FitError::Steep {
@@ -225,7 +258,7 @@ pub fn fit(stop: usize, points: &[Measured], tolerance_m: f64) -> Result<Fitted,
             xy_m: miss(&st, p),
             z_m: plane
                 .as_ref()
-                .map_or(0.0, |pl| p.base[2] - pl.z_at([p.base[0], p.base[1]])),
+                .map(|pl| p.base[2] - pl.z_at([p.base[0], p.base[1]])),
         })
         .collect();
     Ok(Fitted {

@@ -138,6 +138,36 @@ impl CompileRequest {
     }
 }
 
+impl CompileRequest {
+    /// The planning options the job records: `None` when every one is
+    /// compile's default (the job then keeps the bytes it always had).
+    pub fn recorded_options(&self) -> Option<basr_job::PlanOptions> {
+        let d = CompileRequest::message("");
+        let o = basr_job::PlanOptions {
+            rung_spacing_m: self.rung_spacing_m,
+            gun_lead_s: self.gun_lead_s,
+            gun_lag_s: self.gun_lag_s,
+            reach_margin_m: self.reach_margin_m,
+        };
+        let same = o.rung_spacing_m == d.rung_spacing_m
+            && o.gun_lead_s == d.gun_lead_s
+            && o.gun_lag_s == d.gun_lag_s
+            && o.reach_margin_m == d.reach_margin_m;
+        (!same).then_some(o)
+    }
+
+    /// This request with the options a job recorded (compile's defaults
+    /// where it recorded none).
+    pub fn with_options(mut self, o: Option<&basr_job::PlanOptions>) -> CompileRequest {
+        let d = CompileRequest::message("");
+        self.rung_spacing_m = o.map_or(d.rung_spacing_m, |o| o.rung_spacing_m);
+        self.gun_lead_s = o.map_or(d.gun_lead_s, |o| o.gun_lead_s);
+        self.gun_lag_s = o.map_or(d.gun_lag_s, |o| o.gun_lag_s);
+        self.reach_margin_m = o.map_or(d.reach_margin_m, |o| o.reach_margin_m);
+        self
+    }
+}
+
 /// Every option within its documented range (exit 2 with the range otherwise).
 pub fn check_settings(req: &CompileRequest) -> Result<(), CompileError> {
     let positive = |field: &'static str, value: f64| {

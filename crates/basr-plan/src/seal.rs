@@ -23,6 +23,8 @@ pub struct Planned<'a> {
     pub samples: Samples,
     pub balance: Vec<StrokeBalance>,
     pub notes: Vec<Note>,
+    /// Options other than compile's defaults (`layout.options`).
+    pub options: Option<job::PlanOptions>,
 }
 
 /// The job document, its totals computed and its hashes filled.
@@ -88,6 +90,7 @@ pub fn assemble(p: Planned<'_>) -> Job {
             lane_width_m: p.marking.lane_width_m,
             tilt_method: p.tilt.name().into(),
             glyphs: p.strokes.outlines(),
+            options: p.options,
         },
         stations: p.stations.stations,
         road: p.stations.road,

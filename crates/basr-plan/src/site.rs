@@ -49,9 +49,12 @@ pub fn put_at_site(
             planned: plan.stations.len(),
         });
     }
+    let si = site.fitted;
+    let Some(planned) = plan.stations.get(si).cloned() else {
+        return Ok(());
+    };
     plan.stations = site.stations.clone();
     plan.road = site.road.clone();
-    let si = site.fitted;
     let Some(st) = plan.stations.get(si).cloned() else {
         return Ok(());
     };
@@ -85,9 +88,11 @@ pub fn put_at_site(
     let (px, py) = worst_point(&points, &st, &margin);
     let advice = match nearest_reaching(&st, margin_m, &worst) {
         Some(d) => move_words(&st, d),
+        // Far off: back to where the job planned the stop, which reaches it.
         None => format!(
-            "no truck position within {RING_MAX_M} m of it reaches the whole stop; check the \
-             points and the stop number"
+            "{} (to where the job planned the stop; nothing nearer reaches the whole stop: \
+             check the points and the stop number too)",
+            move_words(&st, [planned.x_m - st.x_m, planned.y_m - st.y_m])
         ),
     };
     Err(StationError::SiteOutOfReach {

@@ -270,6 +270,7 @@ fn sealed(
                     })
                     .collect(),
             }],
+            options: None,
         },
         stations: vec![station],
         road: Default::default(),

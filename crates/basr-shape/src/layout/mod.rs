@@ -251,8 +251,11 @@ impl RoadToml {
             return Ok(basr_job::Road::default());
         };
         let Some(pct) = t.cross_slope_pct else {
-            return Err("[road] needs cross_slope_pct (the surface's fall to the driver's                         right, in percent: cross_slope_pct = 2.0)"
-                .into());
+            return Err(
+                "[road] needs cross_slope_pct (the surface's fall to the driver's \
+                        right, in percent: cross_slope_pct = 2.0)"
+                    .into(),
+            );
         };
         let road = basr_job::Road {
             cross_slope: pct / 100.0,
