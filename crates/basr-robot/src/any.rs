@@ -49,6 +49,15 @@ impl AnyRobot {
         }
     }
 
+    /// The paint figures, to mount a tip on them (compile's tip choice).
+    pub fn paint_mut(&mut self) -> &mut Paint {
+        match self {
+            AnyRobot::Basr(r) => &mut r.paint,
+            AnyRobot::Telescopic(r) => &mut r.paint,
+            AnyRobot::Articulated(r) => &mut r.paint,
+        }
+    }
+
     pub fn control(&self) -> &Control {
         match self {
             AnyRobot::Basr(r) => &r.control,

@@ -433,6 +433,9 @@ pub(crate) fn validate(r: &Robot) -> Vec<(String, String)> {
             ),
         );
     }
+    for (path, what) in p.tip_problems() {
+        push(&path, what);
+    }
     match (p.height_law_c0_m, p.height_law_c1) {
         (Some(_), None) => push(
             "paint.height_law_c0_m",
