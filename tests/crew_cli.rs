@@ -107,13 +107,18 @@ fn compile_says_what_where_how_long_and_whether_to_go() {
         text.contains("stop 1: arm axis 4.57 m past the near edge of STOP"),
         "{text}"
     );
-    // The film as `basr preview` measures it, then the verdict.
+    // The spray tip to mount, the film as `basr preview` measures it, then
+    // the verdict.
     assert!(
-        lines[2].starts_with("  film (as `basr preview` measures it): cv "),
+        lines[2].starts_with("  spray tip: seed-63.5 (63.5° fan, 0.40 L/min, uniform flux)"),
         "{text}"
     );
-    assert!(lines[3].starts_with("  verdict: "), "{text}");
-    for l in &lines[4..] {
+    assert!(
+        lines[3].starts_with("  film (as `basr preview` measures it): cv "),
+        "{text}"
+    );
+    assert!(lines[4].starts_with("  verdict: "), "{text}");
+    for l in &lines[5..] {
         assert!(l.starts_with("  problem: ") || l.starts_with("  … "), "{l}");
     }
 

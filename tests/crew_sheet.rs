@@ -38,6 +38,7 @@ fn a_ready_sheet_reads_in_a_minute_and_prints_on_two_pages() {
         "Paint it. First: Drive with the traffic",
         "1: the word STOP, 4 letters 2.44 m (8 ft) tall",
         "Load this on the truck",
+        "Mount spray tip seed-63.5 (63.5° fan, 0.40 L/min, uniform flux) on the gun",
         "Copy STOP.job.json and STOP.csv (the setpoint CSV) to the truck",
         "basr check STOP.job.json STOP.csv",
         "No problem and no notice.",

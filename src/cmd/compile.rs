@@ -758,6 +758,9 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     if let Some(sig) = &job.signature {
         lines.push(format!("  signed by key {}", sig.key_id));
     }
+    if let Some(tip) = basr::report::tip_words(job) {
+        lines.push(format!("  spray tip: {tip}"));
+    }
     if let Some(f) = &s.film {
         lines.push(film_line(f));
     }

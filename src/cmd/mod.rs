@@ -1,6 +1,7 @@
 //! One module per subcommand. Each has `Args` (clap) and
 //! `run(Args, &Global) -> anyhow::Result<Outcome>`; an `Err` exits with 2.
 
+pub mod calibrate;
 pub mod check;
 pub mod compile;
 pub mod design;

@@ -82,9 +82,11 @@ pub struct Args {
     /// Flux across the fan: `uniform` (even on the road, the seed's
     /// assumption), `uniform-angle`, `gauss[:w,mean,sigma;…]` (lobes per unit
     /// angle, mean and sigma as fractions of the half fan angle) or
-    /// `beta[:p,q]`.
-    #[arg(long, value_name = "PROFILE", default_value = "uniform")]
-    pub profile: String,
+    /// `beta[:p,q]`. Default: the profile of the tip the job was planned
+    /// for (the robot's `paint.profile`; `uniform` when it gives none), as
+    /// compile measured it.
+    #[arg(long, value_name = "PROFILE")]
+    pub profile: Option<String>,
 
     /// Depth of the fan sheet on the road along the travel direction:
     /// `gauss:MM` (standard deviation) or `tophat:MM` (full width).
@@ -164,9 +166,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
          letters for coverage, cv and overspray to describe the film; give \
          {MIN_RESOLUTION_MM} to {MAX_RESOLUTION_MM}"
     );
-    let opts = Options {
+    let mut opts = Options {
         resolution_m: r / 1000.0,
-        profile: Profile::parse(&args.profile)?,
+        profile: Profile::parse(args.profile.as_deref().unwrap_or("uniform"))?,
         depth: Depth::parse(&args.fan_depth)?,
         fit_cells: args
             .resolution_mm
@@ -191,6 +193,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // a correctly sealed job can still hold a tilt of 90° or a row at
     // t = 1e9 s: `basr check`'s content checks first (exit 2)
     super::simulate::content_checks(&job, &args.job)?;
+    if args.profile.is_none() {
+        opts.profile = basr::pipeline::film::job_profile(&job)?;
+    }
     let origin = args.job.display().to_string();
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {

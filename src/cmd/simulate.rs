@@ -197,7 +197,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         basr::io::check_writable(p)?;
     }
     let job = super::read_job(&args.job, &args.trust)?;
-    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?;
+    // A robot listing tips is compared with the tip the job mounts.
+    let robot = basr::robot::AnyRobot::load_or_default(args.robot.as_deref())?
+        .with_mounted(job.paint.tip.as_deref());
     let want = robot.sha256();
     if job.robot_sha256 != want {
         anyhow::bail!(

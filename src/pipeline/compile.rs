@@ -29,7 +29,63 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
 
 /// The planner proper, from placed strokes on: what a scene of symbols,
 /// words or shapes calls once it has placed its strokes.
+///
+/// A robot listing tips (`[[paint.tip]]`) is planned with the first; when
+/// that job has problems, with each other tip in turn, and the first tip
+/// whose job has none is chosen (the job records it in `paint.tip` and
+/// its robot's `paint.mounted`). When no tip paints it without problems
+/// the first tip's job is kept: its notes name the tip. A robot whose tip
+/// is mounted already is planned with that tip alone.
 pub fn compile_strokes(
+    req: &CompileRequest,
+    marking: &layout::Marking,
+    font: &crate::font::Font,
+    robot: crate::robot::AnyRobot,
+    strokes: &PlacedStrokes,
+) -> Result<Job, CompileError> {
+    let tips = robot.paint().tips.clone();
+    // A robot with its tip already mounted (a job's own, planned again by
+    // `basr fit` or `preview --compare`) keeps that tip: the crew has it on
+    // the gun, and the job's other stops were painted with it.
+    if robot.paint().mounted.is_some() {
+        return compile_for_tip(req, marking, font, robot, strokes);
+    }
+    let Some((first, others)) = tips.split_first() else {
+        return compile_for_tip(req, marking, font, robot, strokes);
+    };
+    let mounted = |tip: &crate::robot::Tip| {
+        let mut r = robot.clone();
+        let p = r.paint_mut();
+        *p = p.with_tip(tip);
+        r
+    };
+    let preferred = compile_for_tip(req, marking, font, mounted(first), strokes)?;
+    if problems(&preferred) == 0 {
+        return Ok(preferred);
+    }
+    for tip in others {
+        // A tip that cannot plan the marking at all (a fan too wide for
+        // every stroke) is no choice; the preferred tip's job stands.
+        if let Ok(job) = compile_for_tip(req, marking, font, mounted(tip), strokes) {
+            if problems(&job) == 0 {
+                return Ok(job);
+            }
+        }
+    }
+    Ok(preferred)
+}
+
+/// The job's problems: what makes it NOT READY.
+fn problems(job: &Job) -> usize {
+    job.summary
+        .warnings
+        .iter()
+        .filter(|w| w.graded() == crate::job::Severity::Problem)
+        .count()
+}
+
+/// The planner for the robot's paint table as it is (one tip).
+fn compile_for_tip(
     req: &CompileRequest,
     marking: &layout::Marking,
     font: &crate::font::Font,

@@ -6,6 +6,7 @@
 use crate::job::{FilmSummary, Job};
 use crate::paint::film::{self, FilmOptions, JobFilm};
 use crate::paint::metrics::GlyphMetrics;
+use crate::paint::Profile;
 
 use basr_plan::error::CompileError;
 use basr_plan::warnings::{HotSpot, Note, Owner};
@@ -21,12 +22,37 @@ pub struct FilmCheck {
 /// The film stage of compile: `job`'s film as `basr preview JOB` measures
 /// it; `owners[i]` names the job's `layout.glyphs[i]` in the notes.
 pub fn check(job: &Job, owners: &[Owner]) -> Result<FilmCheck, CompileError> {
-    let measured = film::film(job, &FilmOptions::preview_defaults(), &|_, _| {})
-        .map_err(|e| CompileError::Film(e.to_string()))?;
+    let mut options = FilmOptions::preview_defaults();
+    // The film of the tip the robot describes: `basr preview` takes the
+    // job's profile too when no `--profile` is given.
+    options.preview.profile = job_profile(job).map_err(|e| CompileError::Film(e.to_string()))?;
+    let measured =
+        film::film(job, &options, &|_, _| {}).map_err(|e| CompileError::Film(e.to_string()))?;
     Ok(FilmCheck {
         summary: measured.summary(),
         notes: notes(&measured, job, owners),
     })
+}
+
+/// The flux profile of the tip the job's robot describes (`paint.profile`,
+/// uniform when absent).
+pub fn job_profile(job: &Job) -> Result<Profile, crate::paint::PaintError> {
+    let text = job.robot.paint().profile_text();
+    Profile::parse(text).map_err(|e| {
+        crate::paint::PaintError::Job(format!("the robot's paint.profile {text:?}: {e}"))
+    })
+}
+
+/// How the film notes name the tip: its name and profile when the robot
+/// names a tip or a profile other than the seed's uniform one.
+fn tip_words(job: &Job) -> Option<String> {
+    let p = job.robot.paint();
+    let profile = p.profile_text();
+    match (&p.mounted, profile) {
+        (Some(name), _) => Some(format!("{name} ({profile} flux)")),
+        (None, "uniform") => None,
+        (None, _) => Some(format!("of the paint table ({profile} flux)")),
+    }
 }
 
 /// One [`Note::Film`] per failed bound, naming the item it fails worst on
@@ -65,6 +91,7 @@ fn notes(measured: &JobFilm, job: &Job, owners: &[Owner]) -> Vec<Note> {
                 factor: c.value.map(|v| v / c.limit),
                 worst: worst.map(|(_, o, v)| (o.clone(), v)),
                 hot,
+                tip: tip_words(job),
             }
         })
         .collect()

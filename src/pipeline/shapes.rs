@@ -147,7 +147,14 @@ impl Measured {
 fn measure(imported: &Imported, robot: &AnyRobot, b: &Bands, label: &str) -> Option<Measured> {
     let mut req = CompileRequest::message(shape::GLYPH.encode_utf8(&mut [0; 4]));
     req.source = Source::Message(shape::GLYPH.to_string());
-    req.robot_description = Some(robot.clone());
+    // Candidates are compared with the robot's first tip alone: compile's
+    // change of tip for a candidate with problems would compare one
+    // decomposition's film under one tip with another's under another.
+    let first = robot.paint().tips.first().map(|t| t.name.clone());
+    let mut one_tip = robot.clone().with_mounted(first.as_deref());
+    one_tip.paint_mut().tips.clear();
+    one_tip.paint_mut().mounted = None;
+    req.robot_description = Some(one_tip);
     // Measured below on a raster of its own; its film bounds are counted
     // by `shortfall`, not as problems.
     req.film = false;

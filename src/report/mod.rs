@@ -419,6 +419,19 @@ fn items(job: &Job, units: System) -> Vec<String> {
         .collect()
 }
 
+/// The tip the job is planned for, in the crew's words (`511 (45.2° fan,
+/// 0.29 L/min, uniform flux)`), when the robot lists tips.
+pub fn tip_words(job: &Job) -> Option<String> {
+    let name = job.paint.tip.as_ref()?;
+    let p = job.robot.paint();
+    Some(format!(
+        "{name} ({:.1}° fan, {:.2} L/min, {} flux)",
+        p.fan_angle_rad.to_degrees(),
+        p.flow_m3ps * 60_000.0, // m³/s → L/min
+        p.profile_text()
+    ))
+}
+
 /// "Load this on the truck", in steps: the files the controller takes
 /// (those bound to the job), the check on the truck, how each stop starts.
 pub fn truck_steps(job: &Job, job_name: &str) -> Vec<String> {
@@ -434,6 +447,11 @@ pub fn truck_steps(job: &Job, job_name: &str) -> Vec<String> {
     .filter_map(|(k, what)| job.outputs.get(k).map(|b| (what, b.file.as_str())))
     .collect();
     let mut steps = vec![];
+    if let Some(tip) = tip_words(job) {
+        steps.push(format!(
+            "Mount spray tip {tip} on the gun before the first stop: the job is planned for it."
+        ));
+    }
     if bound.is_empty() {
         steps.push(format!(
             "No setpoint file is bound to this job: compile it again with --csv FILE (the truck's \

@@ -177,6 +177,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             transfer_efficiency: EFF,
             film_m: FILM,
             k_m2ps: k(),
+            tip: None,
         },
         control_period_s: PERIOD,
         layout: Layout {

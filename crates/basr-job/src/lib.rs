@@ -123,6 +123,10 @@ pub struct Paint {
     pub film_m: f64,
     /// `flow × efficiency / film`: speed × stroke width (001 eq. 2.6).
     pub k_m2ps: f64,
+    /// The spray tip to mount (`[[paint.tip]]` name), when the robot lists
+    /// tips; absent for a robot with one tip, its `paint` table.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tip: Option<String>,
 }
 
 /// One truck position: the arm's base frame in the road frame (SPEC §2).
@@ -646,6 +650,7 @@ impl Paint {
             transfer_efficiency: p.transfer_efficiency,
             film_m: p.film_m,
             k_m2ps: p.k_m2ps(),
+            tip: p.mounted.clone(),
         }
     }
 }
@@ -752,6 +757,7 @@ mod tests {
                 transfer_efficiency: 0.9,
                 film_m: 3.8e-4,
                 k_m2ps: 0.0158,
+                tip: None,
             },
             control_period_s: 0.032,
             layout: Layout {

@@ -350,6 +350,16 @@ fn settings(job: &Job, origin: &str, c: &mut Collector) {
             );
         }
     }
+    if stated.tip != want.tip {
+        c.add(
+            "paint",
+            format!(
+                "{origin}: paint.tip is {:?} but the job's robot description mounts {:?} \
+                 (robot.paint.mounted)",
+                stated.tip, want.tip
+            ),
+        );
+    }
     let laid: usize = job.layout.glyphs.iter().map(|g| g.strokes.len()).sum();
     if job.summary.strokes != laid {
         c.add(

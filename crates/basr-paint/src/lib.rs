@@ -21,6 +21,7 @@ pub mod metrics;
 pub mod preview;
 pub mod raster;
 pub mod spray;
+pub mod stripe;
 pub mod verdict;
 
 pub use raster::{deposit, Bounds, Film, Grid};

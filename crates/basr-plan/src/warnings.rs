@@ -121,6 +121,9 @@ pub enum Note {
         worst: Option<(Owner, f64)>,
         /// For cv: the heaviest film on that item.
         hot: Option<HotSpot>,
+        /// The tip the film was planned and measured for (`511, uniform-angle
+        /// flux`), when the robot names one or a profile other than uniform.
+        tip: Option<String>,
     },
 
     /// The arm comes to rest.
@@ -349,6 +352,7 @@ impl Note {
                 factor,
                 worst,
                 hot,
+                tip,
             } => Warning {
                 kind: WarningKind::Film,
                 owner: None,
@@ -357,7 +361,9 @@ impl Note {
                 t_s: None,
                 factor: *factor,
                 message: format!(
-                    "the film fails the preview's check: {failed}{}{}. {todo}",
+                    "the film fails the preview's check: {failed}{}{}{}. {todo}",
+                    tip.as_ref()
+                        .map_or(String::new(), |t| format!(" with tip {t}")),
                     worst.as_ref().map_or(String::new(), |(owner, v)| format!(
                         ", worst on {owner} ({metric} {v:.3})"
                     )),
@@ -483,6 +489,7 @@ mod tests {
                 film_ratio: 1.625,
                 stroke: Some(7),
             }),
+            tip: None,
         };
         assert_eq!(film.severity(), Severity::Problem);
         let w = film.render();

@@ -49,6 +49,27 @@ impl AnyRobot {
         }
     }
 
+    /// The paint figures, to mount a tip on them (compile's tip choice).
+    pub fn paint_mut(&mut self) -> &mut Paint {
+        match self {
+            AnyRobot::Basr(r) => &mut r.paint,
+            AnyRobot::Telescopic(r) => &mut r.paint,
+            AnyRobot::Articulated(r) => &mut r.paint,
+        }
+    }
+
+    /// This description with the listed tip `name` mounted, as compile
+    /// records it in a job planned for that tip (`paint.tip`): what a job's
+    /// `robot_sha256` is compared with. Unchanged when `name` is `None` or
+    /// not listed.
+    pub fn with_mounted(mut self, name: Option<&str>) -> AnyRobot {
+        if let Some(tip) = name.and_then(|n| self.paint().tip(n)).cloned() {
+            let p = self.paint_mut();
+            *p = p.with_tip(&tip);
+        }
+        self
+    }
+
     pub fn control(&self) -> &Control {
         match self {
             AnyRobot::Basr(r) => &r.control,

@@ -433,6 +433,9 @@ pub(crate) fn validate(r: &Robot) -> Vec<(String, String)> {
             ),
         );
     }
+    for (path, what) in p.tip_problems() {
+        push(&path, what);
+    }
     match (p.height_law_c0_m, p.height_law_c1) {
         (Some(_), None) => push(
             "paint.height_law_c0_m",
@@ -628,6 +631,32 @@ mod tests {
             p.iter().any(|m| m.contains("arm.cylinder_stroke_margin_m")),
             "{p:?}"
         );
+    }
+
+    /// The shipped tips read back, the seed's first; a tip listed twice, a
+    /// profile no preview takes and a fan angle in radians are each named.
+    #[test]
+    fn spray_tips_are_read_and_checked() {
+        let r = parse(super::super::BASR_TOML, "basr.toml").unwrap();
+        let names: Vec<&str> = r.paint.tips.iter().map(|t| t.name.as_str()).collect();
+        assert_eq!(names, ["seed-63.5", "511", "817"]);
+        assert_eq!(r.paint.tips[0].fan_angle_rad(), r.paint.fan_angle_rad);
+        for (find, replace, field) in [
+            ("name = \"511\"", "name = \"817\"", "paint.tip[2].name"),
+            (
+                "profile = \"uniform\"\n\n# A wider",
+                "profile = \"cone\"\n\n# A wider",
+                "paint.tip[1].profile",
+            ),
+            (
+                "fan_angle_deg = 63.5",
+                "fan_angle_deg = 1.108",
+                "paint.tip[0].fan_angle_deg",
+            ),
+        ] {
+            let p = check_source(&with(find, replace), "bad.toml");
+            assert!(p.iter().any(|m| m.contains(field)), "{field}: {p:?}");
+        }
     }
 
     #[test]

@@ -352,6 +352,7 @@ pub(crate) fn electric_problems(
     fan_joint: usize,
 ) -> Vec<(String, String)> {
     let mut out = super::ranges::electric(paint, control, names, joints);
+    out.extend(paint.tip_problems());
     if heights[0] >= heights[1] {
         out.push((
             "arm.tip_height_min_m".into(),

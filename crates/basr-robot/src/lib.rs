@@ -163,9 +163,132 @@ pub struct Paint {
     pub height_law_c0_m: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub height_law_c1: Option<f64>,
+    /// Flux across the fan of the tip these figures describe, as `basr
+    /// preview --profile` takes it (`uniform`, `uniform-angle`,
+    /// `gauss[:w,mean,sigma;…]`, `beta[:p,q]`); absent: `uniform`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<String>,
+    /// The listed tip the figures above are (set by compile when it chooses
+    /// one of `tip`); absent for a robot without `[[paint.tip]]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mounted: Option<String>,
+    /// The tips the crew carries (`[[paint.tip]]`); empty: one tip, this table.
+    #[serde(default, rename = "tip", skip_serializing_if = "Vec::is_empty")]
+    pub tips: Vec<Tip>,
+}
+
+/// One spray tip the crew carries (`[[paint.tip]]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tip {
+    /// The crew's name for it (often the tip code, e.g. `517`).
+    pub name: String,
+    /// Full fan angle, degrees (the tip codes' unit: first digit × 2 = fan
+    /// width in inches at 12 in).
+    pub fan_angle_deg: f64,
+    /// Paint flow at the working pressure.
+    pub flow_m3ps: f64,
+    /// Flux across the fan, as [`Paint::profile`]; absent: `uniform`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<String>,
+}
+
+/// The profile kinds `basr preview --profile` takes (their parameters are
+/// checked where the spray model is built).
+pub const PROFILE_KINDS: [&str; 4] = ["uniform", "uniform-angle", "gauss", "beta"];
+
+impl Tip {
+    /// Fan angle in radians.
+    pub fn fan_angle_rad(&self) -> f64 {
+        self.fan_angle_deg.to_radians()
+    }
+}
+
+/// `profile`'s problem, if its kind is none `preview --profile` takes.
+fn profile_problem(profile: &str) -> Option<String> {
+    let kind = profile.split_once(':').map_or(profile, |(k, _)| k).trim();
+    (!PROFILE_KINDS.contains(&kind)).then(|| {
+        format!(
+            "profile {profile:?} is none of {} (as `basr preview --profile` takes them)",
+            PROFILE_KINDS.join(", ")
+        )
+    })
 }
 
 impl Paint {
+    /// The profile these figures describe (`uniform` when none is given).
+    pub fn profile_text(&self) -> &str {
+        self.profile.as_deref().unwrap_or("uniform")
+    }
+
+    /// These paint figures with `tip` mounted: its fan angle, flow and
+    /// profile, and its name in `mounted`.
+    pub fn with_tip(&self, tip: &Tip) -> Paint {
+        Paint {
+            fan_angle_rad: tip.fan_angle_rad(),
+            flow_m3ps: tip.flow_m3ps,
+            profile: tip.profile.clone(),
+            mounted: Some(tip.name.clone()),
+            ..self.clone()
+        }
+    }
+
+    /// The listed tip named `name`.
+    pub fn tip(&self, name: &str) -> Option<&Tip> {
+        self.tips.iter().find(|t| t.name == name)
+    }
+
+    /// Problems of the profile and the `[[paint.tip]]` list, as
+    /// `(field, what)`.
+    pub fn tip_problems(&self) -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        if let Some(why) = self.profile.as_deref().and_then(profile_problem) {
+            out.push(("paint.profile".into(), why));
+        }
+        for (i, t) in self.tips.iter().enumerate() {
+            let at = |f: &str| format!("paint.tip[{i}].{f}");
+            if t.name.trim().is_empty() {
+                out.push((
+                    at("name"),
+                    "must not be empty: give the crew's name for the tip, e.g. \"517\"".into(),
+                ));
+            }
+            if self.tips[..i].iter().any(|o| o.name == t.name) {
+                out.push((
+                    at("name"),
+                    format!("{:?} is listed twice; each tip needs its own name", t.name),
+                ));
+            }
+            // A flat fan between 5° and 120°: the codes go from 0 (a pencil
+            // stream) to 9 (18 in at 12 in, 74°); the spray model needs
+            // the fan's edge well above the road.
+            if !(t.fan_angle_deg.is_finite() && (5.0..=120.0).contains(&t.fan_angle_deg)) {
+                out.push((at("fan_angle_deg"), format!("must be 5 to 120 degrees (got {}); tip codes: first digit × 2 = fan width in inches at 12 in, e.g. 5 → 10 in → 45.2°", basr_io::show_num(t.fan_angle_deg))));
+            }
+            if !(t.flow_m3ps.is_finite() && (1e-8..=1e-3).contains(&t.flow_m3ps)) {
+                out.push((
+                    at("flow_m3ps"),
+                    format!(
+                        "must be 1e-8 to 1e-3 m³/s (got {}); 0.4 L/min is 6.67e-6",
+                        basr_io::show_num(t.flow_m3ps)
+                    ),
+                ));
+            }
+            if let Some(why) = t.profile.as_deref().and_then(profile_problem) {
+                out.push((at("profile"), why));
+            }
+        }
+        if let Some(m) = &self.mounted {
+            if !self.tips.is_empty() && self.tip(m).is_none() {
+                out.push((
+                    "paint.mounted".into(),
+                    format!("names tip {m:?}, which no [[paint.tip]] lists"),
+                ));
+            }
+        }
+        out
+    }
+
     /// k = flow·efficiency/film: speed × stroke width (001 eq. 2.6; SPEC §3).
     pub fn k_m2ps(&self) -> f64 {
         self.flow_m3ps * self.transfer_efficiency / self.film_m
