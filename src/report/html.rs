@@ -41,6 +41,7 @@ ol.stops li { margin-bottom: 0.5em; }
 .chalk svg { flex: none; border: 1px solid #ccc; width: 130px; height: 130px; }
 .chalk p { margin: 0; font-size: 0.85em; }
 p.fit { font-size: 0.85em; }
+p.facts { font-size: 0.85em; margin: 0.8em 0 0.3em; }
 figure { margin: 0.5em 0; }
 figure svg { max-width: 100%; height: auto; border: 1px solid #ccc; }
 section { break-inside: avoid; }
@@ -302,7 +303,7 @@ pub fn render(s: &Sheet) -> String {
     grouped(&mut out, s);
     // One line: the crew checks the file name and the signature; the rest
     // identifies the job for the engineer.
-    out.push_str("<section id=\"job\"><h2>The job</h2><p class=\"facts\">");
+    out.push_str("<section id=\"job\"><p class=\"facts\"><strong>The job:</strong> ");
     let facts: Vec<String> = s
         .facts
         .iter()

@@ -161,11 +161,10 @@ pub fn chalk(job: &Job, units: System) -> Vec<Chalk> {
 /// The fit procedure in plain words, for the job file `job_name`.
 pub fn steps(job_name: &str) -> String {
     format!(
-        "chalk its reference points (taped from the anchor), jog the nozzle over each, \
-         read x, y and the road's height z, write a points file (stop = N; per [[point]]: \
-         name, road_m, base_m = [x, y, z]) and run basr fit {job_name} --points FILE -o \
-         fitted.job.json --csv fitted.csv (a scene: --marking FILE too); load fitted.csv \
-         instead. It names a point to measure again, or how to move the truck."
+        "jog the nozzle over each chalked point, read x, y and the road's height from the \
+         controller into a points file and run basr fit {job_name} --points FILE -o \
+         fitted.job.json --csv fitted.csv; load fitted.csv instead (basr fit --help shows \
+         the file)."
     )
 }
 
