@@ -557,23 +557,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // main renames all three into place together when the run succeeds, and
     // drops them all when any fails or the run is interrupted; the job,
     // written last, is renamed last.
-    if let Some(csv) = &args.csv {
-        let sha256 = basr::job::csv::write(&job.samples, csv)?;
-        job.bind_output("csv", csv, sha256);
-    }
-    if let Some(adept) = &args.adept {
-        let sha256 =
-            basr::job::adept::write(&job.message, &job.samples, &job.stations, &job.road, adept)?;
-        job.bind_output("adept", adept, sha256);
-    }
-    if !job.outputs.is_empty() {
-        job.seal();
-    }
-    if let Some(key) = &key {
-        job.sign(key);
-    }
-    // WriteError names the path and the OS reason.
-    job.write(&out)?;
+    super::outputs::write_job(
+        &mut job,
+        &out,
+        args.csv.as_deref(),
+        args.adept.as_deref(),
+        key.as_ref(),
+    )?;
     let s = &job.summary;
     let verdict = verdict_of(&job);
     if args.json {

@@ -145,19 +145,8 @@ fn base_of(
             }
         }
         (None, Some(e)) => {
-            // The names the setpoint CSV gives the counts (and `basr pose
-            // --json`): BASR's own columns, another kind's kind columns.
-            let names: [String; 5] = match robot.basr() {
-                Some(_) => [
-                    "enc_base",
-                    "enc_extension",
-                    "enc_vertical",
-                    "enc_yaw",
-                    "enc_tilt",
-                ]
-                .map(String::from),
-                None => robot.encoder_names(),
-            };
+            // The names the setpoint CSV (and `basr pose --json`) gives them.
+            let names = robot.count_columns();
             let mut counts = [0i64; 5];
             for (k, n) in names.iter().enumerate() {
                 counts[k] = *e.get(n).ok_or_else(|| {
@@ -425,24 +414,13 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             k + 1
         );
     }
-    // As compile: the CSV and the program first, bound into the job,
-    // which is written last.
-    if let Some(csv) = &args.csv {
-        let sha256 = basr::job::csv::write(&new.samples, csv)?;
-        new.bind_output("csv", csv, sha256);
-    }
-    if let Some(adept) = &args.adept {
-        let sha256 =
-            basr::job::adept::write(&new.message, &new.samples, &new.stations, &new.road, adept)?;
-        new.bind_output("adept", adept, sha256);
-    }
-    if !new.outputs.is_empty() {
-        new.seal();
-    }
-    if let Some(key) = &key {
-        new.sign(key);
-    }
-    new.write(&out)?;
+    super::outputs::write_job(
+        &mut new,
+        &out,
+        args.csv.as_deref(),
+        args.adept.as_deref(),
+        key.as_ref(),
+    )?;
 
     let planned_st = &job.stations[si];
     let st = &new.stations[si];

@@ -89,6 +89,38 @@ pub fn take_after_commit() -> Vec<String> {
         .unwrap_or_default()
 }
 
+/// Write `job` to `out` with the files that go with it: the setpoint CSV
+/// and the Adept program where asked, written first and bound into the job
+/// (resealed, so it records their hashes), then the signature with `key`,
+/// then the job itself, last. `main` renames them all into place together
+/// when the run succeeds.
+pub fn write_job(
+    job: &mut basr::job::Job,
+    out: &Path,
+    csv: Option<&Path>,
+    adept: Option<&Path>,
+    key: Option<&basr::job::trust::SecretKey>,
+) -> anyhow::Result<()> {
+    if let Some(csv) = csv {
+        let sha256 = basr::job::csv::write(&job.samples, csv)?;
+        job.bind_output("csv", csv, sha256);
+    }
+    if let Some(adept) = adept {
+        let sha256 =
+            basr::job::adept::write(&job.message, &job.samples, &job.stations, &job.road, adept)?;
+        job.bind_output("adept", adept, sha256);
+    }
+    if !job.outputs.is_empty() {
+        job.seal();
+    }
+    if let Some(key) = key {
+        job.sign(key);
+    }
+    // WriteError names the path and the OS reason.
+    job.write(out)?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

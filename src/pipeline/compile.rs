@@ -43,13 +43,13 @@ pub fn compile_strokes(
     robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
-    let tips = robot.paint().tips.clone();
     // A robot with its tip already mounted (a job's own, planned again by
     // `basr fit` or `preview --compare`) keeps that tip: the crew has it on
     // the gun, and the job's other stops were painted with it.
-    if robot.paint().mounted.is_some() {
-        return compile_for_tip(req, marking, font, robot, strokes);
-    }
+    let tips = match &robot.paint().mounted {
+        None => robot.paint().tips.clone(),
+        Some(_) => vec![],
+    };
     let Some((first, others)) = tips.split_first() else {
         return compile_for_tip(req, marking, font, robot, strokes);
     };

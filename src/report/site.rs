@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::job::reference::{reference_points, ReferencePoint};
+use crate::job::reference::{reference_points, stop_strokes, ReferencePoint};
 use crate::job::Job;
 use crate::units::System;
 
@@ -42,20 +42,9 @@ fn words(p: [f64; 2], units: System) -> String {
 
 /// The strokes painted from stop `index`, as closed outlines (road frame).
 fn outlines(job: &Job, index: usize) -> Vec<Vec<[f64; 2]>> {
-    let s = &job.samples;
-    let mut painted = std::collections::BTreeSet::new();
-    for i in 0..s.len() {
-        if s.station[i] as usize == index && s.paint[i] == 1 && s.stroke[i] >= 0 {
-            painted.insert(s.stroke[i] as usize);
-        }
-    }
-    job.layout
-        .glyphs
-        .iter()
-        .flat_map(|g| &g.strokes)
-        .enumerate()
-        .filter(|(k, _)| painted.contains(k))
-        .map(|(_, st)| {
+    stop_strokes(job, index)
+        .into_iter()
+        .map(|st| {
             st.left
                 .iter()
                 .chain(st.right.iter().rev())

@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 
-use super::Job;
+use super::{Job, PlacedStroke};
 
 /// A point on the line's other side is listed when it lies at least this
 /// share as far from the line as the furthest one. assumed: a quarter; a
@@ -22,6 +22,26 @@ pub struct ReferencePoint {
     pub road_m: [f64; 2],
 }
 
+/// The outlines (`layout.glyphs`' strokes) of the strokes the job paints
+/// from stop `index` (counted from 0), in stroke order.
+pub fn stop_strokes(job: &Job, index: usize) -> Vec<&PlacedStroke> {
+    let s = &job.samples;
+    let mut painted = std::collections::BTreeSet::new();
+    for i in 0..s.len() {
+        if s.station[i] as usize == index && s.paint[i] == 1 && s.stroke[i] >= 0 {
+            painted.insert(s.stroke[i] as usize);
+        }
+    }
+    job.layout
+        .glyphs
+        .iter()
+        .flat_map(|g| &g.strokes)
+        .enumerate()
+        .filter(|(k, _)| painted.contains(k))
+        .map(|(_, st)| st)
+        .collect()
+}
+
 /// The reference points of stop `index` (counted from 0): among the
 /// outline points of the strokes painted from it, the two furthest apart
 /// and the furthest from the line through them on each side, so the
@@ -30,21 +50,9 @@ pub struct ReferencePoint {
 /// to `D` nearest the driver first. Empty when the stop paints nothing;
 /// fewer than three when its outline has fewer distinct points.
 pub fn reference_points(job: &Job, index: usize) -> Vec<ReferencePoint> {
-    let s = &job.samples;
-    let mut painted = std::collections::BTreeSet::new();
-    for i in 0..s.len() {
-        if s.station[i] as usize == index && s.paint[i] == 1 && s.stroke[i] >= 0 {
-            painted.insert(s.stroke[i] as usize);
-        }
-    }
-    let pts: Vec<[f64; 2]> = job
-        .layout
-        .glyphs
-        .iter()
-        .flat_map(|g| &g.strokes)
-        .enumerate()
-        .filter(|(k, _)| painted.contains(k))
-        .flat_map(|(_, st)| st.left.iter().chain(&st.right).copied())
+    let pts: Vec<[f64; 2]> = stop_strokes(job, index)
+        .into_iter()
+        .flat_map(|st| st.left.iter().chain(&st.right).copied())
         .collect();
     let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
     // The furthest pair (first found on ties: deterministic).

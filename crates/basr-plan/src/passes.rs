@@ -55,21 +55,29 @@ impl Passes {
             | Note::Slowed { stroke, .. } => Some(*stroke),
             _ => None,
         };
-        let mut passes: Vec<Pass> = self
-            .passes
-            .into_iter()
-            .filter(|p| !take(p.stroke))
-            .chain(other.passes.into_iter().filter(|p| take(p.stroke)))
-            .collect();
-        // Stable: a stroke's passes keep their order.
-        passes.sort_by_key(|p| p.stroke);
-        let mut balance: Vec<StrokeBalance> = self
-            .balance
-            .into_iter()
-            .filter(|b| !take(b.stroke))
-            .chain(other.balance.into_iter().filter(|b| take(b.stroke)))
-            .collect();
-        balance.sort_by_key(|b| b.stroke);
+        // Each stroke's items from one side or the other, in stroke order
+        // (a stable sort: a stroke's own items keep theirs).
+        fn pick<T>(
+            mine: Vec<T>,
+            theirs: Vec<T>,
+            of: impl Fn(&T) -> usize,
+            take: &impl Fn(usize) -> bool,
+        ) -> Vec<T> {
+            let mut v: Vec<T> = mine
+                .into_iter()
+                .filter(|x| !take(of(x)))
+                .chain(theirs.into_iter().filter(|x| take(of(x))))
+                .collect();
+            v.sort_by_key(|x| of(x));
+            v
+        }
+        let passes = pick(self.passes, other.passes, |p: &Pass| p.stroke, &take);
+        let balance = pick(
+            self.balance,
+            other.balance,
+            |b: &StrokeBalance| b.stroke,
+            &take,
+        );
         let mut notes: Vec<Note> = self
             .notes
             .into_iter()

@@ -126,8 +126,25 @@ impl AnyRobot {
         self.arm().encoders(q)
     }
 
+    /// The setpoint CSV's names of the encoder counts, in [`Q`] order (as
+    /// [`AnyRobot::encoders`] gives them): BASR's own columns (SPEC §3's
+    /// `enc_base` … in its joint order), another kind's kind columns.
+    pub fn count_columns(&self) -> [String; 5] {
+        match self {
+            AnyRobot::Basr(_) => [
+                "enc_base",
+                "enc_extension",
+                "enc_vertical",
+                "enc_yaw",
+                "enc_tilt",
+            ]
+            .map(String::from),
+            _ => self.encoder_names(),
+        }
+    }
+
     /// The joints at encoder counts `counts` ([`Q`] order, as
-    /// [`AnyRobot::encoder_names`] names them).
+    /// [`AnyRobot::count_columns`] names them).
     pub fn joints_from_encoders(&self, counts: &[i64; 5]) -> Result<Q, Unreachable> {
         self.arm().joints_from_encoders(counts)
     }
