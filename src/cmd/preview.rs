@@ -393,6 +393,7 @@ fn hydraulic_track(
         tolerance_m: robot.control.accuracy_m,
         keep_trace: true,
         substeps: None,
+        stop_over_m: None,
     };
     let outcome = sim::simulate(job, &model, &sim_opts, &mut |done, total| {
         // The simulation is the first half of the bar, the paint the second.

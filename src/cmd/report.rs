@@ -89,6 +89,7 @@ fn simulate(job: &basr::job::Job, show: bool) -> anyhow::Result<SimVerdict> {
         tolerance_m: robot.control.accuracy_m,
         keep_trace: false,
         substeps: None,
+        stop_over_m: None,
     };
     let bar = super::progress_bar(show, "simulating the arm");
     let outcome = sim::simulate(job, &model, &opts, &mut |done, total| {

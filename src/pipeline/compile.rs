@@ -101,6 +101,9 @@ fn compile_for_tip(
     let mut cache = trajectory::StationTimings::default();
     // verdicts[s]: station s's verdict at the pace it was last simulated.
     let mut verdicts: Vec<Option<(trajectory::Pace, verify::Verdict)>> = vec![None; n];
+    // runs[s]: a failed station's last rows and its run's checkpoints, so
+    // that its next run resumes where its rows first change.
+    let mut runs: Vec<Option<LastRun>> = (0..n).map(|_| None).collect();
     loop {
         let timed = trajectory::time_law_paced(
             strokes,
@@ -146,12 +149,17 @@ fn compile_for_tip(
             .filter(|&si| !matches!(&verdicts[si], Some((p, _)) if *p == paces[si]))
             .collect();
         let skeleton = skeleton(&mut job);
-        let fresh: Vec<Result<verify::Verdict, CompileError>> = stale
-            .par_iter()
-            .map(|&si| verify_station(&job, &skeleton, rows[si].clone(), req.period_s))
+        let last: Vec<(usize, Option<LastRun>)> =
+            stale.iter().map(|&si| (si, runs[si].take())).collect();
+        let fresh: Vec<Result<(verify::Verdict, Option<LastRun>), CompileError>> = last
+            .into_par_iter()
+            .map(|(si, last)| verify_station(&job, &skeleton, rows[si].clone(), req.period_s, last))
             .collect();
         for (si, v) in stale.into_iter().zip(fresh) {
-            verdicts[si] = Some((paces[si].clone(), v?));
+            let (v, run) = v?;
+            // A station that passed is not simulated again.
+            runs[si] = run.filter(|_| !v.ok);
+            verdicts[si] = Some((paces[si].clone(), v));
         }
         let failing: Vec<(usize, &verify::Verdict)> = verdicts
             .iter()
@@ -380,22 +388,35 @@ fn skeleton(job: &mut Job) -> Job {
     skeleton
 }
 
+/// A station's last simulated rows and its run's checkpoints.
+struct LastRun {
+    samples: crate::job::Samples,
+    checkpoints: crate::sim::Checkpoints,
+}
+
 /// Station `rows` of `job` simulated alone (from the stow pose at rest, as
 /// the arm waits after the truck's drive), in a copy of `skeleton`; judged
-/// in job time.
+/// in job time. With the station's `last` run, the run resumes at its last
+/// checkpoint before the first row that changed since (a re-timed join or
+/// move leaves the rows before it as they were); the verdict is a whole
+/// run's either way. Returns the verdict and this run, for the next.
 fn verify_station(
     job: &Job,
     skeleton: &Job,
     rows: std::ops::Range<usize>,
     period_s: f64,
-) -> Result<verify::Verdict, CompileError> {
+    last: Option<LastRun>,
+) -> Result<(verify::Verdict, Option<LastRun>), CompileError> {
     let t0_s = rows.start as f64 * period_s;
-    if rows.start == 0 && rows.end == job.samples.len() {
-        return verify::simulated(job, t0_s);
-    }
     let mut alone = skeleton.clone();
     alone.samples = job.samples.rows(rows);
-    verify::simulated(&alone, t0_s)
+    let resume = last.map(|l| (l.checkpoints, alone.samples.first_difference(&l.samples)));
+    let (verdict, kept) = verify::simulated_resuming(&alone, t0_s, resume)?;
+    let run = kept.map(|checkpoints| LastRun {
+        samples: alone.samples,
+        checkpoints,
+    });
+    Ok((verdict, run))
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm

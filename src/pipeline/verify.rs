@@ -66,13 +66,32 @@ pub fn content(job: &Job) -> Result<(), CompileError> {
 /// times are reported `t0_s` later (a station's rows simulated alone
 /// report job time).
 pub fn simulated(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
+    simulated_resuming(job, t0_s, None).map(|(v, _)| v)
+}
+
+/// [`simulated`], resumed from `resume` (a run of the job as it was before
+/// its rows changed from a row on: its checkpoints and that row) and
+/// keeping checkpoints for the next (none for the electric kinds, whose
+/// runs are short). The verdict is the one a whole run gives.
+pub fn simulated_resuming(
+    job: &Job,
+    t0_s: f64,
+    resume: Option<(sim::Checkpoints, usize)>,
+) -> Result<(Verdict, Option<sim::Checkpoints>), CompileError> {
     let Some(robot) = job.robot.basr() else {
-        return verify_servo(job, t0_s);
+        return verify_servo(job, t0_s).map(|v| (v, None));
     };
     let model = SimModel::from_robot(robot)
         .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
-    let opts = sim::Options::default();
-    let outcome = sim::simulate(job, &model, &opts, &mut |_, _| {})
+    // A run is ended at its first painting error over the bound: whether
+    // it stays within is all the verdict asks, and re-timing starts where
+    // it first failed.
+    let tolerance_m = sim::Options::default().tolerance_m;
+    let opts = sim::Options {
+        stop_over_m: Some(VERIFY_SHARE * tolerance_m),
+        ..sim::Options::default()
+    };
+    let (outcome, kept) = sim::simulate_resumable(job, &model, &opts, resume)
         .map_err(|e| CompileError::Verify(e.to_string()))?;
     let mut r = outcome.report;
     r.worst.t_s += t0_s;
@@ -97,13 +116,16 @@ pub fn simulated(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
             error_m: s.max_error_m,
         })
         .collect();
-    Ok(judge(
-        r.max_error_m,
-        &r.worst,
-        &broken,
-        opts.tolerance_m,
-        failing,
-    ))
+    let mut verdict = judge(r.max_error_m, &r.worst, &broken, opts.tolerance_m, failing);
+    if r.cut_short_at_s.is_some() {
+        // The run ended where the error first passed the bound: say so.
+        verdict.why = verdict.why.replacen(
+            "the simulated nozzle strays",
+            "the simulated nozzle strays at least",
+            1,
+        );
+    }
+    Ok((verdict, Some(kept)))
 }
 
 /// The verdict on a simulated job: its painting error within

@@ -409,6 +409,28 @@ impl SampleRow {
     }
 }
 
+/// Equality bit for bit (an f64 by its bits: −0.0 is not 0.0).
+trait SameBits: Copy {
+    fn same(self, other: Self) -> bool;
+}
+
+impl SameBits for f64 {
+    fn same(self, other: f64) -> bool {
+        self.to_bits() == other.to_bits()
+    }
+}
+
+macro_rules! same_bits_by_eq {
+    ($($t:ty),*) => {$(
+        impl SameBits for $t {
+            fn same(self, other: $t) -> bool {
+                self == other
+            }
+        }
+    )*};
+}
+same_bits_by_eq!(i64, u32, u8);
+
 macro_rules! samples_struct {
     ($($name:ident : $ty:ty),* $(,)?) => {
         /// The setpoints, column-wise (SPEC §3): equal-length arrays.
@@ -435,6 +457,22 @@ macro_rules! samples_struct {
             /// Append one row.
             pub fn push(&mut self, r: &SampleRow) {
                 $(self.$name.push(r.$name);)*
+            }
+
+            /// The first row at which `self` and `other` differ in any
+            /// column, bit for bit (the shorter's length when one is the
+            /// start of the other): the rows a re-timed station shares with
+            /// its last timing.
+            pub fn first_difference(&self, other: &Samples) -> usize {
+                let n = self.len().min(other.len());
+                (0..n)
+                    .find(|&i| {
+                        false $(|| !SameBits::same(self.$name[i], other.$name[i]))*
+                            || self.kind_joints.get(i).map(|q| q.map(f64::to_bits))
+                                != other.kind_joints.get(i).map(|q| q.map(f64::to_bits))
+                            || self.kind_encoders.get(i) != other.kind_encoders.get(i)
+                    })
+                    .unwrap_or(n)
             }
 
             /// Row `i` (SPEC §3's columns), or `None` past the end.

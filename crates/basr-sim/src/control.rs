@@ -52,9 +52,12 @@ pub struct Command {
 }
 
 /// A discrete-time controller.
-pub trait Controller {
+pub trait Controller: Send {
     /// One sampling period: read, compute, write.
     fn step(&mut self, m: &Measurement) -> Command;
+    /// A copy with the same state (a resumable run keeps one per
+    /// checkpoint).
+    fn boxed_clone(&self) -> Box<dyn Controller>;
 }
 
 /// Which controller (`--controller`).
@@ -446,6 +449,7 @@ fn off(model: &SimModel) -> Command {
 
 /// `/pid`: PID on both joints, each with a feed-forward of the flow its
 /// planned motion needs.
+#[derive(Clone)]
 pub struct PidPid {
     model: SimModel,
     est: Estimates,
@@ -492,6 +496,10 @@ impl PidPid {
 }
 
 impl Controller for PidPid {
+    fn boxed_clone(&self) -> Box<dyn Controller> {
+        Box::new(self.clone())
+    }
+
     fn step(&mut self, m: &Measurement) -> Command {
         self.est.th.update(m.base_rot_rad);
         self.est.r.update(m.extension_m);
@@ -560,6 +568,7 @@ fn lambda_steps(model: &SimModel) -> usize {
 
 /// `/sjct`: Simplified Joint Computed Torque on θ1 (time-delay estimate of
 /// everything but Ā·θ̈, Ā = m·R), torque to valve by Sohl–Bobrow; PID on R.
+#[derive(Clone)]
 pub struct SjctPid {
     model: SimModel,
     est: Estimates,
@@ -584,6 +593,10 @@ impl SjctPid {
 }
 
 impl Controller for SjctPid {
+    fn boxed_clone(&self) -> Box<dyn Controller> {
+        Box::new(self.clone())
+    }
+
     fn step(&mut self, m: &Measurement) -> Command {
         let md = &self.model;
         let t = md.control.period_s;
@@ -674,6 +687,7 @@ impl TimeDelayEstimate {
 
 /// `/dynInv`: θ1 torque from the full model inertia and Coriolis term
 /// (no disturbance estimate), Sohl–Bobrow to the valve; PID on R.
+#[derive(Clone)]
 pub struct DynInvPid {
     /// The inertia the controller's model gives, identified at mid reach:
     /// (J there, R there).
@@ -710,6 +724,10 @@ impl DynInvPid {
 }
 
 impl Controller for DynInvPid {
+    fn boxed_clone(&self) -> Box<dyn Controller> {
+        Box::new(self.clone())
+    }
+
     fn step(&mut self, m: &Measurement) -> Command {
         let md = &self.model;
         let t = md.control.period_s;
@@ -747,6 +765,7 @@ impl Controller for DynInvPid {
 /// joint accelerations through J⁻¹, constant inertia Ā (the model's A at
 /// a third of the stroke: "only the bounds of the inertia matrix"),
 /// time-delay estimate of the rest, Sohl–Bobrow on both actuators.
+#[derive(Clone)]
 pub struct Scct {
     model: SimModel,
     est: Estimates,
@@ -785,6 +804,10 @@ impl Scct {
 }
 
 impl Controller for Scct {
+    fn boxed_clone(&self) -> Box<dyn Controller> {
+        Box::new(self.clone())
+    }
+
     fn step(&mut self, m: &Measurement) -> Command {
         let md = &self.model;
         let t = md.control.period_s;

@@ -37,6 +37,7 @@ mod tally;
 pub use control::{Command, Controller, ControllerKind, Measurement, Reference};
 pub use model::SimModel;
 pub use report::{Report, TraceRow};
+pub use run::Checkpoints;
 
 use basr_job::Job;
 
@@ -61,6 +62,12 @@ pub struct Options {
     pub keep_trace: bool,
     /// Override the model's RK4 sub-steps per control period (convergence checks).
     pub substeps: Option<u32>,
+    /// End the run at the first painting tick whose nozzle error is over
+    /// this (m): a caller that only asks whether a run stays within it
+    /// (compile's verification) learns the answer and where it first
+    /// failed without simulating the rest. The report then covers the run
+    /// up to that tick (`Report::cut_short_at_s`).
+    pub stop_over_m: Option<f64>,
 }
 
 impl Default for Options {
@@ -70,6 +77,7 @@ impl Default for Options {
             tolerance_m: 6.35e-3, // SPEC §4: 1/4 in
             keep_trace: false,
             substeps: None,
+            stop_over_m: None,
         }
     }
 }
@@ -153,6 +161,20 @@ pub fn simulate(
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
     simulate_plant(job, model, model, opts, progress)
+}
+
+/// [`simulate`], resumed where `resume` allows: the checkpoints a run of
+/// the same `model` and `opts` kept, and the first row at which `job`'s
+/// rows differ from that run's job (the rows before it the same, bit for
+/// bit: the caller's promise). The report is the one [`simulate`] gives;
+/// the run keeps its own checkpoints for the next.
+pub fn simulate_resumable(
+    job: &Job,
+    model: &SimModel,
+    opts: &Options,
+    resume: Option<(Checkpoints, usize)>,
+) -> Result<(Outcome, Checkpoints), SimError> {
+    run::run_resumable(job, model, model, opts, &[], &mut |_, _| {}, resume, true)
 }
 
 /// [`simulate`] with hardware faults injected (`--fault`): the report's

@@ -197,6 +197,11 @@ pub struct Report {
     /// happened, when and where, and how the arm came to rest.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub safety: Option<super::safety::SafetyReport>,
+    /// With `Options::stop_over_m`: the time the run ended at, its error
+    /// first over that bound while painting (its figures are the run's up
+    /// to there; the error would have grown on).
+    #[serde(skip)]
+    pub cut_short_at_s: Option<f64>,
 }
 
 /// What a report's verdict is judged on: `"nominal"` or `"plants_p95"` in

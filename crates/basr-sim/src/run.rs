@@ -9,7 +9,7 @@
 //! - [`Tally::observe`] (in `tally`): one tick's [`Tick`] → the running figures;
 //! - [`Tally::report`]: the figures → the `Report`.
 
-use super::control::{Command, Measurement, Reference};
+use super::control::{Command, Controller, Measurement, Reference};
 use super::fault::{self, Active, Fault};
 use super::model::{ServoAxis, SimModel};
 use super::plant::{self, Inputs, State};
@@ -180,6 +180,7 @@ impl Setup<'_> {
 }
 
 /// The plant: arm and hydraulics, and the end-effector's servo axes.
+#[derive(Clone)]
 pub(super) struct Arm {
     pub(super) state: State,
     pub(super) yaw: ee::Servo,
@@ -251,6 +252,61 @@ impl Arm {
     }
 }
 
+/// Simulated time between checkpoints of a resumable run (s). assumed: a
+/// resumed run repeats at most this much of what it already knew, and a
+/// station of STOP (144 s) keeps 29 copies of the run's state.
+const CHECKPOINT_S: f64 = 5.0;
+
+/// A run's state at points along it, kept so that a run of the same job
+/// whose rows changed only from some row on resumes at the last point
+/// before that row instead of from the start: compile re-times one join
+/// or one move at a time, and the rows before it do not change. The
+/// resumed run's report is the one a whole run gives, bit for bit (the
+/// rows before the change are the same, and so is every tick that reads
+/// only them).
+pub struct Checkpoints {
+    /// The control period and the job's row period they were taken at.
+    period: f64,
+    dt_job: f64,
+    marks: Vec<Mark>,
+}
+
+/// The run's whole state before one tick.
+struct Mark {
+    tick: u64,
+    arm: Arm,
+    ctrl: Box<dyn Controller>,
+    tally: Tally,
+    monitor: safety::Monitor,
+}
+
+impl Mark {
+    fn copy(&self) -> Mark {
+        Mark {
+            tick: self.tick,
+            arm: self.arm.clone(),
+            ctrl: self.ctrl.boxed_clone(),
+            tally: self.tally.clone(),
+            monitor: self.monitor.clone(),
+        }
+    }
+}
+
+impl Checkpoints {
+    /// The marks before which no tick read row `first_changed` or later
+    /// (each tick reads the rows from one before to two after its own:
+    /// `reference::curve`), for a run at `period` over rows `dt_job`
+    /// apart; the last of them is where the run resumes.
+    fn usable(mut self, first_changed: usize, period: f64, dt_job: f64) -> Vec<Mark> {
+        if self.period != period || self.dt_job != dt_job {
+            return vec![];
+        }
+        self.marks
+            .retain(|m| m.tick as f64 * period / dt_job + 3.0 <= first_changed as f64);
+        self.marks
+    }
+}
+
 /// The run: prepare, then tick (measure, control, monitor, tally, advance)
 /// until the job ends, the loop diverges or the stopped arm is at rest.
 pub(super) fn run(
@@ -261,19 +317,64 @@ pub(super) fn run(
     faults: &[Fault],
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
+    run_resumable(job, nominal, model, opts, faults, progress, None, false).map(|(o, _)| o)
+}
+
+/// [`run`], resumed from `resume` (the checkpoints of a run of the same
+/// models and options, and the first row at which this job's rows differ
+/// from that run's), keeping checkpoints of its own when `keep` (else
+/// none but those it resumed from).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn run_resumable(
+    job: &Job,
+    nominal: &SimModel,
+    model: &SimModel,
+    opts: &Options,
+    faults: &[Fault],
+    progress: &mut dyn FnMut(u64, u64),
+    resume: Option<(Checkpoints, usize)>,
+    keep: bool,
+) -> Result<(Outcome, Checkpoints), SimError> {
     let setup = prepare(job, nominal, model, opts, faults)?;
     let (s, period, ticks) = (setup.samples, setup.period, setup.ticks);
-    let mut arm = Arm::at_rest(&setup);
-    let m0 = setup.measure(
-        &arm.state,
-        0.0,
-        setup.references(0.0).arm,
-        &setup.active(0.0),
-    );
-    let mut ctrl = opts.controller.build(setup.nominal, &m0);
-    let mut tally = Tally::new();
-    let mut monitor = safety::Monitor::new(model, faults);
-    for k in 0..ticks {
+    let mut marks = resume
+        .map(|(c, row)| c.usable(row, period, setup.dt_job))
+        .unwrap_or_default();
+    marks.retain(|m| m.tick < ticks);
+    let every = ((CHECKPOINT_S / period).round() as u64).max(1);
+    let (start, mut arm, mut ctrl, mut tally, mut monitor) = match marks.last() {
+        Some(m) => {
+            let m = m.copy();
+            (m.tick, m.arm, m.ctrl, m.tally, m.monitor)
+        }
+        None => {
+            let arm = Arm::at_rest(&setup);
+            let m0 = setup.measure(
+                &arm.state,
+                0.0,
+                setup.references(0.0).arm,
+                &setup.active(0.0),
+            );
+            let ctrl = opts.controller.build(setup.nominal, &m0);
+            (
+                0,
+                arm,
+                ctrl,
+                Tally::new(),
+                safety::Monitor::new(model, faults),
+            )
+        }
+    };
+    for k in start..ticks {
+        if keep && k % every == 0 && marks.last().is_none_or(|m| m.tick < k) {
+            marks.push(Mark {
+                tick: k,
+                arm: arm.clone(),
+                ctrl: ctrl.boxed_clone(),
+                tally: tally.clone(),
+                monitor: monitor.clone(),
+            });
+        }
         let t = k as f64 * period;
         let row = setup.row(t);
         let refs = setup.references(t);
@@ -324,6 +425,11 @@ pub(super) fn run(
         if k + 1 == ticks {
             break;
         }
+        let painted = painting && before_stop;
+        if painted && opts.stop_over_m.is_some_and(|b| err > b) {
+            tally.cut_short_at_s = Some(t);
+            break;
+        }
         let inputs = Inputs {
             u_motor: cmd.u_motor,
             u_cyl: cmd.u_cyl,
@@ -345,5 +451,105 @@ pub(super) fn run(
         }
     }
     progress(ticks, ticks);
-    Ok(tally.report(&setup, monitor.finish()))
+    let kept = Checkpoints {
+        period,
+        dt_job: setup.dt_job,
+        marks,
+    };
+    Ok((tally.report(&setup, monitor.finish()), kept))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{simulate, simulate_resumable, synthetic, Options, SimModel};
+
+    /// `letter_job` with its base rotation bumped by `bump` rad over 40
+    /// rows from `at` (a share of its rows) on.
+    fn bumped(at: f64, bump: f64) -> (basr_job::Job, usize) {
+        let mut j = synthetic::letter_job();
+        let n = j.samples.len();
+        let r = (at * n as f64) as usize;
+        for v in &mut j.samples.base_rot_rad[r..(r + 40).min(n)] {
+            *v += bump;
+        }
+        (j, r)
+    }
+
+    #[test]
+    fn a_resumed_run_reports_what_a_whole_run_does() {
+        let model = SimModel::basr();
+        let opts = Options::default();
+        let (first, _) = bumped(0.0, 0.0);
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        assert!(kept.marks.len() > 3, "{} checkpoints", kept.marks.len());
+        let (second, row) = bumped(0.7, 0.004);
+        let whole = simulate(&second, &model, &opts, &mut |_, _| {}).unwrap();
+        let unbumped = simulate(&first, &model, &opts, &mut |_, _| {}).unwrap();
+        assert_ne!(
+            whole.report, unbumped.report,
+            "the bump shows in the report"
+        );
+        let usable = kept.usable(row, model.control.period_s, first.control_period_s);
+        assert!(!usable.is_empty(), "a checkpoint before row {row}");
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        let (resumed, again) =
+            simulate_resumable(&second, &model, &opts, Some((kept, row))).unwrap();
+        assert_eq!(resumed.report, whole.report);
+        // Its own checkpoints resume a third run as well.
+        let (third, row3) = bumped(0.85, -0.003);
+        let whole3 = simulate(&third, &model, &opts, &mut |_, _| {}).unwrap();
+        let (resumed3, _) =
+            simulate_resumable(&third, &model, &opts, Some((again, row3.min(row)))).unwrap();
+        assert_eq!(resumed3.report, whole3.report);
+    }
+
+    #[test]
+    fn checkpoints_of_another_row_period_are_not_used() {
+        let model = SimModel::basr();
+        let opts = Options::default();
+        let (first, _) = bumped(0.0, 0.0);
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        assert!(kept
+            .usable(
+                first.samples.len(),
+                model.control.period_s,
+                first.control_period_s * 2.0
+            )
+            .is_empty());
+    }
+
+    #[test]
+    fn a_run_asked_to_stop_over_a_bound_stops_at_its_first_failure_only() {
+        let model = SimModel::basr();
+        let whole_opts = Options::default();
+        let bound = 0.75 * whole_opts.tolerance_m;
+        let opts = Options {
+            stop_over_m: Some(bound),
+            ..Options::default()
+        };
+        // A job the arm follows runs to its end: the same report.
+        let good = synthetic::letter_job();
+        let whole = simulate(&good, &model, &whole_opts, &mut |_, _| {}).unwrap();
+        assert!(
+            whole.report.max_error_m < bound,
+            "{}",
+            whole.report.max_error_m
+        );
+        let bounded = simulate(&good, &model, &opts, &mut |_, _| {}).unwrap();
+        assert_eq!(bounded.report, whole.report);
+        // A job it cannot follow ends where the error first passes it.
+        let bad = synthetic::step_job();
+        let whole = simulate(&bad, &model, &whole_opts, &mut |_, _| {}).unwrap();
+        let cut = simulate(&bad, &model, &opts, &mut |_, _| {}).unwrap();
+        let at = cut.report.cut_short_at_s.expect("cut short");
+        assert!(cut.report.max_error_m > bound);
+        assert!(cut.report.max_error_m <= whole.report.max_error_m);
+        assert!(
+            (cut.report.worst.t_s - at).abs() < 1e-9,
+            "{} {at}",
+            cut.report.worst.t_s
+        );
+        assert!(at < whole.report.duration_s);
+        assert_eq!(whole.report.cut_short_at_s, None);
+    }
 }

@@ -132,6 +132,7 @@ impl SafetyReport {
 }
 
 /// The monitor's state over a run.
+#[derive(Clone)]
 pub struct Monitor {
     max_step_rot: f64,
     max_step_ext: f64,

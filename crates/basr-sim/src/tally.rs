@@ -12,6 +12,7 @@ use super::run::{Arm, Refs, ServoLimited, Setup};
 use super::{safety, Outcome};
 
 /// Accumulates one limit's violations.
+#[derive(Clone)]
 pub(super) struct LimitTrack {
     kind: &'static str,
     fails: bool,
@@ -83,7 +84,7 @@ impl LimitTrack {
     }
 }
 
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub(super) struct ErrStats {
     pub(super) max: f64,
     sum2: f64,
@@ -186,6 +187,7 @@ pub(super) struct Tick<'a> {
 }
 
 /// The limits a run watches.
+#[derive(Clone)]
 struct Limits {
     window: LimitTrack,
     stroke: LimitTrack,
@@ -303,6 +305,7 @@ impl Limits {
 }
 
 /// What a run accumulates.
+#[derive(Clone)]
 pub(super) struct Tally {
     all: ErrStats,
     paint: ErrStats,
@@ -319,6 +322,9 @@ pub(super) struct Tally {
     trace: Vec<TraceRow>,
     painting_ticks: u64,
     pub(super) diverged: Option<f64>,
+    /// The tick the run ended at, its painting error over
+    /// `Options::stop_over_m`.
+    pub(super) cut_short_at_s: Option<f64>,
 }
 
 impl Tally {
@@ -338,6 +344,7 @@ impl Tally {
             trace: Vec::new(),
             painting_ticks: 0,
             diverged: None,
+            cut_short_at_s: None,
         }
     }
 
@@ -464,6 +471,7 @@ impl Tally {
             saturation: self.sat,
             peak_pressures: self.peaks,
             axis_errors: self.axis,
+            cut_short_at_s: self.cut_short_at_s,
             limits,
             duration_s: setup.duration,
             painting_s: self.painting_ticks as f64 * period,
