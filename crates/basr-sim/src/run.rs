@@ -265,10 +265,41 @@ const CHECKPOINT_S: f64 = 5.0;
 /// rows before the change are the same, and so is every tick that reads
 /// only them).
 pub struct Checkpoints {
-    /// The control period and the job's row period they were taken at.
-    period: f64,
-    dt_job: f64,
+    /// What the run was: its plant and controller's models, options,
+    /// faults and the job's stations and row period. A run of anything
+    /// else does not resume from these.
+    of: RunKey,
     marks: Vec<Mark>,
+}
+
+/// What a run's state depends on besides the job's rows.
+#[derive(Clone, Debug, PartialEq)]
+struct RunKey {
+    nominal: SimModel,
+    model: SimModel,
+    controller: super::ControllerKind,
+    tolerance_m: f64,
+    substeps: u32,
+    stop_over_m: Option<f64>,
+    faults: Vec<Fault>,
+    stations: Vec<basr_job::Station>,
+    dt_job: f64,
+}
+
+impl RunKey {
+    fn of(setup: &Setup, job: &Job) -> RunKey {
+        RunKey {
+            nominal: setup.nominal.clone(),
+            model: setup.model.clone(),
+            controller: setup.opts.controller,
+            tolerance_m: setup.opts.tolerance_m,
+            substeps: setup.substeps,
+            stop_over_m: setup.opts.stop_over_m,
+            faults: setup.faults.to_vec(),
+            stations: job.stations.clone(),
+            dt_job: setup.dt_job,
+        }
+    }
 }
 
 /// The run's whole state before one tick.
@@ -295,12 +326,14 @@ impl Mark {
 impl Checkpoints {
     /// The marks before which no tick read row `first_changed` or later
     /// (each tick reads the rows from one before to two after its own:
-    /// `reference::curve`), for a run at `period` over rows `dt_job`
-    /// apart; the last of them is where the run resumes.
-    fn usable(mut self, first_changed: usize, period: f64, dt_job: f64) -> Vec<Mark> {
-        if self.period != period || self.dt_job != dt_job {
+    /// `reference::curve`), for a run `of` the same models, options,
+    /// faults, stations and row period (none otherwise); the last of them
+    /// is where the run resumes.
+    fn usable(mut self, first_changed: usize, of: &RunKey) -> Vec<Mark> {
+        if self.of != *of {
             return vec![];
         }
+        let (period, dt_job) = (of.model.control.period_s, of.dt_job);
         self.marks
             .retain(|m| m.tick as f64 * period / dt_job + 3.0 <= first_changed as f64);
         self.marks
@@ -337,8 +370,9 @@ pub(super) fn run_resumable(
 ) -> Result<(Outcome, Checkpoints), SimError> {
     let setup = prepare(job, nominal, model, opts, faults)?;
     let (s, period, ticks) = (setup.samples, setup.period, setup.ticks);
+    let key = RunKey::of(&setup, job);
     let mut marks = resume
-        .map(|(c, row)| c.usable(row, period, setup.dt_job))
+        .map(|(c, row)| c.usable(row, &key))
         .unwrap_or_default();
     marks.retain(|m| m.tick < ticks);
     let every = ((CHECKPOINT_S / period).round() as u64).max(1);
@@ -451,11 +485,7 @@ pub(super) fn run_resumable(
         }
     }
     progress(ticks, ticks);
-    let kept = Checkpoints {
-        period,
-        dt_job: setup.dt_job,
-        marks,
-    };
+    let kept = Checkpoints { of: key, marks };
     Ok((tally.report(&setup, monitor.finish()), kept))
 }
 
@@ -489,7 +519,8 @@ mod tests {
             whole.report, unbumped.report,
             "the bump shows in the report"
         );
-        let usable = kept.usable(row, model.control.period_s, first.control_period_s);
+        let key = kept.of.clone();
+        let usable = kept.usable(row, &key);
         assert!(!usable.is_empty(), "a checkpoint before row {row}");
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
         let (resumed, again) =
@@ -504,18 +535,27 @@ mod tests {
     }
 
     #[test]
-    fn checkpoints_of_another_row_period_are_not_used() {
+    fn checkpoints_of_another_run_are_not_used() {
         let model = SimModel::basr();
         let opts = Options::default();
         let (first, _) = bumped(0.0, 0.0);
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
-        assert!(kept
-            .usable(
-                first.samples.len(),
-                model.control.period_s,
-                first.control_period_s * 2.0
-            )
-            .is_empty());
+        let n = first.samples.len();
+        let mut other = kept.of.clone();
+        other.dt_job *= 2.0;
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        assert!(kept.usable(n, &other).is_empty(), "another row period");
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        let mut other = kept.of.clone();
+        other.controller = crate::ControllerKind::Pid;
+        assert!(kept.usable(n, &other).is_empty(), "another controller");
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        let mut other = kept.of.clone();
+        other.stations[0].x_m += 0.01;
+        assert!(kept.usable(n, &other).is_empty(), "another stop");
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        let same = kept.of.clone();
+        assert!(!kept.usable(n, &same).is_empty(), "the same run");
     }
 
     #[test]
