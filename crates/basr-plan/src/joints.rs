@@ -539,6 +539,7 @@ mod tests {
             tilt_rad: tilt,
             width_m: 0.2,
             fan_width_m: 0.2,
+            turn_rad: 0.0,
             swept_width_m: 0.2,
             speed_mps: 0.2,
         }

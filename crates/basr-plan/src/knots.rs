@@ -33,8 +33,14 @@ pub struct Knot {
     pub tilt_rad: f64,
     /// Rung length (the stroke width being painted).
     pub width_m: f64,
-    /// Width the fan actually covers: `width_m`, or more where the height was clamped up to the minimum.
+    /// Length of the fan's footprint on the road: `width_m`, or more where
+    /// the height was clamped up to the minimum.
     pub fan_width_m: f64,
+    /// The fan turned this far off the rung's direction ψ (rad; `yaw_rad`
+    /// includes it): a footprint longer than the rung, turned, covers the
+    /// rung's width across the stroke (`narrow::turn_narrow`). Zero unless
+    /// the height was clamped.
+    pub turn_rad: f64,
     /// Stroke width painted across the direction of travel (m): the stroke
     /// area the rung sweeps per metre of nozzle (tip) travel, over the tiles
     /// on either side, so that speed × swept width = k wherever the fan spans
@@ -47,6 +53,14 @@ pub struct Knot {
     /// between two rungs is crossed in (area the fan sweeps over it) / k
     /// (eq. 2.6 made physical, see [`pace`]).
     pub speed_mps: f64,
+}
+
+impl Knot {
+    /// Width of road across the stroke the fan covers: its footprint's
+    /// length, foreshortened by its turn off the rung.
+    pub fn covered_width_m(&self) -> f64 {
+        self.fan_width_m * self.turn_rad.cos()
+    }
 }
 
 /// A knot whose nozzle height was raised to the vertical joint's minimum.
@@ -212,6 +226,7 @@ pub fn knots_within(
             tilt_rad: beta,
             width_m: w,
             fan_width_m: fan_width,
+            turn_rad: 0.0,
             swept_width_m: w,
             speed_mps: law.k_m2ps / fan_width, // 001 eq. 2.6
         });

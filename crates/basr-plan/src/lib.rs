@@ -41,6 +41,7 @@ pub mod inputs;
 pub mod joints;
 pub mod knots;
 pub mod leads;
+pub mod narrow;
 pub mod order;
 pub mod pairing;
 pub mod passes;

@@ -184,19 +184,30 @@ pub fn passes(
                 // Wider footprints sweep more road: re-pace the pass.
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
             }
+            // A fan longer than its rung turned to cover it, then paced
+            // for the road it sweeps turned.
+            if super::narrow::turn_narrow(pass, &mut kp.knots, max_turn, law.k_m2ps) {
+                knots::pace(pass, &mut kp.knots, law.k_m2ps);
+            }
+            // Clamped knots that still paint beside the stroke.
+            let wide = |r: usize| {
+                kp.knots
+                    .get(r)
+                    .is_some_and(|k| k.covered_width_m() > k.width_m * (1.0 + 1e-6))
+            };
             clamped += kp
                 .clamped
                 .iter()
-                .filter(|c| !raised.contains(&c.rung))
+                .filter(|c| !raised.contains(&c.rung) && wide(c.rung))
                 .count()
-                + raised.len();
+                + raised.iter().filter(|&&r| wide(r)).count();
             rung_count += kp.knots.len();
             let (outside, painted) = outside_area(&kp.knots);
             outside_m2 += outside;
             painted_m2 += painted;
             for k in &kp.knots {
                 if k.width_m > 0.0 {
-                    worst = worst.max(k.fan_width_m / k.width_m);
+                    worst = worst.max(k.covered_width_m() / k.width_m);
                 }
             }
             out.passes.push(Pass {
@@ -325,8 +336,8 @@ pub fn outside_area(ks: &[Knot]) -> (f64, f64) {
             0.0
         };
         let ds = 0.5 * (before + after);
-        outside += (k.fan_width_m - k.width_m).max(0.0) * ds;
-        painted += k.fan_width_m.max(k.width_m) * ds;
+        outside += (k.covered_width_m() - k.width_m).max(0.0) * ds;
+        painted += k.covered_width_m().max(k.width_m) * ds;
     }
     (outside, painted)
 }

@@ -283,6 +283,7 @@ mod tests {
             tilt_rad: 0.0,
             width_m: 0.15,
             fan_width_m: 0.15,
+            turn_rad: 0.0,
             swept_width_m: 0.15,
             speed_mps: 0.0,
         };

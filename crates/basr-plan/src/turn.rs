@@ -159,6 +159,7 @@ mod tests {
             tilt_rad: 0.0,
             width_m: 0.1,
             fan_width_m: 0.1,
+            turn_rad: 0.0,
             swept_width_m: 0.1,
             speed_mps: 0.2,
         }
