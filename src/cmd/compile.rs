@@ -33,6 +33,12 @@ pub enum TiltArg {
 /// as `basr preview` measures it (summary.film): a film that fails the
 /// preview's bounds (cv <= 0.05, coverage >= 0.98, overspray <= 0.03) is a
 /// problem and the verdict reads NOT READY.
+///
+/// When a word marking (a message or a file of lines) is NOT READY, compile
+/// then compiles the letter heights around it, a quarter foot apart, up to
+/// 2 ft each way and not below MUTCD's 6 ft (4.5 ft with --low-speed), and
+/// names the nearest each way that paints READY ("sizes:", and `sizes` in
+/// --json). That takes a few seconds more.
 #[derive(clap::Args)]
 #[command(after_help = "\
 Examples:
@@ -566,6 +572,23 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     )?;
     let s = &job.summary;
     let verdict = verdict_of(&job);
+    // A word marking that does not paint READY: the nearest sizes that do.
+    let sizes =
+        (verdict == "not ready" && shape.is_none() && super::sizes::applies(&req)).then(|| {
+            let floor = basr::layout::rules::MIN_LETTER_HEIGHT_M
+                * if args.low_speed {
+                    basr::layout::rules::LOW_SPEED_FACTOR
+                } else {
+                    1.0
+                };
+            let spin = super::spinner(
+                !global.quiet && !args.json,
+                "NOT READY: searching the letter heights near it for ones that paint",
+            );
+            let advice = super::sizes::nearest_ready(&req, job.layout.letter_height_m, floor);
+            spin.finish_and_clear();
+            advice
+        });
     if args.json {
         let v = serde_json::json!({
             "job": out.display().to_string(),
@@ -579,12 +602,20 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "summary": s,
             "sha256": job.sha256,
             "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
+            "sizes": sizes.as_ref().map(|a| serde_json::json!({
+                "asked_m": a.asked_m,
+                "nearest_ready_smaller_m": a.smaller_m,
+                "nearest_ready_larger_m": a.larger_m,
+                "searched_m": a.searched_m,
+            })),
         });
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
     if !global.quiet {
         // Printed once every output is in place.
-        super::outputs::after_commit(summary_text(&job, &out, &args).join("\n"));
+        let mut text = summary_text(&job, &out, &args);
+        text.extend(sizes.as_ref().map(|a| a.line(units_of(&args))));
+        super::outputs::after_commit(text.join("\n"));
     }
     // NOT READY is a negative verdict (exit 1): a script that compiles and
     // loads must not take it for a job to paint. The job is written all

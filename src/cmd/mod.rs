@@ -17,6 +17,7 @@ pub mod replan;
 pub mod report;
 pub mod robot;
 pub mod simulate;
+pub mod sizes;
 pub mod symbols;
 pub mod workspace;
 pub mod workspace_kinds;

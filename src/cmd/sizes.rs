@@ -1,0 +1,106 @@
+//! Honest size advice for a NOT READY word marking: compile searches the
+//! letter heights near the one asked for and names the nearest each way
+//! that paints READY (or READY WITH NOTES), instead of guessing which way
+//! a change helps (above 8 ft larger letters paint worse, below it smaller
+//! ones do).
+
+use basr::pipeline::compile::{compile_job, CompileRequest, Source};
+use basr::units::System;
+use rayon::prelude::*;
+
+/// Step between the heights tried (m): a quarter foot, the finest step a
+/// stencil set or an agency's drawing gives letters in. source: MUTCD
+/// word letters are specified in feet (§3B.20); 0.25 ft = 76.2 mm.
+const STEP_M: f64 = 0.0762;
+
+/// Heights tried each way: 8 steps, 2 ft, the span between MUTCD's
+/// minimum (6 ft) and the seed's size (8 ft).
+const STEPS: usize = 8;
+
+/// The nearest letter heights that paint READY, each way from the one
+/// asked for, within what was searched.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SizeAdvice {
+    pub asked_m: f64,
+    pub smaller_m: Option<f64>,
+    pub larger_m: Option<f64>,
+    /// The heights searched: from the smallest to the largest tried.
+    pub searched_m: [f64; 2],
+}
+
+impl SizeAdvice {
+    /// One line for the compile summary.
+    pub fn line(&self, units: System) -> String {
+        let h = |m: f64| match units {
+            System::Us => format!("{} ({:.2} m)", units.length(m), m),
+            System::Metric => format!("{:.2} m ({})", m, System::Us.length(m)),
+        };
+        let [lo, hi] = self.searched_m;
+        let found: Vec<String> = [("smaller", self.smaller_m), ("larger", self.larger_m)]
+            .iter()
+            .filter_map(|(w, m)| m.map(|m| format!("{} ({w})", h(m))))
+            .collect();
+        if found.is_empty() {
+            format!(
+                "  sizes: no letter height from {} to {} paints READY here (this robot, its \
+                 spray tips and this road); the notes above say what fails",
+                h(lo),
+                h(hi)
+            )
+        } else {
+            format!(
+                "  sizes: the nearest letter heights that paint READY are {} (searched {} to {} \
+                 in quarter feet)",
+                found.join(" and "),
+                h(lo),
+                h(hi)
+            )
+        }
+    }
+}
+
+/// Whether size advice applies: a word marking (a message, or a marking
+/// file of lines rather than a scene) at a letter height.
+pub fn applies(req: &CompileRequest) -> bool {
+    match &req.source {
+        Source::Message(m) => !m.trim().is_empty(),
+        Source::Marking { text, .. } => !basr::layout::is_scene(text),
+        Source::Symbol(_) => false,
+    }
+}
+
+/// Search the heights around `asked_m` (not below `floor_m`, the smallest
+/// the agency allows) for the nearest each way whose job is READY or
+/// READY WITH NOTES; the candidates are compiled in parallel, nearest
+/// first, and the search each way stops at the first that paints.
+pub fn nearest_ready(req: &CompileRequest, asked_m: f64, floor_m: f64) -> SizeAdvice {
+    let ready = |h: f64| {
+        let mut r = req.clone();
+        r.overrides.letter_height_m = Some(h);
+        compile_job(&r).is_ok_and(|job| super::compile::verdict_of(&job) != "not ready")
+    };
+    let side = |sign: f64| -> (Option<f64>, f64) {
+        let heights: Vec<f64> = (1..=STEPS)
+            .map(|k| asked_m + sign * k as f64 * STEP_M)
+            .filter(|&h| h >= floor_m * (1.0 - 1e-9))
+            .collect();
+        // Two at a time (the machine's cores), nearest first; the second
+        // height tried (m) is where the search that way ended.
+        for pair in heights.chunks(2) {
+            let ok: Vec<bool> = pair.par_iter().map(|&h| ready(h)).collect();
+            let tried = pair[pair.len() - 1];
+            if let Some(i) = ok.iter().position(|&b| b) {
+                return (Some(pair[i]), tried);
+            }
+        }
+        (None, heights.last().copied().unwrap_or(asked_m))
+    };
+    let (smaller_m, lo) = side(-1.0);
+    let (larger_m, hi) = side(1.0);
+    SizeAdvice {
+        asked_m,
+        smaller_m,
+        larger_m,
+        searched_m: [lo.min(asked_m), hi.max(asked_m)],
+    }
+}
