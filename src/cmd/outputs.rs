@@ -28,11 +28,7 @@ pub fn check(what: &str, path: &Path, exts: &[&str]) -> anyhow::Result<()> {
     let parent = path.parent().filter(|p| !p.as_os_str().is_empty());
     if let Some(dir) = parent {
         if !dir.is_dir() {
-            anyhow::bail!(
-                "{what} {shown}: the folder {} does not exist; create it first or give \
-                 another path",
-                dir.display()
-            );
+            anyhow::bail!("{what} {shown}: {}", basr::io::no_folder(dir));
         }
     }
     if exts.is_empty() {

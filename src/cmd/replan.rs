@@ -89,6 +89,15 @@ fn lone_symbol(job: &Job) -> Option<String> {
     (one && basr::font::Library::embedded().get(name).is_some()).then(|| name.to_string())
 }
 
+/// A road's described surface in words, for messages.
+fn road_words(r: &basr::job::Road) -> String {
+    match (r.cross_slope, r.crown_x_m) {
+        (0.0, None) => "flat".to_string(),
+        (s, None) => format!("cross_slope_pct = {:.2}", s * 100.0),
+        (s, Some(c)) => format!("cross_slope_pct = {:.2}, crown_x_m = {c}", s * 100.0),
+    }
+}
+
 /// Find what `job` was compiled from and check that it lays out as the job
 /// did. `marking` is the `--marking` file (a scene, or a `lines` file);
 /// `by` names the command re-planning in messages (`--compare`, `fit`).
@@ -145,10 +154,26 @@ pub fn recover(
         req.period_s = job.control_period_s;
         let req = req.with_options(job.layout.options.as_ref());
         let inputs = basr::plan::inputs::read(&req).map_err(|e| anyhow::anyhow!("{e}"))?;
-        let (_, strokes) = basr::pipeline::placed::lay_out(&req, &inputs.font)
+        let (laid, strokes) = basr::pipeline::placed::lay_out(&req, &inputs.font)
             .map_err(|e| anyhow::anyhow!("{by}: {e}"))?;
         match first_difference(&job.layout.glyphs, &strokes.outlines()) {
-            None => return Ok(Replan { req }),
+            None => {
+                // The job plans on the road it was compiled on; a marking
+                // file describing another is not the file it came from.
+                // (Without --marking the job's own road is used.)
+                let (file, planned) = (&laid.road, &job.road);
+                let differs =
+                    (file.cross_slope, file.crown_x_m) != (planned.cross_slope, planned.crown_x_m);
+                if marking.is_some() && differs {
+                    anyhow::bail!(
+                        "{origin}: {by}: the marking file's [road] ({}) is not the road the job \
+                         was compiled on ({}); pass the file the job was compiled from",
+                        road_words(file),
+                        road_words(planned)
+                    );
+                }
+                return Ok(Replan { req });
+            }
             Some(d) => differs = d,
         }
     }

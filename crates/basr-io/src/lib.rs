@@ -156,6 +156,33 @@ pub enum WriteError {
     Unwritable { path: PathBuf, why: String },
 }
 
+/// Why `folder` (which does not exist) cannot take an output, in words: a
+/// file where one of its folders should be (`-o notes.txt/x.csv`) is named
+/// as such, since "does not exist" would send the user to make a folder
+/// that cannot be made there.
+pub fn no_folder(folder: &Path) -> String {
+    let file = folder
+        .ancestors()
+        .find(|a| !a.as_os_str().is_empty() && a.exists())
+        .filter(|a| !a.is_dir());
+    match file {
+        Some(f) if f == folder => format!(
+            "{} is a file, not a folder; give a path in an existing folder",
+            f.display()
+        ),
+        Some(f) => format!(
+            "{} is a file, not a folder, so the folder {} cannot be made; give a path in an \
+             existing folder",
+            f.display(),
+            folder.display()
+        ),
+        None => format!(
+            "the folder {} does not exist; create it first or give another path",
+            folder.display()
+        ),
+    }
+}
+
 /// Check before the work starts that `path` can be written as an output:
 /// not a folder, in a folder that exists and takes new files (tried with a
 /// temporary that is removed at once). A device or FIFO is written in place
@@ -186,12 +213,7 @@ pub fn check_writable(path: &Path) -> Result<(), WriteError> {
                 folder.display()
             )))
         }
-        Err(_) => {
-            return Err(bad(format!(
-                "the folder {} does not exist; create it first or give another path",
-                folder.display()
-            )))
-        }
+        Err(_) => return Err(bad(no_folder(folder))),
     }
     // Held while the probe exists: an interrupt waits until it is gone.
     let _out = outputs();
@@ -869,6 +891,17 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("does not exist"), "{e}");
+        // A file where a folder should be is named as a file.
+        std::fs::write(d.join("notes.txt"), "x").unwrap();
+        let e = check_writable(&d.join("notes.txt").join("x.csv"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is not a folder"), "{e}");
+        let e = check_writable(&d.join("notes.txt").join("sub").join("x.csv"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("notes.txt is a file, not a folder"), "{e}");
+        std::fs::remove_file(d.join("notes.txt")).unwrap();
         assert_eq!(
             std::fs::read_dir(d).unwrap().count(),
             0,
