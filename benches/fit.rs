@@ -14,18 +14,10 @@ use basr::plan::fit::{fit, Measured};
 use basr::plan::site::Site;
 use criterion::{criterion_group, criterion_main, Criterion};
 
-/// A deterministic ±1 noise source (a 64-bit LCG; Knuth's MMIX constants).
-struct Noise(u64);
+#[path = "../tests/common/noise.rs"]
+mod noise;
 
-impl Noise {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-}
+use noise::Noise;
 
 fn bench(c: &mut Criterion) {
     let job = compile_job(&CompileRequest::message("STOP")).expect("STOP compiles");

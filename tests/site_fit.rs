@@ -13,18 +13,7 @@ use std::path::Path;
 use basr::job::{Job, Road, Station, StopPlane};
 use common::{basr, stderr, succeeded};
 
-/// A deterministic ±1 noise source (a 64-bit LCG; Knuth's MMIX constants).
-struct Noise(u64);
-
-impl Noise {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-}
+use common::noise::Noise;
 
 /// Where the truck really stood and the road the arm saw there: a plane
 /// in the arm's base frame.

@@ -3,6 +3,8 @@
 //! `mod common;` (not every file uses every helper).
 #![allow(dead_code)]
 
+pub mod noise;
+
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
