@@ -35,10 +35,11 @@ pub enum TiltArg {
 /// problem and the verdict reads NOT READY.
 ///
 /// When a word marking (a message or a file of lines) is NOT READY, compile
-/// then compiles the letter heights around it, a quarter foot apart, up to
-/// 2 ft each way and not below MUTCD's 6 ft (4.5 ft with --low-speed), and
-/// names the nearest each way that paints READY ("sizes:", and `sizes` in
-/// --json). That takes a few seconds more.
+/// then compiles the quarter-foot letter heights around it, up to 2 ft each
+/// way and not below MUTCD's 6 ft (4.5 ft with --low-speed), and names the
+/// nearest each way that paints READY or READY WITH NOTES ("sizes:", and
+/// `sizes` in --json). That takes a few seconds more (up to half a minute
+/// for a long message).
 #[derive(clap::Args)]
 #[command(after_help = "\
 Examples:
@@ -602,19 +603,23 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "summary": s,
             "sha256": job.sha256,
             "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
-            "sizes": sizes.as_ref().map(|a| serde_json::json!({
-                "asked_m": a.asked_m,
-                "nearest_ready_smaller_m": a.smaller_m,
-                "nearest_ready_larger_m": a.larger_m,
-                "searched_m": a.searched_m,
-            })),
+            "sizes": sizes.as_ref().map(|a| {
+                // To the micrometre: 6 ft is 1.8288 m, not 1.8288000000000002.
+                let um = |m: f64| (m * 1e6).round() / 1e6;
+                serde_json::json!({
+                    "asked_m": um(a.asked_m),
+                    "nearest_ready_smaller_m": a.smaller_m.map(um),
+                    "nearest_ready_larger_m": a.larger_m.map(um),
+                    "searched_m": a.searched_m.map(um),
+                })
+            }),
         });
         basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     }
     if !global.quiet {
         // Printed once every output is in place.
         let mut text = summary_text(&job, &out, &args);
-        text.extend(sizes.as_ref().map(|a| a.line(units_of(&args))));
+        text.extend(sizes.as_ref().map(super::sizes::SizeAdvice::line));
         super::outputs::after_commit(text.join("\n"));
     }
     // NOT READY is a negative verdict (exit 1): a script that compiles and

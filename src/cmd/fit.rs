@@ -447,25 +447,34 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     }
     if !global.quiet {
         // As the job sheet says a stop: from the anchor, turned from the lane.
-        let turned = |h: f64| (h + std::f64::consts::FRAC_PI_2).to_degrees() + 0.0;
+        // A value that rounds to zero at the printed places is printed as
+        // 0, not -0.000.
+        let at = |v: f64, places: i32| {
+            if v.abs() < 0.5 * 10f64.powi(-places) {
+                0.0
+            } else {
+                v
+            }
+        };
+        let turned = |h: f64| at((h + std::f64::consts::FRAC_PI_2).to_degrees(), 2);
         note!(
             "stop {}: the truck's axis is at x {:.3} m, y {:.3} m, turned {:+.2}° from the lane \
              direction (planned x {:.3} m, y {:.3} m, turned {:+.2}°)",
             si + 1,
-            st.x_m + 0.0,
-            st.y_m + 0.0,
+            at(st.x_m, 3),
+            at(st.y_m, 3),
             turned(st.heading_rad),
-            planned_st.x_m + 0.0,
-            planned_st.y_m + 0.0,
+            at(planned_st.x_m, 3),
+            at(planned_st.y_m, 3),
             turned(planned_st.heading_rad)
         );
         match &fitted.plane {
             Some(p) => note!(
                 "road under the stop: a plane sloped {:.2} % along the arm's x and {:.2} % along \
                  its y, {:+.1} mm at its axis",
-                p.dz_dx * 100.0 + 0.0,
-                p.dz_dy * 100.0 + 0.0,
-                p.z_m * 1e3 + 0.0
+                at(p.dz_dx * 100.0, 2),
+                at(p.dz_dy * 100.0, 2),
+                at(p.z_m * 1e3, 1)
             ),
             None => note!(
                 "road under the stop: as the job describes it (the points span no plane: give \

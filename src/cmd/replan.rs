@@ -89,12 +89,18 @@ fn lone_symbol(job: &Job) -> Option<String> {
     (one && basr::font::Library::embedded().get(name).is_some()).then(|| name.to_string())
 }
 
+/// A slope (m/m) in percent as the file gives it, to a millionth (2.004,
+/// not 2.00, where that is what differs).
+fn percent(s: f64) -> f64 {
+    (s * 100.0 * 1e6).round() / 1e6
+}
+
 /// A road's described surface in words, for messages.
 fn road_words(r: &basr::job::Road) -> String {
     match (r.cross_slope, r.crown_x_m) {
         (0.0, None) => "flat".to_string(),
-        (s, None) => format!("cross_slope_pct = {:.2}", s * 100.0),
-        (s, Some(c)) => format!("cross_slope_pct = {:.2}, crown_x_m = {c}", s * 100.0),
+        (s, None) => format!("cross_slope_pct = {}", percent(s)),
+        (s, Some(c)) => format!("cross_slope_pct = {}, crown_x_m = {c}", percent(s)),
     }
 }
 

@@ -5,7 +5,6 @@
 //! ones do).
 
 use basr::pipeline::compile::{compile_job, CompileRequest, Source};
-use basr::units::System;
 use rayon::prelude::*;
 
 /// Step between the heights tried (m): a quarter foot, the finest step a
@@ -29,29 +28,30 @@ pub struct SizeAdvice {
 }
 
 impl SizeAdvice {
-    /// One line for the compile summary.
-    pub fn line(&self, units: System) -> String {
-        let h = |m: f64| match units {
-            System::Us => format!("{} ({:.2} m)", units.length(m), m),
-            System::Metric => format!("{:.2} m ({})", m, System::Us.length(m)),
+    /// One line for the compile summary; each height as `--letter-height`
+    /// takes it (`7.5ft`) and in metres.
+    pub fn line(&self) -> String {
+        let h = |m: f64| {
+            let ft = (m / 0.3048 * 100.0).round() / 100.0;
+            format!("{ft}ft ({m:.2} m)")
         };
         let [lo, hi] = self.searched_m;
         let found: Vec<String> = [("smaller", self.smaller_m), ("larger", self.larger_m)]
             .iter()
-            .filter_map(|(w, m)| m.map(|m| format!("{} ({w})", h(m))))
+            .filter_map(|(w, m)| m.map(|m| format!("{} {w}", h(m))))
             .collect();
         if found.is_empty() {
             format!(
-                "  sizes: no letter height from {} to {} paints READY here (this robot, its \
-                 spray tips and this road); the notes above say what fails",
+                "  sizes: no letter height from {} to {} paints READY or READY WITH NOTES here \
+                 (this robot, its spray tips and this road); the notes above say what fails",
                 h(lo),
                 h(hi)
             )
         } else {
             format!(
-                "  sizes: the nearest letter heights that paint READY are {} (searched {} to {} \
-                 in quarter feet)",
-                found.join(" and "),
+                "  sizes: the nearest letter heights that paint READY or READY WITH NOTES: {} \
+                 (--letter-height; searched {} to {} in quarter feet)",
+                found.join(", "),
                 h(lo),
                 h(hi)
             )
@@ -79,9 +79,17 @@ pub fn nearest_ready(req: &CompileRequest, asked_m: f64, floor_m: f64) -> SizeAd
         r.overrides.letter_height_m = Some(h);
         compile_job(&r).is_ok_and(|job| super::compile::verdict_of(&job) != "not ready")
     };
+    // The quarter feet either side of the asked height (never the asked
+    // one), nearest first: sizes a crew can type as they are printed.
+    let at = asked_m / STEP_M;
     let side = |sign: f64| -> (Option<f64>, f64) {
-        let heights: Vec<f64> = (1..=STEPS)
-            .map(|k| asked_m + sign * k as f64 * STEP_M)
+        let first = if sign > 0.0 {
+            (at + 1e-6).floor() + 1.0
+        } else {
+            (at - 1e-6).ceil() - 1.0
+        };
+        let heights: Vec<f64> = (0..STEPS)
+            .map(|k| (first + sign * k as f64) * STEP_M)
             .filter(|&h| h >= floor_m * (1.0 - 1e-9))
             .collect();
         // Two at a time (the machine's cores), nearest first; the second
