@@ -421,9 +421,8 @@ fn verify_station(
 
 /// The station's pace after `verdict` (a failed one): slow where the arm
 /// fell behind: the move out of stow when the worst error is on the
-/// station's first stroke; else the joins into the strokes alone where the
-/// arm arrives behind at their first rungs (every such stroke at once);
-/// else the strokes' path. `rows`: the station's rows in `samples`.
+/// station's first stroke; else the join into the worst stroke alone where
+/// the arm arrives behind at its first rungs; else the strokes' path. `rows`: the station's rows in `samples`.
 fn slower(
     pace: &trajectory::Pace,
     verdict: &verify::Verdict,
@@ -442,33 +441,22 @@ fn slower(
     };
     let after_stow = first_of(si, stroke) && pace.air > MIN_PACE;
     let mut joins_slowed = false;
-    if !after_stow {
-        // The worst stroke first; others over the bound only if far
-        // over it (the hydraulic supply couples them: slowing one often
-        // brings the others in).
-        let far = FAR_OVER * verify::VERIFY_SHARE * crate::sim::Options::default().tolerance_m;
-        let worst = (si, stroke, verdict.worst_t_s);
-        let others = verdict.failing.iter().filter(|f| f.stroke != stroke);
-        let others = others.filter(|f| f.error_m > far);
-        for (fs, fstroke, ft) in
-            std::iter::once(worst).chain(others.map(|f| (f.station, f.stroke, f.t_s)))
-        {
-            let arrival = !first_of(fs, fstroke)
-                && paint_start(samples, rows.clone(), fstroke)
-                    .is_some_and(|t0| ft - t0 < ARRIVAL_S);
-            if !arrival {
-                continue;
+    // The join into the worst stroke, where the arm arrives behind at its
+    // first rungs (a verification run ends at its first failure, so the
+    // worst is that one; a later stroke's is seen once it is fixed).
+    let arrival = !after_stow
+        && !first_of(si, stroke)
+        && paint_start(samples, rows, stroke).is_some_and(|t0| verdict.worst_t_s - t0 < ARRIVAL_S);
+    if arrival {
+        match pace.joins.iter().position(|(s, _)| *s as i64 == stroke) {
+            Some(k) if pace.joins[k].1 > MIN_PACE => {
+                pace.joins[k].1 *= PACE_STEP;
+                joins_slowed = true;
             }
-            match pace.joins.iter().position(|(s, _)| *s as i64 == fstroke) {
-                Some(k) if pace.joins[k].1 > MIN_PACE => {
-                    pace.joins[k].1 *= PACE_STEP;
-                    joins_slowed = true;
-                }
-                Some(_) => {}
-                None => {
-                    pace.joins.push((fstroke as usize, PACE_STEP));
-                    joins_slowed = true;
-                }
+            Some(_) => {}
+            None => {
+                pace.joins.push((stroke as usize, PACE_STEP));
+                joins_slowed = true;
             }
         }
     }
@@ -518,11 +506,6 @@ fn paint_start(s: &crate::job::Samples, rows: std::ops::Range<usize>, stroke: i6
 /// it (s). assumed: about the hydraulic arm's settling after a fast join
 /// (the verified errors sit within 0.1 s of the first rung).
 const ARRIVAL_S: f64 = 1.0;
-
-/// A stroke's error this many times the verified bound has its join slowed
-/// in the same round as the worst. assumed: 1.3, where one round of the
-/// worst's alone has not brought STOP's or SCHOOL's others in.
-const FAR_OVER: f64 = 1.3;
 
 /// Each re-timing uses this share of the last one's accelerations.
 /// assumed: a few steps reach `MIN_PACE` while each still gains.

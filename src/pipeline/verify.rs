@@ -23,23 +23,9 @@ pub struct Verdict {
     pub why: String,
     /// Station and stroke of the worst error (stroke −1 in an air move).
     pub worst: (u32, i64),
-    /// Job time of the worst error (s).
+    /// Job time of the worst error (s): where the run first went over the
+    /// bound, for a run ended there.
     pub worst_t_s: f64,
-    /// Every stroke whose error is over the bound.
-    pub failing: Vec<Failing>,
-}
-
-/// A stroke whose simulated error is over the verify bound.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Failing {
-    /// Station the stroke is painted from.
-    pub station: u32,
-    /// The stroke (a job's `samples.stroke`).
-    pub stroke: i64,
-    /// Job time of the stroke's worst error (s).
-    pub t_s: f64,
-    /// The stroke's largest error (m).
-    pub error_m: f64,
 }
 
 /// Simulate `job` with the default options and judge it.
@@ -95,48 +81,32 @@ pub fn simulated_resuming(
         .map_err(|e| CompileError::Verify(e.to_string()))?;
     let mut r = outcome.report;
     r.worst.t_s += t0_s;
-    for s in &mut r.strokes {
-        s.worst.t_s += t0_s;
-    }
     let broken: Vec<&str> = r
         .limits
         .iter()
         .filter(|l| l.fails)
         .map(|l| l.message.as_str())
         .collect();
-    let bound = VERIFY_SHARE * opts.tolerance_m;
-    let failing = r
-        .strokes
-        .iter()
-        .filter(|s| s.stroke >= 0 && s.max_error_m > bound)
-        .map(|s| Failing {
-            station: s.worst.station,
-            stroke: s.stroke,
-            t_s: s.worst.t_s,
-            error_m: s.max_error_m,
-        })
-        .collect();
-    let mut verdict = judge(r.max_error_m, &r.worst, &broken, opts.tolerance_m, failing);
-    if r.cut_short_at_s.is_some() {
-        // The run ended where the error first passed the bound: say so.
-        verdict.why = verdict.why.replacen(
-            "the simulated nozzle strays",
-            "the simulated nozzle strays at least",
-            1,
-        );
-    }
+    // A run ended where its error first passed the bound says "at least".
+    let verdict = judge(
+        r.max_error_m,
+        &r.worst,
+        &broken,
+        opts.tolerance_m,
+        r.cut_short_at_s.is_some(),
+    );
     Ok((verdict, Some(kept)))
 }
 
 /// The verdict on a simulated job: its painting error within
-/// `VERIFY_SHARE` of `tolerance_m` and no limit `broken`; `failing` lists
-/// the strokes over that bound (see [`Verdict::failing`]).
+/// `VERIFY_SHARE` of `tolerance_m` and no limit `broken`; `cut_short`: the
+/// run ended at its first error over the bound, so the error is a least.
 fn judge(
     max_error_m: f64,
     worst: &sim::report::Place,
     broken: &[impl AsRef<str>],
     tolerance_m: f64,
-    failing: Vec<Failing>,
+    cut_short: bool,
 ) -> Verdict {
     let bound = VERIFY_SHARE * tolerance_m;
     let ok = max_error_m <= bound && broken.is_empty();
@@ -144,8 +114,9 @@ fn judge(
         String::new()
     } else {
         let mut w = format!(
-            "the simulated nozzle strays {:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
+            "the simulated nozzle strays {}{:.2} mm while painting (at most {:.2} mm = {VERIFY_SHARE} \
              × the {:.2} mm tolerance) at {}",
+            if cut_short { "at least " } else { "" },
             max_error_m * 1e3,
             bound * 1e3,
             tolerance_m * 1e3,
@@ -163,7 +134,6 @@ fn judge(
         why,
         worst: (worst.station, worst.stroke),
         worst_t_s: worst.t_s,
-        failing,
     }
 }
 
@@ -180,6 +150,6 @@ fn verify_servo(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
         &r.worst,
         &r.broken_limits(),
         tolerance,
-        vec![],
+        false,
     ))
 }
