@@ -186,7 +186,7 @@ pub fn simulate_faulted(
     faults: &[fault::Fault],
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
-    run::run(job, model, model, opts, faults, progress)
+    run::run_resumable(job, model, model, opts, faults, progress, None, false).map(|(o, _)| o)
 }
 
 /// [`simulate`] with the controller built for the `nominal` model (the
@@ -198,5 +198,5 @@ pub fn simulate_plant(
     opts: &Options,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
-    run::run(job, nominal, model, opts, &[], progress)
+    run::run_resumable(job, nominal, model, opts, &[], progress, None, false).map(|(o, _)| o)
 }

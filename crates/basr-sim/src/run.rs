@@ -341,22 +341,11 @@ impl Checkpoints {
 }
 
 /// The run: prepare, then tick (measure, control, monitor, tally, advance)
-/// until the job ends, the loop diverges or the stopped arm is at rest.
-pub(super) fn run(
-    job: &Job,
-    nominal: &SimModel,
-    model: &SimModel,
-    opts: &Options,
-    faults: &[Fault],
-    progress: &mut dyn FnMut(u64, u64),
-) -> Result<Outcome, SimError> {
-    run_resumable(job, nominal, model, opts, faults, progress, None, false).map(|(o, _)| o)
-}
-
-/// [`run`], resumed from `resume` (the checkpoints of a run of the same
-/// models and options, and the first row at which this job's rows differ
-/// from that run's), keeping checkpoints of its own when `keep` (else
-/// none but those it resumed from).
+/// until the job ends, the loop diverges or the stopped arm is at rest;
+/// resumed from `resume` (the checkpoints of a run of the same models and
+/// options, and the first row at which this job's rows differ from that
+/// run's), keeping checkpoints of its own when `keep` (else none but those
+/// it resumed from).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn run_resumable(
     job: &Job,
