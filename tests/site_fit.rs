@@ -111,6 +111,22 @@ fn run_from_truth(fitted: &Job, stop: usize, truth: &Truth) -> (f64, f64) {
     (off, dh)
 }
 
+/// Writes `points` as p.toml and runs `basr fit j.job.json --points
+/// p.toml -o f.job.json` with `extra` arguments.
+fn fit(dir: &Path, points: &str, extra: &[&str]) -> std::process::Output {
+    std::fs::write(dir.join("p.toml"), points).unwrap();
+    let mut args = vec![
+        "fit",
+        "j.job.json",
+        "--points",
+        "p.toml",
+        "-o",
+        "f.job.json",
+    ];
+    args.extend(extra);
+    basr(dir, &args)
+}
+
 /// Compile, fit from the truth, and check every acceptance point.
 fn fit_case(
     dir: &Path,
@@ -122,23 +138,12 @@ fn fit_case(
     succeeded(basr(dir, compile));
     let job = Job::read(&dir.join("j.job.json")).unwrap();
     let truth = truth_of(&job);
-    std::fs::write(
-        dir.join("p.toml"),
-        points_file(&job, stop, &truth, 0.002, 7),
-    )
-    .unwrap();
-    let mut args = vec![
-        "fit",
-        "j.job.json",
-        "--points",
-        "p.toml",
-        "-o",
-        "f.job.json",
-    ];
-    if let Some(m) = marking {
-        args.extend(["--marking", m]);
-    }
-    succeeded(basr(dir, &args));
+    let extra = match marking {
+        Some(m) => vec!["--marking", m],
+        None => vec![],
+    };
+    let points = points_file(&job, stop, &truth, 0.002, 7);
+    succeeded(fit(dir, &points, &extra));
     let fitted = Job::read(&dir.join("f.job.json")).unwrap();
     let st = &fitted.stations[stop - 1];
     let (dx, dy) = (st.x_m - truth.station.x_m, st.y_m - truth.station.y_m);
@@ -163,9 +168,8 @@ fn fit_case(
     succeeded(basr(dir, &["simulate", "f.job.json"]));
     succeeded(basr(dir, &["check", "f.job.json"]));
     // The same bytes again.
-    let mut again = args.clone();
-    *again.iter_mut().find(|a| **a == "f.job.json").unwrap() = "g.job.json";
-    succeeded(basr(dir, &again));
+    std::fs::rename(dir.join("f.job.json"), dir.join("g.job.json")).unwrap();
+    succeeded(fit(dir, &points, &extra));
     assert_eq!(
         std::fs::read(dir.join("f.job.json")).unwrap(),
         std::fs::read(dir.join("g.job.json")).unwrap(),
@@ -261,18 +265,7 @@ fn stop_job(dir: &Path) -> Job {
 /// Runs fit with `points` and asserts exit 2, no output, and that stderr
 /// says each of `says`.
 fn refused(dir: &Path, points: &str, says: &[&str]) {
-    std::fs::write(dir.join("p.toml"), points).unwrap();
-    let out = basr(
-        dir,
-        &[
-            "fit",
-            "j.job.json",
-            "--points",
-            "p.toml",
-            "-o",
-            "f.job.json",
-        ],
-    );
+    let out = fit(dir, points, &[]);
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(!dir.join("f.job.json").exists(), "no file left: {err}");
@@ -375,20 +368,7 @@ fn points_of_another_stop_are_refused() {
         },
     );
     let text = points_file(&job, 4, &truth, 0.0, 1).replace("stop = 4", "stop = 1");
-    std::fs::write(d.join("p.toml"), text).unwrap();
-    let out = basr(
-        d,
-        &[
-            "fit",
-            "j.job.json",
-            "--marking",
-            m,
-            "--points",
-            "p.toml",
-            "-o",
-            "f.job.json",
-        ],
-    );
+    let out = fit(d, &text, &["--marking", m]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
         stderr(&out).contains("is on stop 4's part of the marking, not stop 1's"),
@@ -439,19 +419,7 @@ fn points_may_be_encoder_counts() {
             enc.join(", ")
         );
     }
-    std::fs::write(d.join("p.toml"), &text).unwrap();
-    let out = common::json_of(basr(
-        d,
-        &[
-            "fit",
-            "j.job.json",
-            "--points",
-            "p.toml",
-            "-o",
-            "f.job.json",
-            "--json",
-        ],
-    ));
+    let out = common::json_of(fit(d, &text, &["--json"]));
     let st = &out["station"];
     let dx = st["x_m"].as_f64().unwrap() - truth.station.x_m;
     let dy = st["y_m"].as_f64().unwrap() - truth.station.y_m;
@@ -497,18 +465,7 @@ fn fit_keeps_the_jobs_options_and_its_tolerance() {
     assert_eq!(options.gun_lead_s, 0.1);
     let truth = moved(&job, 1, [0.1, -0.1, 1.0], against_the_truck());
     let text = points_file(&job, 1, &truth, 0.0, 1);
-    std::fs::write(d.join("p.toml"), &text).unwrap();
-    succeeded(basr(
-        d,
-        &[
-            "fit",
-            "j.job.json",
-            "--points",
-            "p.toml",
-            "-o",
-            "f.job.json",
-        ],
-    ));
+    succeeded(fit(d, &text, &[]));
     let fitted = Job::read(&d.join("f.job.json")).unwrap();
     assert_eq!(fitted.layout.options, Some(options));
     std::fs::remove_file(d.join("f.job.json")).unwrap();
