@@ -96,7 +96,11 @@ pub struct Args {
     pub plants: u32,
 
     /// How far each plant's uncertain numbers are drawn from the
-    /// description: each scaled by 1 ± up to this fraction (0–0.5).
+    /// description (0–0.5): a number known as well as most (a mass, a valve's
+    /// rated flow) within ± this fraction, friction and the oil's modulus
+    /// within twice it, the supply pressure within half and the pressure
+    /// transducers within a tenth (docs/simulate.md lists each), none past
+    /// ±50 %.
     #[arg(
         long,
         default_value_t = 0.1,
@@ -145,7 +149,7 @@ pub fn content_checks(job: &basr::job::Job, path: &std::path::Path) -> anyhow::R
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     if !(args.spread.is_finite() && (0.0..=0.5).contains(&args.spread)) {
         anyhow::bail!(
-            "--spread {} must be a fraction 0–0.5 (0.1 = each uncertain number within ±10 %)",
+            "--spread {} must be a fraction 0–0.5 (0.1 = most uncertain numbers within ±10 %; docs/simulate.md lists each)",
             args.spread
         );
     }

@@ -177,6 +177,18 @@ pub fn simulate_resumable(
     run::run_resumable(job, model, model, opts, &[], &mut |_, _| {}, resume, true)
 }
 
+/// [`simulate_resumable`] with the controller built for the `nominal`
+/// model driving another `model` (a plant drawn around it).
+pub fn simulate_plant_resumable(
+    job: &Job,
+    nominal: &SimModel,
+    model: &SimModel,
+    opts: &Options,
+    resume: Option<(Checkpoints, usize)>,
+) -> Result<(Outcome, Checkpoints), SimError> {
+    run::run_resumable(job, nominal, model, opts, &[], &mut |_, _| {}, resume, true)
+}
+
 /// [`simulate`] with hardware faults injected (`--fault`): the report's
 /// `safety` says what happened, when and where, and how the arm stopped.
 pub fn simulate_faulted(

@@ -222,15 +222,26 @@ impl Report {
 
     /// The verdict and what it is judged on, in words: `PASS on the
     /// nominal plant (the robot description)` or `FAIL on the 95th
-    /// percentile of 40 plants drawn within ±10 % (seed 7)`.
+    /// percentile of 40 plants drawn around the robot description at
+    /// spread 0.1 (each uncertain number within ±1–20 %; seed 7)`.
     pub fn verdict_words(&self) -> String {
         let on = match &self.plants {
-            Some(p) if self.verdict_on == VerdictOn::PlantsP95 => format!(
-                "the 95th percentile of {} plants drawn within ±{:.0} % of the robot description (seed {})",
-                p.n,
-                p.spread * 100.0,
-                p.seed
-            ),
+            Some(p) if self.verdict_on == VerdictOn::PlantsP95 => {
+                let sh: Vec<f64> = crate::plants::shares(p.spread)
+                    .iter()
+                    .map(|s| s.1)
+                    .collect();
+                let lo = sh.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = sh.iter().copied().fold(0.0, f64::max);
+                format!(
+                    "the 95th percentile of {} plants drawn around the robot description at spread {} (each uncertain number within ±{}–{} %; seed {})",
+                    p.n,
+                    basr_io::show_num(p.spread),
+                    basr_io::show_num(lo * 100.0),
+                    basr_io::show_num(hi * 100.0),
+                    p.seed
+                )
+            }
             _ => "the nominal plant (the robot description)".into(),
         };
         format!("{} on {on}", self.verdict.name().to_uppercase())
