@@ -790,6 +790,9 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     if let Some(f) = &s.film {
         lines.push(film_line(f));
     }
+    if let Some(line) = followed_line(s) {
+        lines.push(line);
+    }
     let count = |sev| {
         s.warnings
             .iter()
@@ -842,6 +845,38 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         lines.extend(groups);
     }
     lines
+}
+
+/// How closely the simulated arm followed the job when compile verified
+/// it, in one line: `arm (closed loop): nozzle within 3.90 mm of the path
+/// on the robot description, 4.46 mm on 6 plants drawn around it (bound
+/// 4.76 mm)`; `None` for a job not verified.
+fn followed_line(s: &basr::job::Summary) -> Option<String> {
+    let nominal = s.verified_max_error_m?;
+    let bound = basr::pipeline::verify::VERIFY_SHARE * basr::sim::Options::default().tolerance_m;
+    let plants = s.verified.as_ref().map_or(String::new(), |v| {
+        format!(
+            ", {}{:.2} mm on {} plants drawn around it",
+            if v.max_error_m > bound {
+                "at least "
+            } else {
+                ""
+            },
+            v.max_error_m * 1e3,
+            v.plants
+        )
+    });
+    let over = s.verified.as_ref().is_some_and(|v| v.max_error_m > bound);
+    Some(format!(
+        "  arm (closed loop): nozzle within {:.2} mm of the path on the robot description{plants} (bound {:.2} mm){}",
+        nominal * 1e3,
+        bound * 1e3,
+        if over {
+            "; over it on a plant, not re-timed for it (docs/simulate.md)"
+        } else {
+            ""
+        }
+    ))
 }
 
 /// The job's film as `basr preview` measures it, in one line:

@@ -67,6 +67,9 @@ pub fn compile_shape(
     let mut req = req.clone();
     req.overrides.letter_height_m = Some(imported.height_m);
     req.font = None;
+    // The candidates and the job kept are timed alike: verified on the
+    // spread set, its figures recorded, not re-timed for it.
+    req.retime_on_spread = false;
     request::check_settings(&req)?;
     let inputs = inputs::read(&req)?;
     let font = imported

@@ -190,6 +190,11 @@ pub struct Summary {
     /// not verified.
     #[serde(default)]
     pub verified_max_error_m: Option<f64>,
+    /// The plants drawn around the robot description compile then ran the
+    /// job on (the arm as it may be): `None` when not verified, and for the
+    /// electric kinds, whose servo plant has no drawn numbers.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub verified: Option<VerifiedOn>,
     /// How far the truck drives to each station from the previous one (the
     /// first from where the job starts), m.
     #[serde(default)]
@@ -222,10 +227,30 @@ impl Summary {
             lower_bound_s: 0.0,
             bound_ratio: 0.0,
             verified_max_error_m: None,
+            verified: None,
             truck_moves_m: vec![],
             film: None,
         }
     }
+}
+
+/// What compile verified a job on beyond the robot description: a fixed
+/// set of plants drawn around it (Monte Carlo draws as `basr simulate
+/// --plants N --spread S --seed K` makes them, and corners), each plant's
+/// error its largest over the job's stations.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VerifiedOn {
+    /// Plants in the set (draws and corners).
+    pub plants: u32,
+    /// The draws' spread and seed.
+    pub spread: f64,
+    pub seed: u64,
+    /// The set's 95th percentile (nearest rank) of the plants' largest
+    /// nozzle error while painting, m.
+    pub p95_max_error_m: f64,
+    /// The worst plant's, m.
+    pub max_error_m: f64,
 }
 
 /// Whether a job's film meets the preview's bounds.

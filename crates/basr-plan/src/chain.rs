@@ -217,14 +217,28 @@ pub fn chain(
             .take(hi + 1)
             .skip(lo)
         {
+            // The station's first lead-in (where the move out of stow
+            // rests at it) runs up to the first rung's painting speed and
+            // no faster: as fast as the joints allow, it overshot that
+            // speed and braked into the rung, and the arm answered the
+            // braking at the gun's opening (STOP's first stroke: 4.50 →
+            // 3.90 mm on the description, up to 12.5 → 10.1 mm on plants
+            // with a strong pump). Every other lead stays as fast as the
+            // joints allow: capped too, STOP at full reach needed a slower
+            // path and lost its film (docs/planner.md "The first run-up").
+            let painting = (run.paint_first..=run.paint_last).contains(&i);
+            let cap = if painting {
+                Some(k.speed_mps)
+            } else if ri == 0 && i < run.paint_first {
+                Some(run.knots[run.paint_first].speed_mps)
+            } else {
+                None
+            };
             out.points.push(PathPoint {
                 s_m: offset + arcs[i],
                 q: *j,
-                // Leads are gun-off run-ups: as fast as the joints allow.
-                max_speed_mps: (run.paint_first..=run.paint_last)
-                    .contains(&i)
-                    .then_some(k.speed_mps),
-                cap_only: false,
+                max_speed_mps: cap,
+                cap_only: !painting,
                 dq_ds: match i {
                     _ if i == lo => rate_in[ri],
                     _ if i == hi => rate_out[ri],

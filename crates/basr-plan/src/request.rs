@@ -107,6 +107,12 @@ pub struct CompileRequest {
     /// follows it (`plan::verify`); off only where a job is re-planned for
     /// comparison and never written.
     pub verify: bool,
+    /// Re-time where a plant of the spread set (drawn around the robot
+    /// description) strays, as where the description does; off, the set's
+    /// figures are only recorded (`summary.verified`). Off for imported
+    /// shapes: their decomposition is chosen by measuring candidates, and
+    /// re-timed joins slowed the arrow at 3 m into a NOT READY job.
+    pub retime_on_spread: bool,
     /// Measure the written job's film as `basr preview` does and grade a
     /// failed bound (`plan::film`); off where a job is only compiled to be
     /// measured by its caller (shape candidates, re-planned comparisons).
@@ -132,6 +138,7 @@ impl CompileRequest {
             gun_lag_s: 0.0,
             reach_margin_m: stations::DEFAULT_MARGIN_M,
             verify: true,
+            retime_on_spread: true,
             film: true,
             site: None,
         }

@@ -60,6 +60,7 @@ pub fn assemble(p: Planned<'_>) -> Job {
             0.0
         },
         verified_max_error_m: None,
+        verified: None,
         truck_moves_m: p
             .stations
             .stations
