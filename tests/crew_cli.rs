@@ -107,8 +107,8 @@ fn compile_says_what_where_how_long_and_whether_to_go() {
         text.contains("stop 1: arm axis 4.57 m past the near edge of STOP"),
         "{text}"
     );
-    // The spray tip to mount, the film as `basr preview` measures it, then
-    // the verdict.
+    // The spray tip to mount, the film as `basr preview` measures it, how
+    // closely the simulated arm followed it, then the verdict.
     assert!(
         lines[2].starts_with("  spray tip: seed-63.5 (63.5° fan, 0.40 L/min, uniform flux)"),
         "{text}"
@@ -117,8 +117,13 @@ fn compile_says_what_where_how_long_and_whether_to_go() {
         lines[3].starts_with("  film (as `basr preview` measures it): cv "),
         "{text}"
     );
-    assert!(lines[4].starts_with("  verdict: "), "{text}");
-    for l in &lines[5..] {
+    assert!(
+        lines[4].starts_with("  arm (closed loop): nozzle within ")
+            && lines[4].contains("on 6 plants drawn around it (bound 4.76 mm)"),
+        "{text}"
+    );
+    assert!(lines[5].starts_with("  verdict: "), "{text}");
+    for l in &lines[6..] {
         assert!(l.starts_with("  problem: ") || l.starts_with("  … "), "{l}");
     }
 

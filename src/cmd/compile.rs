@@ -853,26 +853,22 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
 /// 4.76 mm)`; `None` for a job not verified.
 fn followed_line(s: &basr::job::Summary) -> Option<String> {
     let nominal = s.verified_max_error_m?;
-    let bound = basr::pipeline::verify::VERIFY_SHARE * basr::sim::Options::default().tolerance_m;
+    let bound = basr::pipeline::verify::spread::SHARE * basr::sim::Options::default().tolerance_m;
     let plants = s.verified.as_ref().map_or(String::new(), |v| {
         format!(
             ", {}{:.2} mm on {} plants drawn around it",
-            if v.max_error_m > bound {
-                "at least "
-            } else {
-                ""
-            },
+            if v.over.is_some() { "at least " } else { "" },
             v.max_error_m * 1e3,
             v.plants
         )
     });
-    let over = s.verified.as_ref().is_some_and(|v| v.max_error_m > bound);
+    let over = s.verified.as_ref().is_some_and(|v| v.over.is_some());
     Some(format!(
         "  arm (closed loop): nozzle within {:.2} mm of the path on the robot description{plants} (bound {:.2} mm){}",
         nominal * 1e3,
         bound * 1e3,
         if over {
-            "; over it on a plant, not re-timed for it (docs/simulate.md)"
+            "; over it on a plant, not re-timed for it (summary.verified.over, docs/simulate.md)"
         } else {
             ""
         }

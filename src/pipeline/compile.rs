@@ -109,6 +109,9 @@ fn compile_for_tip(
     let mut on_spread: Vec<Option<Vec<f64>>> = vec![None; n];
     // nominal_m[s]: station s's largest error on the robot description.
     let mut nominal_m: Vec<f64> = vec![0.0; n];
+    // kept_over[s]: a plant's failure on station s compile did not re-time
+    // for (`slower` gives none), in words.
+    let mut kept_over: Vec<Option<String>> = vec![None; n];
     loop {
         let timed = trajectory::time_law_paced(
             strokes,
@@ -166,6 +169,7 @@ fn compile_for_tip(
             runs[si] = c.run.filter(|_| !c.verdict.ok);
             on_spread[si] = c.on_spread;
             nominal_m[si] = c.nominal_m;
+            kept_over[si] = None;
             verdicts[si] = Some((paces[si].clone(), c.verdict));
         }
         let failing: Vec<(usize, &verify::Verdict)> = verdicts
@@ -179,7 +183,10 @@ fn compile_for_tip(
             // every job: compile must not write one they refuse.
             verify::content(&job)?;
             job.summary.verified_max_error_m = nominal_m.iter().copied().reduce(f64::max);
-            job.summary.verified = verified_on(&on_spread);
+            job.summary.verified = verified_on(&on_spread).map(|mut v| {
+                v.over = kept_over.iter().flatten().next().cloned();
+                v
+            });
             job.seal();
             return with_film(req, job, strokes);
         }
@@ -202,8 +209,19 @@ fn compile_for_tip(
                 // `summary.verified` says how far that plant strays.
                 None => {
                     if let Some((_, v)) = verdicts[si].as_mut() {
+                        kept_over[si] = Some(format!(
+                            "{}; not re-timed for it: only a slower path for the whole station would \
+                             help{}",
+                            v.why,
+                            if req.retime_on_spread {
+                                ""
+                            } else {
+                                " (an imported shape is not re-timed for the set)"
+                            }
+                        ));
                         v.ok = true;
                     }
+                    runs[si] = None;
                 }
             }
         }
@@ -418,12 +436,14 @@ fn verified_on(on_spread: &[Option<Vec<f64>>]) -> Option<crate::job::VerifiedOn>
         .map(|k| per_station.iter().map(|e| e[k]).fold(0.0, f64::max))
         .collect();
     worst.sort_by(f64::total_cmp);
+    let max_error_m = *worst.last()?;
     Some(crate::job::VerifiedOn {
         plants: worst.len() as u32,
         spread: verify::spread::SPREAD,
         seed: verify::spread::SEED,
         p95_max_error_m: crate::sim::plants::quantile(&worst, 0.95),
-        max_error_m: *worst.last()?,
+        max_error_m,
+        over: None,
     })
 }
 
@@ -590,10 +610,11 @@ fn paint_start(
     t_s: f64,
 ) -> Option<f64> {
     let painting = |i: usize| s.stroke[i] == stroke && s.paint[i] == 1;
+    // Row times are rounded to the nanosecond, job times of ticks are not.
     let at = rows
         .clone()
         .rev()
-        .find(|&i| s.t_s[i] <= t_s && painting(i))?;
+        .find(|&i| s.t_s[i] <= t_s + 1e-9 && painting(i))?;
     let first = (rows.start..=at)
         .rev()
         .take_while(|&i| painting(i))

@@ -249,8 +249,15 @@ pub struct VerifiedOn {
     /// The set's 95th percentile (nearest rank) of the plants' largest
     /// nozzle error while painting, m.
     pub p95_max_error_m: f64,
-    /// The worst plant's, m.
+    /// The worst plant's, m. With six plants the 95th percentile (nearest
+    /// rank) is the worst; both are "at least" where `over` is set (a run
+    /// ends at its first error over the bound).
     pub max_error_m: f64,
+    /// Where a plant of the set strayed over compile's bound (or broke a
+    /// limit) and compile kept the station as it was: what and where, in
+    /// words. Absent when every plant stayed within.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub over: Option<String>,
 }
 
 /// Whether a job's film meets the preview's bounds.

@@ -43,8 +43,10 @@
 //! pose for the final partial period. Painting at a standstill would pool
 //! paint, so a stroke's path should carry a run-up and a run-out: a few
 //! gun-off waypoints along the stroke's tangent before the first rung and
-//! after the last, with no speed limit (`max_speed_mps: None`). The time law
-//! then accelerates in the run-up and arrives at the first rung at painting
+//! after the last, with no speed limit (`max_speed_mps: None`) or capped at
+//! the painting speed (`cap_only`: the station's first run-up, which must
+//! not overshoot and brake into the first rung). The time law then
+//! accelerates in the run-up and arrives at the first rung at painting
 //! speed; a run-up too short shows up as a [`Slowdown`] bound by `Rest`. The
 //! gun is switched by time: [`Trajectory::gun_times`] gives the command
 //! times that make the spray, after the valve's opening and closing delays
