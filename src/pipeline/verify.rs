@@ -233,12 +233,12 @@ pub fn on_spread(
         .filter(|l| l.fails)
         .map(|l| l.message.as_str())
         .collect();
-    let mut v = judge_bound(
+    // the set is held to the description's own share (`spread::SHARE`)
+    let mut v = judge(
         r.max_error_m,
         &worst,
         &broken,
         tolerance_m,
-        spread::SHARE,
         r.cut_short_at_s.is_some(),
     );
     v.on_spread = true;
@@ -262,25 +262,7 @@ fn judge(
     tolerance_m: f64,
     cut_short: bool,
 ) -> Verdict {
-    judge_bound(
-        max_error_m,
-        worst,
-        broken,
-        tolerance_m,
-        VERIFY_SHARE,
-        cut_short,
-    )
-}
-
-/// [`judge`] against `share` × `tolerance_m`.
-fn judge_bound(
-    max_error_m: f64,
-    worst: &sim::report::Place,
-    broken: &[impl AsRef<str>],
-    tolerance_m: f64,
-    share: f64,
-    cut_short: bool,
-) -> Verdict {
+    let share = VERIFY_SHARE;
     let bound = share * tolerance_m;
     let ok = max_error_m <= bound && broken.is_empty();
     let why = if ok {
@@ -358,11 +340,12 @@ mod tests {
         let place = sim::report::Place::default();
         let none: [&str; 0] = [];
         let tol = 6.35e-3;
-        let at = |e: f64| judge_bound(e, &place, &none, tol, spread::SHARE, false);
+        let at = |e: f64| judge(e, &place, &none, tol, false);
         assert!(at(0.75 * tol - 1e-9).ok);
         let v = at(0.75 * tol + 1e-6);
         assert!(!v.ok);
         assert!(v.why.contains("0.75 × the 6.35 mm tolerance"), "{}", v.why);
-        assert!(!judge_bound(1e-3, &place, &["joint out of range"], tol, 0.75, false).ok);
+        assert!(!judge(1e-3, &place, &["joint out of range"], tol, false).ok);
+        assert_eq!(spread::SHARE, VERIFY_SHARE);
     }
 }
