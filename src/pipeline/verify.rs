@@ -77,35 +77,45 @@ pub fn simulated_resuming(
     let Some(robot) = job.robot.basr() else {
         return verify_servo(job, t0_s).map(|v| (v, None));
     };
+    let (model, opts) = verifying(robot)?;
+    let (outcome, kept) = sim::simulate_resumable(job, &model, &opts, resume)
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    Ok((judged(&outcome.report, t0_s, &opts), Some(kept)))
+}
+
+/// The robot's simulator model and the options every verification run
+/// takes: the default controller and tolerance, the run ended at its
+/// first painting error over the bound (whether it stays within is all
+/// the verdict asks, and re-timing starts where it first failed).
+fn verifying(robot: &crate::robot::Robot) -> Result<(SimModel, sim::Options), CompileError> {
     let model = SimModel::from_robot(robot)
         .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
-    // A run is ended at its first painting error over the bound: whether
-    // it stays within is all the verdict asks, and re-timing starts where
-    // it first failed.
     let tolerance_m = sim::Options::default().tolerance_m;
     let opts = sim::Options {
         stop_over_m: Some(VERIFY_SHARE * tolerance_m),
         ..sim::Options::default()
     };
-    let (outcome, kept) = sim::simulate_resumable(job, &model, &opts, resume)
-        .map_err(|e| CompileError::Verify(e.to_string()))?;
-    let mut r = outcome.report;
-    r.worst.t_s += t0_s;
+    Ok((model, opts))
+}
+
+/// [`judge`] of a run's report, its times `t0_s` later; a run ended where
+/// its error first passed the bound says "at least".
+fn judged(r: &sim::Report, t0_s: f64, opts: &sim::Options) -> Verdict {
+    let mut worst = r.worst.clone();
+    worst.t_s += t0_s;
     let broken: Vec<&str> = r
         .limits
         .iter()
         .filter(|l| l.fails)
         .map(|l| l.message.as_str())
         .collect();
-    // A run ended where its error first passed the bound says "at least".
-    let verdict = judge(
+    judge(
         r.max_error_m,
-        &r.worst,
+        &worst,
         &broken,
         opts.tolerance_m,
         r.cut_short_at_s.is_some(),
-    );
-    Ok((verdict, Some(kept)))
+    )
 }
 
 /// Compile's verification on the plant spread: the draws `basr simulate
@@ -192,14 +202,9 @@ pub fn on_spread(
     let Some(robot) = job.robot.basr() else {
         return Ok(None);
     };
-    let model = SimModel::from_robot(robot)
-        .map_err(|e| CompileError::Verify(format!("the robot's dynamics: {e}")))?;
-    let tolerance_m = sim::Options::default().tolerance_m;
-    let bound_m = spread::SHARE * tolerance_m;
-    let opts = sim::Options {
-        stop_over_m: Some(bound_m),
-        ..sim::Options::default()
-    };
+    // the set is held to the description's own share (`spread::SHARE`)
+    let (model, opts) = verifying(robot)?;
+    let bound_m = spread::SHARE * opts.tolerance_m;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
     let (reports, kept): (Vec<sim::Report>, Vec<sim::Checkpoints>) =
@@ -225,22 +230,7 @@ pub fn on_spread(
     let Some((k, r)) = pick else {
         return Ok(None);
     };
-    let mut worst = r.worst.clone();
-    worst.t_s += t0_s;
-    let broken: Vec<&str> = r
-        .limits
-        .iter()
-        .filter(|l| l.fails)
-        .map(|l| l.message.as_str())
-        .collect();
-    // the set is held to the description's own share (`spread::SHARE`)
-    let mut v = judge(
-        r.max_error_m,
-        &worst,
-        &broken,
-        tolerance_m,
-        r.cut_short_at_s.is_some(),
-    );
+    let mut v = judged(r, t0_s, &opts);
     v.on_spread = true;
     if !v.ok {
         v.why = format!("on {} (the arm as it may be): {}", set[k].0, v.why);
