@@ -185,6 +185,14 @@ pub fn matched_rungs(
     let rp = stroke.right.subdivide(nr);
     let (hl, hr) = (ll / nl as f64, lr / nr as f64);
     let idx = |i: usize, j: usize| i * (nr + 1) + j;
+    // Every candidate rung's midpoint, vector, width and direction, once
+    // (each state's are met by up to MAX_STEP² steps in and out; two
+    // atan2 per step were a third of planning a bowl): the same values the
+    // step costs computed per step, so the same bits.
+    let candidates: Vec<Candidate> = (0..=nl)
+        .flat_map(|i| (0..=nr).map(move |j| (i, j)))
+        .map(|(i, j)| Candidate::new(lp[i], rp[j]))
+        .collect();
     let mut cost = vec![f64::INFINITY; (nl + 1) * (nr + 1)];
     let mut from = vec![usize::MAX; (nl + 1) * (nr + 1)];
     cost[0] = 0.0;
@@ -194,23 +202,18 @@ pub fn matched_rungs(
             if !c0.is_finite() {
                 continue;
             }
-            let (m0, d0) = (lp[i].midpoint(rp[j]), rp[j] - lp[i]);
+            let r0 = &candidates[idx(i, j)];
             for a in 1..=MAX_STEP.min(nl - i) {
                 for b in 1..=MAX_STEP.min(nr - j) {
                     let (i1, j1) = (i + a, j + b);
-                    let (m1, d1) = (lp[i1].midpoint(rp[j1]), rp[j1] - lp[i1]);
-                    let c = c0
-                        + step_cost(m0, d0, m1, d1, budget)
-                        + W_DIAG
-                            * off_diagonal(
-                                i1 as f64 / nl as f64,
-                                j1 as f64 / nr as f64,
-                                m0,
-                                d0,
-                                m1,
-                                d1,
-                            );
                     let k = idx(i1, j1);
+                    let r1 = &candidates[k];
+                    let ds = (r1.m - r0.m).hypot();
+                    let w = 0.5 * (r0.width + r1.width);
+                    let c = c0
+                        + step_cost(r0, r1, ds, w, budget)
+                        + W_DIAG
+                            * off_diagonal(i1 as f64 / nl as f64, j1 as f64 / nr as f64, ds, w);
                     if c < cost[k] {
                         cost[k] = c;
                         from[k] = idx(i, j);
@@ -237,27 +240,47 @@ pub fn matched_rungs(
     Some(resample(stroke, &path, spacing_m))
 }
 
+/// A candidate rung between a left and a right edge point: its midpoint,
+/// left → right vector, width and direction.
+struct Candidate {
+    m: Point,
+    d: Vec2,
+    width: f64,
+    psi: f64,
+}
+
+impl Candidate {
+    fn new(left: Point, right: Point) -> Candidate {
+        let d = right - left;
+        Candidate {
+            m: left.midpoint(right),
+            d,
+            width: d.hypot(),
+            psi: d.atan2(),
+        }
+    }
+}
+
 /// How far a rung's ends are from the equal arc-length pairing (shares of
 /// their edges `fl`, `fr`), weighted by the width squared and the travel:
 /// wide rungs keep to equal arc-length (where a rung turning about a point
 /// near one end lays film ∝ 1/r across it, the tilt's balance is already at
-/// its limit in a bowl), narrow ones may leave it to stand square.
-fn off_diagonal(fl: f64, fr: f64, m0: Point, d0: Vec2, m1: Point, d1: Vec2) -> f64 {
-    let ds = (m1 - m0).hypot();
-    let wide = (0.5 * (d0.hypot() + d1.hypot()) / RATIO_WIDTH_M).powi(2);
+/// its limit in a bowl), narrow ones may leave it to stand square. `ds`:
+/// the step's travel between midpoints; `w`: the two rungs' mean width.
+fn off_diagonal(fl: f64, fr: f64, ds: f64, w: f64) -> f64 {
+    let wide = (w / RATIO_WIDTH_M).powi(2);
     ds * wide * (fr - fl).powi(2)
 }
 
-/// Cost of the step from rung (m0, d0) to rung (m1, d1) (midpoint, left →
-/// right vector).
-fn step_cost(m0: Point, d0: Vec2, m1: Point, d1: Vec2, budget: &TurnBudget) -> f64 {
-    let travel = m1 - m0;
-    let ds = travel.hypot().max(1e-6);
-    let w = 0.5 * (d0.hypot() + d1.hypot());
-    let dpsi = wrap_pi(d1.atan2() - d0.atan2());
+/// Cost of the step from rung `r0` to rung `r1`, `ds` apart (between
+/// midpoints), of mean width `w`.
+fn step_cost(r0: &Candidate, r1: &Candidate, ds: f64, w: f64, budget: &TurnBudget) -> f64 {
+    let travel = r1.m - r0.m;
+    let ds = ds.max(1e-6);
+    let dpsi = wrap_pi(r1.psi - r0.psi);
     let over = (budget.rate(dpsi, ds, w) / budget.max_rate_rps - TURN_FREE).max(0.0);
     // Lean: the rung's component along the travel (0 when square).
-    let dir = (d0 + d1).normalize();
+    let dir = (r0.d + r1.d).normalize();
     let lean = dir.dot(travel / ds);
     ds * (W_TURN * over * over + W_LEAN * lean * lean)
 }
