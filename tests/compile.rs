@@ -194,7 +194,14 @@ fn no_sample_breaks_a_joint_limit() {
 /// nozzle upright the tip is on the yaw axis at height top − vertical.
 #[test]
 fn independent_fk_reproduces_the_nozzle_columns() {
-    let dir = compile_in(&["STOP", "--tilt", "none", "--csv", "s.csv"]);
+    let dir = compile_in(&[
+        "STOP",
+        "--tilt",
+        "none",
+        "--csv",
+        "s.csv",
+        "--no-size-search",
+    ]);
     let job = read_job(&dir.path().join("STOP.job.json"));
     let a2 = job.robot.basr().unwrap().arm.a2_m;
     let top = job.robot.basr().unwrap().end_effector.tip_height_top_m;

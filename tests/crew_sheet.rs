@@ -111,7 +111,14 @@ fn a_symbol_is_named_and_sized_and_a_not_ready_sheet_says_what_first() {
 
     let out = basr(
         d,
-        &["compile", "STOP AHEAD", "--letter-height", "6ft", "-q"],
+        &[
+            "compile",
+            "STOP AHEAD",
+            "--letter-height",
+            "6ft",
+            "-q",
+            "--no-size-search",
+        ],
     );
     assert_eq!(out.status.code(), Some(1));
     let out = basr(d, &["report", "STOP_AHEAD.job.json", "--no-sim", "-q"]);

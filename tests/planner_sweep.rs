@@ -51,6 +51,9 @@ fn holds_then(args: &[&str], expect: Expect, also: impl Fn(&Path)) {
         .arg("-o")
         .arg(&job)
         .arg("--quiet")
+        // a NOT READY case is checked for the arm's following, not for the
+        // sizes near it that paint (tests/size_advice.rs)
+        .arg("--no-size-search")
         .output()
         .unwrap();
     let code = out.status.code();

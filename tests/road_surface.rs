@@ -89,10 +89,19 @@ fn a_crown_through_stop_says_what_it_costs() {
     // Exit 1: the job is written, its verdict NOT READY.
     let out = basr(
         d,
-        &["compile", "--marking", "crown.toml", "-o", "crown.job.json"],
+        &[
+            "compile",
+            "--marking",
+            "crown.toml",
+            "-o",
+            "crown.job.json",
+            "--no-size-search",
+        ],
     );
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).contains("NOT READY"), "{}", stderr(&out));
+    // --no-size-search: the verdict without the search for sizes that paint
+    assert!(!stderr(&out).contains("sizes:"), "{}", stderr(&out));
     let job = Job::read(&d.join("crown.job.json")).unwrap();
     let surface = job
         .summary

@@ -39,7 +39,7 @@ pub enum TiltArg {
 /// way and not below MUTCD's 6 ft (4.5 ft with --low-speed), and names the
 /// nearest each way that paints READY or READY WITH NOTES ("sizes:", and
 /// `sizes` in --json). That takes a few seconds more (up to half a minute
-/// for a long message).
+/// for a long message); --no-size-search skips it.
 #[derive(clap::Args)]
 #[command(after_help = "\
 Examples:
@@ -74,6 +74,12 @@ pub struct Args {
     /// symbols down to 75 % pass the MUTCD checks (11th §3B.20 ¶11).
     #[arg(long)]
     pub low_speed: bool,
+    /// Do not search the letter heights near a NOT READY word marking for
+    /// ones that paint (that search compiles up to 16 other sizes: seconds,
+    /// or most of a minute on a slow laptop). For scripts and comparisons
+    /// that only want the job; the job and its verdict are the same.
+    #[arg(long)]
+    pub no_size_search: bool,
     /// A filled outline to paint (SVG or DXF), decomposed into strokes as
     /// `basr import` does; centred in the lane, its near edge at the anchor.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["font", "letter_height"])]
@@ -574,22 +580,25 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let s = &job.summary;
     let verdict = verdict_of(&job);
     // A word marking that does not paint READY: the nearest sizes that do.
-    let sizes =
-        (verdict == "not ready" && shape.is_none() && super::sizes::applies(&req)).then(|| {
-            let floor = basr::layout::rules::MIN_LETTER_HEIGHT_M
-                * if args.low_speed {
-                    basr::layout::rules::LOW_SPEED_FACTOR
-                } else {
-                    1.0
-                };
-            let spin = super::spinner(
-                !global.quiet && !args.json,
-                "NOT READY: searching the letter heights near it for ones that paint",
-            );
-            let advice = super::sizes::nearest_ready(&req, job.layout.letter_height_m, floor);
-            spin.finish_and_clear();
-            advice
-        });
+    let sizes = (verdict == "not ready"
+        && !args.no_size_search
+        && shape.is_none()
+        && super::sizes::applies(&req))
+    .then(|| {
+        let floor = basr::layout::rules::MIN_LETTER_HEIGHT_M
+            * if args.low_speed {
+                basr::layout::rules::LOW_SPEED_FACTOR
+            } else {
+                1.0
+            };
+        let spin = super::spinner(
+            !global.quiet && !args.json,
+            "NOT READY: searching the letter heights near it for ones that paint",
+        );
+        let advice = super::sizes::nearest_ready(&req, job.layout.letter_height_m, floor);
+        spin.finish_and_clear();
+        advice
+    });
     if args.json {
         let v = serde_json::json!({
             "job": out.display().to_string(),
