@@ -30,11 +30,12 @@ fn robot(f: &str) -> PathBuf {
 /// Compile `word` for `robot` into `dir`; the job's path. These tests are
 /// about each kind's kinematics, not the film: a job NOT READY for its
 /// film (the articulated arm's STOP, cv 0.12) exits 1 and is written all
-/// the same, and is checked as any other.
+/// the same, and is checked as any other (without searching the sizes
+/// near it that paint: tests/size_advice.rs).
 fn compile(dir: &Path, word: &str, robot: &Path, extra: &[&str]) -> PathBuf {
     let job = dir.join(format!("{word}.job.json"));
     let mut cmd = basr();
-    cmd.args(["compile", word, "--robot"])
+    cmd.args(["compile", word, "--no-size-search", "--robot"])
         .arg(robot)
         .arg("-o")
         .arg(&job)
@@ -319,7 +320,7 @@ fn markings_compile_verified(f: &str) {
             .with_extension("job.json");
         ran_to_verdict(
             basr()
-                .args(["compile", "--marking"])
+                .args(["compile", "--no-size-search", "--marking"])
                 .arg(m)
                 .arg("--robot")
                 .arg(&r)

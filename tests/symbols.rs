@@ -375,7 +375,9 @@ fn bad_scenes_are_refused_naming_what_and_by_how_much() {
 
 /// The job's warnings, as JSON text, of `basr compile ARGS --json`.
 fn warnings_of(dir: &Path, args: &[&str]) -> String {
-    let mut all = vec!["compile", "--json", "-o", "w.job.json"];
+    // the warnings of the job itself (a NOT READY one's sizes search is
+    // tests/size_advice.rs's)
+    let mut all = vec!["compile", "--json", "--no-size-search", "-o", "w.job.json"];
     all.extend(args);
     json_of(&basr(dir, &all))["summary"]["warnings"].to_string()
 }
