@@ -137,6 +137,7 @@ fn compile_plans_for_the_calibrated_profile_and_names_the_tip_when_the_film_fail
             "STOP",
             "--letter-height",
             "8ft",
+            "--no-size-search",
             "--robot",
             "calibrated.toml",
             "-o",

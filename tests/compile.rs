@@ -423,7 +423,7 @@ fn outputs_that_name_one_file_or_an_input_are_refused() {
 #[test]
 fn job_reports_u_per_stroke_and_quadrilateral_beats_the_seed_on_b() {
     let range = |tilt: &str| -> Vec<([f64; 2], [f64; 2])> {
-        let dir = compile_in(&["B", "--tilt", tilt]);
+        let dir = compile_in(&["B", "--tilt", tilt, "--no-size-search"]);
         let job = read_job(&dir.path().join("B.job.json"));
         assert_eq!(job.summary.balance.len(), job.summary.strokes);
         job.summary

@@ -193,6 +193,7 @@ fn urscript_reads_back_as_the_jobs_setpoints() {
             "-o",
             "arm.job.json",
             "-q",
+            "--no-size-search",
         ],
     );
     assert!(matches!(out.status.code(), Some(0 | 1)) && d.join("arm.job.json").exists());

@@ -237,7 +237,14 @@ fn not_ready_exits_1_everywhere_and_says_so() {
     let d = dir.path();
     let out = expect(
         d,
-        &["compile", "STOP AHEAD", "--letter-height", "6ft", "--json"],
+        &[
+            "compile",
+            "STOP AHEAD",
+            "--letter-height",
+            "6ft",
+            "--json",
+            "--no-size-search",
+        ],
         1,
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();

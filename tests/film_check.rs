@@ -18,7 +18,9 @@ fn compile(args: &[&str], job: &Path) -> (Option<i32>, Value, String) {
         .unwrap()
         .arg("compile")
         .args(args)
-        .args(["--json", "-o"])
+        // the job's own film; a NOT READY one's size search is
+        // tests/size_advice.rs's
+        .args(["--json", "--no-size-search", "-o"])
         .arg(job)
         .output()
         .unwrap();

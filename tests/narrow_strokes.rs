@@ -22,6 +22,7 @@ fn job(dir: &std::path::Path, what: &str, height: &str) -> Job {
             "-o",
             "j.job.json",
             "-q",
+            "--no-size-search",
         ],
     );
     assert!(

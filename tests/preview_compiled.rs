@@ -273,7 +273,15 @@ fn small_letters_fail_the_film_verdict() {
     let job = dir.path().join("small.job.json");
     let out = Command::cargo_bin("basr")
         .unwrap()
-        .args(["compile", "STOP", "--letter-height", "0.5", "-q", "-o"])
+        .args([
+            "compile",
+            "STOP",
+            "--letter-height",
+            "0.5",
+            "-q",
+            "--no-size-search",
+            "-o",
+        ])
         .arg(&job)
         .output()
         .unwrap();

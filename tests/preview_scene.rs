@@ -218,6 +218,7 @@ fn a_two_line_job_from_one_stop_draws_the_stop_once() {
             "1.83",
             "-o",
             "GO_NOW.job.json",
+            "--no-size-search",
         ],
         "GO_NOW.job.json",
     );
