@@ -15,7 +15,7 @@ use super::model::{ServoAxis, SimModel};
 use super::plant::{self, Inputs, State};
 use super::reference::{curve, within, NutTable, Pose};
 use super::report::Place;
-use super::tally::{Tally, Tick};
+use super::tally::{Logged, Logs, Tally, Tick};
 use super::{ee, nozzle_base, safety, validate_job, Options, Outcome, SimError};
 use basr_job::{Job, Samples};
 use basr_robot::{Joints, Robot};
@@ -270,6 +270,8 @@ pub struct Checkpoints {
     /// else does not resume from these.
     of: RunKey,
     marks: Vec<Mark>,
+    /// The tally's logs as the run left them; each mark's are a prefix.
+    logs: Logs,
 }
 
 /// What a run's state depends on besides the job's rows.
@@ -302,25 +304,15 @@ impl RunKey {
     }
 }
 
-/// The run's whole state before one tick.
+/// The run's whole state before one tick (the tally's logs as far as
+/// `logged`, kept once in `Checkpoints::logs`).
 struct Mark {
     tick: u64,
     arm: Arm,
     ctrl: Box<dyn Controller>,
     tally: Tally,
+    logged: Logged,
     monitor: safety::Monitor,
-}
-
-impl Mark {
-    fn copy(&self) -> Mark {
-        Mark {
-            tick: self.tick,
-            arm: self.arm.clone(),
-            ctrl: self.ctrl.boxed_clone(),
-            tally: self.tally.clone(),
-            monitor: self.monitor.clone(),
-        }
-    }
 }
 
 impl Checkpoints {
@@ -329,14 +321,14 @@ impl Checkpoints {
     /// `reference::curve`), for a run `of` the same models, options,
     /// faults, stations and row period (none otherwise); the last of them
     /// is where the run resumes.
-    fn usable(mut self, first_changed: usize, of: &RunKey) -> Vec<Mark> {
+    fn usable(mut self, first_changed: usize, of: &RunKey) -> (Vec<Mark>, Logs) {
         if self.of != *of {
-            return vec![];
+            return (vec![], Logs::default());
         }
         let (period, dt_job) = (of.model.control.period_s, of.dt_job);
         self.marks
             .retain(|m| m.tick as f64 * period / dt_job + 3.0 <= first_changed as f64);
-        self.marks
+        (self.marks, self.logs)
     }
 }
 
@@ -360,16 +352,19 @@ pub(super) fn run_resumable(
     let setup = prepare(job, nominal, model, opts, faults)?;
     let (s, period, ticks) = (setup.samples, setup.period, setup.ticks);
     let key = RunKey::of(&setup, job);
-    let mut marks = resume
+    let (mut marks, logs) = resume
         .map(|(c, row)| c.usable(row, &key))
         .unwrap_or_default();
     marks.retain(|m| m.tick < ticks);
     let every = ((CHECKPOINT_S / period).round() as u64).max(1);
     let (start, mut arm, mut ctrl, mut tally, mut monitor) = match marks.last() {
-        Some(m) => {
-            let m = m.copy();
-            (m.tick, m.arm, m.ctrl, m.tally, m.monitor)
-        }
+        Some(m) => (
+            m.tick,
+            m.arm.clone(),
+            m.ctrl.boxed_clone(),
+            m.tally.restored(m.logged, &logs),
+            m.monitor.clone(),
+        ),
         None => {
             let arm = Arm::at_rest(&setup);
             let m0 = setup.measure(
@@ -390,11 +385,13 @@ pub(super) fn run_resumable(
     };
     for k in start..ticks {
         if keep && k % every == 0 && marks.last().is_none_or(|m| m.tick < k) {
+            let (t, logged) = tally.checkpoint();
             marks.push(Mark {
                 tick: k,
                 arm: arm.clone(),
                 ctrl: ctrl.boxed_clone(),
-                tally: tally.clone(),
+                tally: t,
+                logged,
                 monitor: monitor.clone(),
             });
         }
@@ -474,7 +471,17 @@ pub(super) fn run_resumable(
         }
     }
     progress(ticks, ticks);
-    let kept = Checkpoints { of: key, marks };
+    // The marks resumed from and taken here all lie before the run's end:
+    // its logs hold each one's as a prefix.
+    let kept = Checkpoints {
+        of: key,
+        logs: if marks.is_empty() {
+            Logs::default()
+        } else {
+            tally.logs()
+        },
+        marks,
+    };
     Ok((tally.report(&setup, monitor.finish()), kept))
 }
 
@@ -509,7 +516,7 @@ mod tests {
             "the bump shows in the report"
         );
         let key = kept.of.clone();
-        let usable = kept.usable(row, &key);
+        let (usable, _) = kept.usable(row, &key);
         assert!(!usable.is_empty(), "a checkpoint before row {row}");
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
         let (resumed, again) =
@@ -533,18 +540,18 @@ mod tests {
         let mut other = kept.of.clone();
         other.dt_job *= 2.0;
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
-        assert!(kept.usable(n, &other).is_empty(), "another row period");
+        assert!(kept.usable(n, &other).0.is_empty(), "another row period");
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
         let mut other = kept.of.clone();
         other.controller = crate::ControllerKind::Pid;
-        assert!(kept.usable(n, &other).is_empty(), "another controller");
+        assert!(kept.usable(n, &other).0.is_empty(), "another controller");
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
         let mut other = kept.of.clone();
         other.stations[0].x_m += 0.01;
-        assert!(kept.usable(n, &other).is_empty(), "another stop");
+        assert!(kept.usable(n, &other).0.is_empty(), "another stop");
         let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
         let same = kept.of.clone();
-        assert!(!kept.usable(n, &same).is_empty(), "the same run");
+        assert!(!kept.usable(n, &same).0.is_empty(), "the same run");
     }
 
     #[test]
