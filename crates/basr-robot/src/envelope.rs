@@ -343,15 +343,7 @@ mod tests {
             // the known-quartic test's): each found within 1e-12 of its size.
             r.sort_by(f64::total_cmp);
             prop_assume!(r.windows(2).all(|w| w[1] - w[0] > 1e-3));
-            let mut c = vec![lead];
-            for &root in &r {
-                let mut n = vec![0.0; c.len() + 1];
-                for (i, k) in c.iter().enumerate() {
-                    n[i + 1] += k;
-                    n[i] -= root * k;
-                }
-                c = n;
-            }
+            let c = with_roots(lead, &r);
             let found = real_roots(&c, -60.0, 60.0);
             prop_assert_eq!(found.len(), 4, "{:?} for {:?}", found, r);
             for (f, t) in found.iter().zip(&r) {
@@ -399,12 +391,10 @@ mod tests {
         assert!((dd - dp).abs() < 1e-6);
     }
 
-    #[test]
-    fn roots_of_a_known_quartic() {
-        // (x − 1)(x − 2)(x − 2.000001)(x + 3): close pair kept apart.
-        let r = [1.0, 2.0, 2.000001, -3.0];
-        let mut c = vec![1.0];
-        for root in r {
+    /// The coefficients (constant first) of lead·Π(x − rᵢ).
+    fn with_roots(lead: f64, roots: &[f64]) -> Vec<f64> {
+        let mut c = vec![lead];
+        for &root in roots {
             let mut n = vec![0.0; c.len() + 1];
             for (i, k) in c.iter().enumerate() {
                 n[i + 1] += k;
@@ -412,6 +402,13 @@ mod tests {
             }
             c = n;
         }
+        c
+    }
+
+    #[test]
+    fn roots_of_a_known_quartic() {
+        // (x − 1)(x − 2)(x − 2.000001)(x + 3): close pair kept apart.
+        let c = with_roots(1.0, &[1.0, 2.0, 2.000001, -3.0]);
         let found = real_roots(&c, -5.0, 5.0);
         assert_eq!(found.len(), 4, "{found:?}");
         assert!((found[0] + 3.0).abs() < 1e-9);
