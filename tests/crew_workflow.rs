@@ -249,6 +249,8 @@ fn not_ready_exits_1_everywhere_and_says_so() {
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["verdict"], "not ready", "{v}");
+    // --no-size-search: no sizes searched, and --json says so
+    assert!(v["sizes"].is_null(), "{v}");
     assert!(
         stderr(&out).contains("verdict: NOT READY"),
         "{}",

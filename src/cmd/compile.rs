@@ -75,8 +75,9 @@ pub struct Args {
     #[arg(long)]
     pub low_speed: bool,
     /// Do not search the letter heights near a NOT READY word marking for
-    /// ones that paint (that search compiles up to 16 other sizes: seconds,
-    /// or most of a minute on a slow laptop). For scripts and comparisons
+    /// ones that paint (that search plans up to 16 other heights and
+    /// verifies those that plan without problems: seconds, or most of a
+    /// minute on a slow laptop). For scripts and comparisons
     /// that only want the job; the job and its verdict are the same.
     #[arg(long)]
     pub no_size_search: bool,

@@ -82,10 +82,15 @@ pub fn nearest_ready(req: &CompileRequest, asked_m: f64, floor_m: f64) -> SizeAd
     // fan) is refused at a tenth of the cost, as every height is where the
     // road's surface or the tip decides (a crown through STOP: 53 s of
     // searching before, measured in release on 2 cores). Only a height that
-    // plans evenly is verified, and it is advised only if it then holds.
+    // plans evenly is verified, and it is advised only if it then holds
+    // (verification is taken not to take a planned problem away: were it
+    // ever to, a height would go unadvised, never one advised that fails).
     let ready = |h: f64| {
         let mut r = req.clone();
         r.overrides.letter_height_m = Some(h);
+        if !r.verify {
+            return paints(&r);
+        }
         let mut planned = r.clone();
         planned.verify = false;
         paints(&planned) && paints(&r)

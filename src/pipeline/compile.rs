@@ -66,9 +66,11 @@ pub fn compile_strokes(
     // Another tip is planned first without the closed loop: one whose
     // plan already has problems (its film, its strokes against its fan)
     // is no choice, and is not verified (STOP at 6 ft verified all three
-    // tips: 3.4 s of a NOT READY compile). Verification re-times with
-    // lower accelerations only (painting speeds are the paint law's), so it
-    // does not take a planned problem away.
+    // tips: 3.4 s of a NOT READY compile). Verification only slows a job
+    // (gentler accelerations, and slower speeds where a joint's limit
+    // binds), and is taken not to take a planned problem away; were it
+    // ever to, a tip would be passed over that a verified compile would
+    // have kept: the cautious side.
     let mut planned = req.clone();
     planned.verify = false;
     for tip in others {

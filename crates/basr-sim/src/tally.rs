@@ -359,6 +359,9 @@ impl Tally {
             seg: self.seg,
             was_painting: self.was_painting,
             turn_rates: Vec::new(),
+            // copied whole: only runs asked for a trace keep one
+            // (`Options::keep_trace`), and those the commands run take no
+            // checkpoints; compile's resumable runs keep no trace
             trace: self.trace.clone(),
             painting_ticks: self.painting_ticks,
             diverged: self.diverged,
