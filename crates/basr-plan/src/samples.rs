@@ -96,8 +96,13 @@ fn clamp_to_range(robot: &AnyRobot, timed: &mut [Timed]) -> Result<(), CompileEr
             let c = v.clamp(l.min, l.max);
             if (c - v).abs() > CLAMP_MAX {
                 return Err(CompileError::Timing(format!(
-                    "setpoint {k}: {name} = {v} leaves its range [{}, {}] between knots",
-                    l.min, l.max
+                    "setpoint {k}: the smooth path between two planned points carries \
+                     {name} to {v:.4}, {:.4} past its range [{}, {}]: the marking reaches \
+                     the edge of what the arm reaches from its stop; use a smaller \
+                     --letter-height (or a robot with more reach)",
+                    (c - v).abs(),
+                    l.min,
+                    l.max
                 )));
             }
             p.q[j] = c;
