@@ -88,12 +88,11 @@ pub fn nearest_ready(req: &CompileRequest, asked_m: f64, floor_m: f64) -> SizeAd
     let ready = |h: f64| {
         let mut r = req.clone();
         r.overrides.letter_height_m = Some(h);
-        if !r.verify {
-            return paints(&r);
-        }
-        let mut planned = r.clone();
-        planned.verify = false;
-        paints(&planned) && paints(&r)
+        let planned = CompileRequest {
+            verify: false,
+            ..r.clone()
+        };
+        paints(&planned) && (!r.verify || paints(&r))
     };
     // The quarter feet either side of the asked height (never the asked
     // one), nearest first: sizes a crew can type as they are printed.

@@ -160,7 +160,7 @@ fn usable_stroke(t: &Telescopic, h: [f64; 3], near: f64) -> Option<Usable> {
             })
         })
         .min_by(|a, b| (a - near).abs().total_cmp(&(b - near).abs()))?;
-    let dq: Vec<f64> = (1..5).map(|i| q[i] * i as f64).collect();
+    let dq = super::envelope::poly_derivative(&q);
     let crit = real_roots(&dq, 0.0, top);
     let lo = crit
         .iter()

@@ -180,6 +180,20 @@ pub fn poly_eval(c: &[f64], x: f64) -> f64 {
     c.iter().rev().fold(0.0, |acc, &k| acc * x + k)
 }
 
+/// Coefficients of the derivative of Σ c[i]·xⁱ.
+pub fn poly_derivative(c: &[f64]) -> Vec<f64> {
+    (1..c.len()).map(|i| c[i] * i as f64).collect()
+}
+
+/// Σ |c[i]|·|x|ⁱ: the size of the terms Horner's rule adds at `x`, which
+/// its rounding is relative to.
+fn term_scale(c: &[f64], x: f64) -> f64 {
+    c.iter()
+        .enumerate()
+        .map(|(i, k)| k.abs() * x.abs().powi(i as i32))
+        .sum()
+}
+
 /// Every real root of Σ c[i]·xⁱ in [lo, hi], increasing. Written here: the
 /// roots between a derivative's roots are bracketed exactly (the
 /// polynomial is monotone there), so no root pair closer than a sampling
@@ -195,16 +209,11 @@ pub fn real_roots(c: &[f64], lo: f64, hi: f64) -> Vec<f64> {
         let x = -c[0] / c[1];
         return if x >= lo && x <= hi { vec![x] } else { vec![] };
     }
-    let deriv: Vec<f64> = (1..=n).map(|i| c[i] * i as f64).collect();
+    let deriv = poly_derivative(c);
     let mut knots = vec![lo];
     knots.extend(real_roots(&deriv, lo, hi));
     knots.push(hi);
-    let scale = |x: f64| {
-        c.iter()
-            .enumerate()
-            .map(|(i, k)| k.abs() * x.abs().powi(i as i32))
-            .sum::<f64>()
-    };
+    let scale = |x: f64| term_scale(c, x);
     let mut out: Vec<f64> = Vec::new();
     let push = |x: f64, out: &mut Vec<f64>| {
         if out.last().is_none_or(|&l| x - l > 1e-12 * (1.0 + x.abs())) {
@@ -349,9 +358,8 @@ mod tests {
             let found = real_roots(&c, -60.0, 60.0);
             prop_assert_eq!(found.len(), 4, "{:?} for {:?}", found, r);
             for (f, t) in found.iter().zip(&r) {
-                let scale: f64 = c.iter().enumerate().map(|(i, k)| k.abs() * t.abs().powi(i as i32)).sum();
-                let slope: f64 = (1..c.len()).map(|i| c[i] * i as f64 * t.powi(i as i32 - 1)).sum();
-                let tol = 16.0 * f64::EPSILON * scale / slope.abs();
+                let slope = poly_eval(&poly_derivative(&c), *t);
+                let tol = 16.0 * f64::EPSILON * term_scale(&c, *t) / slope.abs();
                 prop_assert!((f - t).abs() <= tol, "{} vs {} (tol {})", f, t, tol);
             }
         }

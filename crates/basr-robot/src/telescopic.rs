@@ -135,7 +135,7 @@ impl Telescopic {
             // torus comes nearest (the quartic's lowest point).
             return Err(nearest.unwrap_or_else(|| {
                 let d = [l.min, l.max];
-                let dq: Vec<f64> = (1..5).map(|i| q[i] * i as f64).collect();
+                let dq = super::envelope::poly_derivative(&q);
                 real_roots(&dq, l.min - 20.0 * span, l.max + 20.0 * span)
                     .into_iter()
                     .chain(d)
