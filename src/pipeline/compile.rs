@@ -111,7 +111,7 @@ fn compile_for_tip(
     let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
     let (passes, plan) = passes_on_road(req, marking, strokes, &robot, tilt)?;
     let tours = tours::tours(&passes, &plan, &robot);
-    let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot)?;
+    let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot, &req.tuning.joins)?;
     let n = paths.stations.len();
     let mut paces = vec![trajectory::Pace::FULL; n];
     let mut cache = trajectory::StationTimings::default();
@@ -139,6 +139,7 @@ fn compile_for_tip(
                 gun_lead_s: req.gun_lead_s,
                 gun_lag_s: req.gun_lag_s,
                 pace: trajectory::Pace::FULL,
+                joins: req.tuning.joins,
             },
             &paces,
             &mut cache,
@@ -213,7 +214,15 @@ fn compile_for_tip(
                     return Ok((si, None));
                 }
                 let range = rows[si].clone();
-                slower(&paces[si], v, &paths, &job.samples, range).map(|p| (si, p))
+                slower(
+                    &paces[si],
+                    v,
+                    &paths,
+                    &job.samples,
+                    range,
+                    &req.tuning.retime,
+                )
+                .map(|p| (si, p))
             })
             .collect::<Result<_, _>>()?;
         for (si, p) in slowed {
@@ -244,17 +253,6 @@ fn compile_for_tip(
     }
 }
 
-/// Excursion of the surface from the truck's plane (m) the planner leaves
-/// to the joints' clamp (`joints::knot_pose` stops the nozzle at the end
-/// of its painting heights) rather than narrowing those heights for a
-/// whole stroke. source: the nozzle's height over the road is to stay
-/// within 3 mm of plan (issue 29's bound); the fan then lands at most this
-/// much nearer or further, and its edges move by at most this ×
-/// tan(fan/2), 1.9 mm at the seed's 63.5° tip (under a third of the agency's
-/// 1/4 in), and only where the surface is that far off. Beyond it, the
-/// paint law keeps the heights clear.
-const CLAMP_FREE_M: f64 = 0.003;
-
 /// Rounds of planning the passes again for the road's surface: each round
 /// widens the heights kept clear by what the stations then found; the
 /// stations move by centimetres at most between rounds, so the second
@@ -278,9 +276,9 @@ fn passes_on_road(
         let rungs = rungs::rungs(
             strokes,
             req.rung_spacing_m,
-            Some(&passes::turn_budget(planner)),
+            Some(&passes::turn_budget(planner, &req.tuning)),
         );
-        passes::passes(strokes, &rungs, planner, tilt.method())
+        passes::passes(strokes, &rungs, planner, tilt.method(), &req.tuning)
     };
     let stations_for = |passes: &passes::Passes| -> Result<stations::StationPlan, CompileError> {
         let mut plan =
@@ -303,18 +301,14 @@ fn passes_on_road(
     // The largest excursions met, for the note.
     let mut seen = [0.0f64; 2];
     let mut uneven: std::collections::BTreeSet<usize> = Default::default();
+    // the excursion left to the joints' clamp (`tuning::Surface`)
+    let free = req.tuning.surface.clamp_free_m;
     for _ in 0..SURFACE_ROUNDS {
         let need = surface_excursion(&plan, &passes, robot);
         let mut grew = false;
         for (&stroke, &[below, above]) in &need {
             seen = [seen[0].max(below), seen[1].max(above)];
-            let n = [below, above].map(|n| {
-                if n - CLAMP_FREE_M < 1e-6 {
-                    0.0
-                } else {
-                    n - CLAMP_FREE_M
-                }
-            });
+            let n = [below, above].map(|n| if n - free < 1e-6 { 0.0 } else { n - free });
             if n[0] > kept[0] || n[1] > kept[1] {
                 kept = [kept[0].max(n[0]), kept[1].max(n[1])];
                 grew = true;
@@ -548,7 +542,13 @@ fn slower(
     paths: &joints::JointPaths,
     samples: &crate::job::Samples,
     rows: std::ops::Range<usize>,
+    retime: &basr_plan::tuning::Retime,
 ) -> Result<Option<trajectory::Pace>, CompileError> {
+    let &basr_plan::tuning::Retime {
+        arrival_s,
+        pace_step,
+        min_pace,
+    } = retime;
     let mut pace = pace.clone();
     let (si, stroke) = verdict.worst;
     let first_of = |si: u32, stroke: i64| {
@@ -558,7 +558,7 @@ fn slower(
             .and_then(|r| r.first())
             .is_some_and(|r| r.stroke as i64 == stroke)
     };
-    let after_stow = first_of(si, stroke) && pace.air > MIN_PACE;
+    let after_stow = first_of(si, stroke) && pace.air > min_pace;
     let mut joins_slowed = false;
     // The join into the worst stroke, where the arm arrives behind at its
     // first rungs (a verification run ends at its first failure, so the
@@ -566,16 +566,16 @@ fn slower(
     let arrival = !after_stow
         && !first_of(si, stroke)
         && paint_start(samples, rows, stroke, verdict.worst_t_s)
-            .is_some_and(|t0| verdict.worst_t_s - t0 < ARRIVAL_S);
+            .is_some_and(|t0| verdict.worst_t_s - t0 < arrival_s);
     if arrival {
         match pace.joins.iter().position(|(s, _)| *s as i64 == stroke) {
-            Some(k) if pace.joins[k].1 > MIN_PACE => {
-                pace.joins[k].1 *= PACE_STEP;
+            Some(k) if pace.joins[k].1 > min_pace => {
+                pace.joins[k].1 *= pace_step;
                 joins_slowed = true;
             }
             Some(_) => {}
             None => {
-                pace.joins.push((stroke as usize, PACE_STEP));
+                pace.joins.push((stroke as usize, pace_step));
                 joins_slowed = true;
             }
         }
@@ -583,12 +583,12 @@ fn slower(
     if after_stow && pace.fly_in {
         pace.fly_in = false;
     } else if after_stow {
-        pace.air *= PACE_STEP;
+        pace.air *= pace_step;
     } else if joins_slowed {
     } else if verdict.on_spread {
         return Ok(None);
-    } else if pace.path > MIN_PACE {
-        pace.path *= PACE_STEP;
+    } else if pace.path > min_pace {
+        pace.path *= pace_step;
     } else {
         return Err(CompileError::NotFollowed {
             pace: pace.path * 100.0,
@@ -637,17 +637,6 @@ fn paint_start(
         .last()?;
     Some(s.t_s[first])
 }
-
-/// An error this soon after a stroke starts painting is the join's into
-/// it (s). assumed: about the hydraulic arm's settling after a fast join
-/// (the verified errors sit within 0.1 s of the first rung).
-const ARRIVAL_S: f64 = 1.0;
-
-/// Each re-timing uses this share of the last one's accelerations.
-/// assumed: a few steps reach `MIN_PACE` while each still gains.
-const PACE_STEP: f64 = 0.6;
-/// Slowest re-timing tried before the job is refused (share of the limits).
-const MIN_PACE: f64 = 0.1;
 
 #[cfg(test)]
 mod tests {

@@ -18,17 +18,8 @@ use super::joints::Run;
 use super::timing::sync::{min_time, synced, Ends};
 use super::timing::{JointLimits, PathPoint};
 use super::trajectory::{arc_lengths, Q};
+use super::tuning::Joins;
 
-/// Path-parameter rate standing in for the joints' own motion in a blend
-/// (m of s per s of the slowest joint at its speed limit). assumed: about
-/// the painting speed (0.16 m/s, SPEC §4), so blends and runs share a scale.
-const BLEND_SPEED_MPS: f64 = 0.2;
-/// Spacing of a blend's waypoints (m of s). assumed: the default rung
-/// spacing.
-const BLEND_STEP_M: f64 = 0.02;
-/// Shortest blend (m of s): room to turn round where the next stroke starts
-/// where the last one ended and runs back. assumed: half the 0.1 m lead.
-const BLEND_MIN_M: f64 = 0.05;
 /// Most waypoints per blend.
 const BLEND_MAX_POINTS: usize = 400;
 /// Tangent scales tried, largest first.
@@ -118,6 +109,7 @@ pub fn chain(
     runs: &[Run],
     limits: &JointLimits<5>,
     slow_joins: &[(usize, f64)],
+    joins: &Joins,
 ) -> Chain {
     let mut out = Chain {
         points: vec![],
@@ -140,14 +132,14 @@ pub fn chain(
                 jerk: limits.jerk,
             };
             let joined = (&runs[ri - 1], &arcs[ri - 1][..], &runs[ri], &arcs[ri][..]);
-            flown(robot, &design, joined, share < 1.0)
+            flown(robot, &design, joined, share < 1.0, joins)
         })
         .collect();
     // Leads where the stroke needs a run-up; none where the join flies in
     // at speed or the stroke carries on from the last one (same place, same
     // heading: the nozzle flies straight on from paint into paint).
     let direct: Vec<bool> = (1..runs.len())
-        .map(|ri| flown[ri - 1].is_some() || continues(&runs[ri - 1], &runs[ri]))
+        .map(|ri| flown[ri - 1].is_some() || continues(&runs[ri - 1], &runs[ri], joins))
         .collect();
     // dq/ds at the rungs a flown join leaves from and arrives at, so the
     // time law's spline meets the join with the join's own tangents.
@@ -184,7 +176,8 @@ pub fn chain(
                 }
                 None => {
                     out.flown.push(None);
-                    let (blend, stop) = blend(robot, prev, &out.arcs[ri - 1], from, run, &arcs, lo);
+                    let (blend, stop) =
+                        blend(robot, prev, &out.arcs[ri - 1], from, run, &arcs, lo, joins);
                     if let Some(why) = stop {
                         out.stops.push((ri, why));
                     }
@@ -252,19 +245,6 @@ pub fn chain(
     out
 }
 
-/// Share of the time law's limits a flown join is designed to, so the
-/// time law (its own 3 % margin and the spline through the join's
-/// waypoints) can follow it at the design speed. assumed: 10 %.
-const DESIGN_SHARE: f64 = 0.9;
-/// Share of that a flown join's last phase (arriving at the next stroke)
-/// accelerates at: the hydraulic arm lags a hard stop-and-go into the first
-/// rungs (the verified errors sat at the strokes' first rungs). assumed:
-/// half, chosen on STOP's and SCHOOL's verified errors.
-const ARRIVAL_SHARE: f64 = 0.5;
-/// Time between a flown join's waypoints (s). assumed: a quarter of the
-/// yaw servo's 0.1 s to full speed (000 app. C §3.2.1), so the spline
-/// through them keeps the ramps.
-const FLOWN_STEP_S: f64 = 0.025;
 /// Shortest flown join (m of s); below it the runs meet as they are.
 const FLOWN_MIN_M: f64 = 1e-3;
 
@@ -305,24 +285,30 @@ impl<'a> Side<'a> {
 
 /// The end states of the join from `a` to `b` and its design limits, with
 /// the painting speeds at both rungs.
-fn seam_ends(limits: &JointLimits<5>, a: Side, b: Side) -> Option<(Ends<5>, f64, f64)> {
+fn seam_ends(
+    limits: &JointLimits<5>,
+    a: Side,
+    b: Side,
+    joins: &Joins,
+) -> Option<(Ends<5>, f64, f64)> {
+    let (design, arrival) = (joins.design_share, joins.arrival_share);
     let ((va, p0, v0), (vb, p1, v1)) = (a.state()?, b.state()?);
     let ends = Ends {
         p0,
         v0,
         p1,
         v1,
-        vel: limits.vel.map(|v| v * DESIGN_SHARE),
-        acc: limits.acc.map(|v| v * DESIGN_SHARE),
-        acc_end: limits.acc.map(|v| v * DESIGN_SHARE * ARRIVAL_SHARE),
+        vel: limits.vel.map(|v| v * design),
+        acc: limits.acc.map(|v| v * design),
+        acc_end: limits.acc.map(|v| v * design * arrival),
     };
     Some((ends, va, vb))
 }
 
 /// Duration (s) of the join flown from `a` into `b` as `chain` designs it
 /// at full pace, estimated for ordering strokes; None where none is found.
-pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side) -> Option<f64> {
-    let (e, _, _) = seam_ends(limits, a, b)?;
+pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side, joins: &Joins) -> Option<f64> {
+    let (e, _, _) = seam_ends(limits, a, b, joins)?;
     // The slowest joint alone (the synchronised move can take a little
     // longer where another joint cannot stretch to it).
     Some(
@@ -349,11 +335,13 @@ fn flown(
     limits: &JointLimits<5>,
     (a, arcs_a, b, arcs_b): (&Run, &[f64], &Run, &[f64]),
     capped: bool,
+    joins: &Joins,
 ) -> Option<Blend> {
     let (ends, va, vb) = seam_ends(
         limits,
         Side::new((&a.knots, &a.joints, arcs_a), a.paint_last, true),
         Side::new((&b.knots, &b.joints, arcs_b), b.paint_first, false),
+        joins,
     )?;
     let (ra, rb): (Q, Q) = (
         std::array::from_fn(|j| ends.v0[j] / va),
@@ -365,7 +353,7 @@ fn flown(
     if length < FLOWN_MIN_M {
         return None;
     }
-    let times = m.sample_times(FLOWN_STEP_S, BLEND_MAX_POINTS);
+    let times = m.sample_times(joins.flown_step_s, BLEND_MAX_POINTS);
     let mut inner = Vec::with_capacity(times.len());
     for &t in &times[1..times.len().saturating_sub(1)] {
         let (q, qd) = m.at(t);
@@ -394,14 +382,9 @@ fn flown(
     })
 }
 
-/// Largest gap (m) and turn of the travel direction (rad) between one
-/// stroke's last rung and the next one's first for the next to carry on
-/// without leads. assumed: a quarter of the default rung spacing, and 20°.
-const CONTINUE_GAP_M: f64 = 0.005;
-const CONTINUE_TURN_RAD: f64 = 0.35;
-
-/// Whether run b starts where run a ends, heading the same way.
-fn continues(a: &Run, b: &Run) -> bool {
+/// Whether run b starts where run a ends, heading the same way (within
+/// `tuning::Joins::continue_gap_m` and `continue_turn_rad`).
+fn continues(a: &Run, b: &Run, joins: &Joins) -> bool {
     let (ka, kb) = (&a.knots, &b.knots);
     let (pa, pb) = (a.paint_last, b.paint_first);
     if pa == 0 || pb + 1 >= kb.len() {
@@ -411,7 +394,7 @@ fn continues(a: &Run, b: &Run) -> bool {
     let da = ka[pa].tip - ka[pa - 1].tip;
     let db = kb[pb + 1].tip - kb[pb].tip;
     let turn = (da.cross(db)).atan2(da.dot(db)).abs();
-    gap <= CONTINUE_GAP_M && turn <= CONTINUE_TURN_RAD
+    gap <= joins.continue_gap_m && turn <= joins.continue_turn_rad
 }
 
 struct Blend {
@@ -442,6 +425,7 @@ fn end_rate(joints: &[Q], arcs: &[f64], at: usize, out: bool) -> Q {
 }
 
 /// The blend from knot `from` of run a to knot `to` of run b.
+#[allow(clippy::too_many_arguments)]
 fn blend(
     robot: &AnyRobot,
     a: &Run,
@@ -450,6 +434,7 @@ fn blend(
     b: &Run,
     arcs_b: &[f64],
     to: usize,
+    joins: &Joins,
 ) -> (Blend, Option<StopReason>) {
     let qa = a.joints[from];
     let qb = b.joints[to];
@@ -464,8 +449,10 @@ fn blend(
         .enumerate()
         .map(|(j, l)| (qb[j] - qa[j]).abs() / l.max_vel)
         .fold(0.0, f64::max);
-    let length = road.max(slowest * BLEND_SPEED_MPS).max(BLEND_MIN_M);
-    let m = ((length / BLEND_STEP_M).ceil() as usize).clamp(2, BLEND_MAX_POINTS);
+    let length = road
+        .max(slowest * joins.blend_speed_mps)
+        .max(joins.blend_min_m);
+    let m = ((length / joins.blend_step_m).ceil() as usize).clamp(2, BLEND_MAX_POINTS);
     // Each joint's curve is its own cubic: a joint whose curve would leave
     // its range has its end tangents scaled down (at worst to zero, where it
     // comes to rest at the seam while the others fly on).

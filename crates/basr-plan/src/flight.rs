@@ -16,14 +16,6 @@ use super::joints::Run;
 use super::timing::{self, JointLimits, Kinematic, PathOptions, Trajectory};
 use super::trajectory::Q;
 
-/// Share of the limits a jerk-limited move holds back. The move is exact
-/// in continuous time (no grid, unlike the painting path's 3 %), and every
-/// finite difference of its samples is a mean of the continuous rates, so
-/// only rounding needs room: a move that rides an acceleration limit for a
-/// while gives second differences equal to it, and `check` compares them
-/// with the limit itself. assumed: ½ %.
-const JOIN_MARGIN: f64 = 0.005;
-
 /// The limits a station is flown at.
 pub struct Limits<'a> {
     /// The stow pose, where the station starts and ends at rest.
@@ -40,6 +32,9 @@ pub struct Limits<'a> {
     pub joins: &'a [(usize, f64)],
     /// Fly out of stow into the first rung at speed (else rest at the lead).
     pub fly_in: bool,
+    /// Share of the limits the jerk-limited moves hold back
+    /// (`tuning::Joins::join_margin`).
+    pub join_margin: f64,
 }
 
 /// `pieces`: the move out of stow, segment 0, join 0, segment 1, …, the
@@ -128,7 +123,7 @@ pub fn fly(
             let start = seg.path_end(false).expect("a path");
             if k == 0 {
                 let into = if fly_in {
-                    timing::join_move(&rest, &start, lim.air, &range, JOIN_MARGIN).ok()
+                    timing::join_move(&rest, &start, lim.air, &range, lim.join_margin).ok()
                 } else {
                     timing::air_move(lim.home, start.q, lim.air, options.margin).ok()
                 };
@@ -154,7 +149,7 @@ pub fn fly(
                     .and_then(|p| p.path_end(true))
                     .expect("a path");
                 let join_lim = join_limits(lim.path, share);
-                match timing::join_move(&from, &start, &join_lim, &range, JOIN_MARGIN) {
+                match timing::join_move(&from, &start, &join_lim, &range, lim.join_margin) {
                     Ok(j) => pieces.push(j),
                     Err(_) => {
                         cuts.remove(k - 1);
@@ -169,7 +164,7 @@ pub fn fly(
             .and_then(|p| p.path_end(true))
             .expect("a path");
         let back = if fly_out {
-            timing::join_move(&end, &rest, lim.back, &range, JOIN_MARGIN).ok()
+            timing::join_move(&end, &rest, lim.back, &range, lim.join_margin).ok()
         } else {
             timing::air_move(end.q, lim.home, lim.back, options.margin).ok()
         };
@@ -202,6 +197,7 @@ mod tests {
     use crate::placed::PlacedStrokes;
     use crate::request::CompileRequest;
     use crate::trajectory::{self, timing_limits, Pace, TimeLaw};
+    use crate::tuning::Tuning;
     use crate::{inputs, joints, passes, request, rungs, stations, tours};
     use basr_shape::layout::{self, Marking};
 
@@ -215,19 +211,22 @@ mod tests {
         let rungs = rungs::rungs(
             &strokes,
             req.rung_spacing_m,
-            Some(&passes::turn_budget(&robot)),
+            Some(&passes::turn_budget(&robot, &req.tuning)),
         );
         let (tilt, _) = request::tilt_for(req.tilt, &robot);
-        let passes = passes::passes(&strokes, &rungs, &robot, tilt.method()).unwrap();
+        let passes = passes::passes(&strokes, &rungs, &robot, tilt.method(), &req.tuning).unwrap();
         let plan =
             stations::for_passes(&passes, laid.lane_width_m, req.reach_margin_m, &robot).unwrap();
         let tours = tours::tours(&passes, &plan, &robot);
-        let paths = joints::joint_paths(&strokes, &passes, &plan, &tours, &robot).unwrap();
+        let paths =
+            joints::joint_paths(&strokes, &passes, &plan, &tours, &robot, &req.tuning.joins)
+                .unwrap();
         let law = TimeLaw {
             period_s: req.period_s,
             gun_lead_s: req.gun_lead_s,
             gun_lag_s: req.gun_lag_s,
             pace: Pace::FULL,
+            joins: req.tuning.joins,
         };
         let timed = trajectory::time_law(&strokes, &plan, &paths, &robot, &law).unwrap();
         (timed, robot, req.period_s)
@@ -239,7 +238,7 @@ mod tests {
     #[test]
     fn every_join_is_jerk_limited() {
         let (timed, robot, period) = stop_timed();
-        let jerk = timing_limits(&robot, 1.0).jerk;
+        let jerk = timing_limits(&robot, 1.0, Tuning::DEFAULT.joins.jerk_per_acc).jerk;
         let samples = &timed.stations[0];
         let mut runs_seen = vec![];
         let mut windows = 0;

@@ -10,12 +10,13 @@ use basr_robot::{AnyRobot, NozzlePose, Q};
 
 use super::chain::Side;
 use super::error::CompileError;
-use super::leads::{with_leads, LEAD_M};
+use super::leads::with_leads;
 use super::passes::Passes;
 use super::placed::PlacedStrokes;
 use super::stations::StationPlan;
 use super::stow::stow_joints;
 use super::tours::Tours;
+use super::tuning::Joins;
 
 /// A pass as the arm runs it: joints at every knot, in painting order.
 #[derive(Clone, Debug, PartialEq)]
@@ -54,14 +55,16 @@ struct Candidates {
 /// Flown join durations between passes' branches, each found once.
 struct JoinCosts {
     limits: super::timing::JointLimits<5>,
+    joins: Joins,
     /// (from id, its branch, to id, its branch) → s.
     known: std::cell::RefCell<std::collections::HashMap<(usize, usize, usize, usize), f64>>,
 }
 
 impl JoinCosts {
-    fn new(robot: &AnyRobot) -> Self {
+    fn new(robot: &AnyRobot, joins: &Joins) -> Self {
         JoinCosts {
-            limits: super::trajectory::timing_limits(robot, 1.0),
+            limits: super::trajectory::timing_limits(robot, 1.0, joins.jerk_per_acc),
+            joins: *joins,
             known: Default::default(),
         }
     }
@@ -79,6 +82,7 @@ impl JoinCosts {
             &self.limits,
             Side::new((&a.knots, ja, &a.arcs), a.paint_last, true),
             Side::new((&b.knots, jb, &b.arcs), b.paint_first, false),
+            &self.joins,
         )
         .unwrap_or_else(|| travel(robot, &ja[ja.len() - 1], &jb[0]));
         self.known.borrow_mut().insert(key, t);
@@ -100,6 +104,7 @@ pub fn joint_paths(
     plan: &StationPlan,
     tours: &Tours,
     robot: &AnyRobot,
+    joins: &Joins,
 ) -> Result<JointPaths, CompileError> {
     let stow = stow_joints(robot);
     let mut out = JointPaths::default();
@@ -119,9 +124,9 @@ pub fn joint_paths(
                     [law.min_height_m, law.max_height_m]
                 },
             };
-            let fwd = candidates(robot, &at, &pass.knots, false, pass.stroke)
+            let fwd = candidates(robot, &at, &pass.knots, false, pass.stroke, joins)
                 .map(|c| Candidates { id, ..c });
-            let rev = candidates(robot, &at, &pass.knots, true, pass.stroke)
+            let rev = candidates(robot, &at, &pass.knots, true, pass.stroke, joins)
                 .map(|c| Candidates { id: id + 1, ..c });
             match (fwd, rev) {
                 (Err((k, e)), Err(_)) => {
@@ -152,7 +157,7 @@ pub fn joint_paths(
                 (k, rev)
             })
             .collect();
-        let costs = JoinCosts::new(robot);
+        let costs = JoinCosts::new(robot, joins);
         improve(robot, &stow, &ways, &mut seq, &costs);
         let picked: Vec<&Candidates> = seq
             .iter()
@@ -260,14 +265,15 @@ fn candidates(
     knots: &[Knot],
     reversed: bool,
     stroke: usize,
+    joins: &Joins,
 ) -> Result<Candidates, (usize, basr_robot::Unreachable)> {
     let mut ks = knots.to_vec();
     if reversed {
         ks.reverse();
     }
     let mut first_err = None;
-    for lead in [LEAD_M, 0.5 * LEAD_M, 0.0] {
-        let (all, a, b) = with_leads(&ks, lead);
+    for lead in [joins.lead_m, 0.5 * joins.lead_m, 0.0] {
+        let (all, a, b) = with_leads(&ks, lead, joins.lead_knots);
         match solve_branches(robot, station, &all) {
             Ok(br) => {
                 return Ok(Candidates {

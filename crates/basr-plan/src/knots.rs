@@ -128,7 +128,8 @@ pub fn knots(
     method: TiltMethod,
     max_tilt_rad: f64,
 ) -> Result<KnotPlan, PlanError> {
-    knots_within(rungs, law, method, max_tilt_rad, f64::INFINITY)
+    // the tilt's rate is not limited, so nothing is smoothed
+    knots_within(rungs, law, method, max_tilt_rad, f64::INFINITY, 0)
 }
 
 /// [`knots`] with the tilt's change along the pass kept within
@@ -136,13 +137,15 @@ pub fn knots(
 /// the tilt to change faster (a bowl's curve running into a straight run,
 /// where the quadrilateral balance falls from its limit to zero within a
 /// few rungs), the change is spread evenly to both sides (`turn::spread_steps`),
-/// so the time law need not slow the nozzle for the tilt joint.
+/// so the time law need not slow the nozzle for the tilt joint, its
+/// corners rounded by `tilt_smoothing` rounds (`tuning::Rates`).
 pub fn knots_within(
     rungs: &[Rung],
     law: &PaintLaw,
     method: TiltMethod,
     max_tilt_rad: f64,
     max_tilt_rate_rps: f64,
+    tilt_smoothing: usize,
 ) -> Result<KnotPlan, PlanError> {
     law.validate()?;
     if !(max_tilt_rad.is_finite() && max_tilt_rad >= 0.0) {
@@ -188,7 +191,7 @@ pub fn knots_within(
                 max_tilt_rate_rps * ds * w.max(min_width) / law.k_m2ps
             })
             .collect();
-        super::turn::spread_smooth_steps(&mut betas, &step, TILT_SMOOTHING);
+        super::turn::spread_smooth_steps(&mut betas, &step, tilt_smoothing);
     }
     let u_before = tilt::u_range(&tilt::u_ratios(rungs, &[], fan));
     let u_after = tilt::u_range(&tilt::u_ratios(rungs, &betas, fan));
@@ -239,10 +242,6 @@ pub fn knots_within(
         clamped,
     })
 }
-
-/// Rounds of smoothing of the tilt's spread change (`turn::spread_smooth_steps`).
-/// assumed: 4 rounds round the corners over ≈ 3 knots either side.
-const TILT_SMOOTHING: usize = 4;
 
 /// Smallest tip step (m) the time law parameterises by; `plan::compile`
 /// floors each step of the arc length the same way, so a rung turning in

@@ -6,14 +6,6 @@ use basr_robot::kinematics::wrap_pi;
 
 use super::knots::{self, Knot};
 
-/// Lead-in and lead-out length (m): the nozzle reaches the painting speed
-/// before a stroke's first rung and keeps it past the last. assumed: 0.05 m
-/// lets a path acceleration of 0.3 m/s² reach 0.17 m/s (a one-unit stroke
-/// at 8 ft); shorter leads are tried where the arm cannot reach that far.
-pub const LEAD_M: f64 = 0.10;
-/// Pseudo-knots per lead.
-const LEAD_KNOTS: usize = 5;
-
 /// A knot with the same spray moved `d` metres along `dir` (road frame),
 /// its fan turned by `dyaw`.
 fn shifted(k: &Knot, dir: kurbo::Vec2, d: f64, dyaw: f64) -> Knot {
@@ -37,10 +29,11 @@ fn yaw_per_m(a: &Knot, b: &Knot) -> f64 {
 }
 
 /// The run's knots with a lead-in and lead-out of `lead` metres along the
-/// stroke's end directions; returns (knots, index of the first and last
-/// painting knot).
-pub fn with_leads(ks: &[Knot], lead: f64) -> (Vec<Knot>, usize, usize) {
+/// stroke's end directions, `per_lead` pseudo-knots each (at least one);
+/// returns (knots, index of the first and last painting knot).
+pub fn with_leads(ks: &[Knot], lead: f64, per_lead: usize) -> (Vec<Knot>, usize, usize) {
     let n = ks.len();
+    let per = per_lead.max(1);
     if lead <= 0.0 || n < 2 {
         return (ks.to_vec(), 0, n.saturating_sub(1));
     }
@@ -56,15 +49,15 @@ pub fn with_leads(ks: &[Knot], lead: f64) -> (Vec<Knot>, usize, usize) {
     // acceleration limit would answer by slowing the nozzle over paint.
     let (turn_in, turn_out) = (yaw_per_m(&ks[1], &ks[0]), yaw_per_m(&ks[n - 2], &ks[n - 1]));
     let wound = |d: f64| d - d * d / (2.0 * lead);
-    let mut out = Vec::with_capacity(n + 2 * LEAD_KNOTS);
-    for i in (1..=LEAD_KNOTS).rev() {
-        let d = lead * i as f64 / LEAD_KNOTS as f64;
+    let mut out = Vec::with_capacity(n + 2 * per);
+    for i in (1..=per).rev() {
+        let d = lead * i as f64 / per as f64;
         out.push(shifted(&ks[0], dir_in, d, turn_in * wound(d)));
     }
     out.extend_from_slice(ks);
-    for i in 1..=LEAD_KNOTS {
-        let d = lead * i as f64 / LEAD_KNOTS as f64;
+    for i in 1..=per {
+        let d = lead * i as f64 / per as f64;
         out.push(shifted(&ks[n - 1], dir_out, d, turn_out * wound(d)));
     }
-    (out, LEAD_KNOTS, LEAD_KNOTS + n - 1)
+    (out, per, per + n - 1)
 }

@@ -14,9 +14,10 @@
 //! let marking = Marking::from_message("I", &req.overrides).unwrap();
 //! let laid = lay_marking(&marking, &font, false).unwrap();
 //! let strokes = PlacedStrokes::from_laid(&laid);
-//! let rungs = rungs::rungs(&strokes, req.rung_spacing_m, Some(&passes::turn_budget(&robot)));
+//! let budget = passes::turn_budget(&robot, &req.tuning);
+//! let rungs = rungs::rungs(&strokes, req.rung_spacing_m, Some(&budget));
 //! let (tilt, _) = request::tilt_for(req.tilt, &robot);
-//! let passes = passes::passes(&strokes, &rungs, &robot, tilt.method()).unwrap();
+//! let passes = passes::passes(&strokes, &rungs, &robot, tilt.method(), &req.tuning).unwrap();
 //! let plan = stations::for_passes(&passes, laid.lane_width_m, req.reach_margin_m, &robot).unwrap();
 //! assert_eq!(plan.stations.len(), 1);
 //! ```
@@ -26,7 +27,8 @@
 //! `stations` → `tours` (`order`) → `joints` (with `leads`) → `trajectory`
 //! (the `timing` time law) → `samples` → `seal`. `warnings` holds every note
 //! a stage makes; `request` what a compile is asked; `inputs` the robot and
-//! font it reads.
+//! font it reads; `tuning` every value the stages use that is chosen rather
+//! than derived, in one typed value.
 //!
 //! It imports geom, robot, job and shape (the strokes it plans), never the
 //! simulator or the previewer: verifying a plan on the arm and measuring
@@ -58,5 +60,6 @@ pub mod tilt;
 pub mod timing;
 pub mod tours;
 pub mod trajectory;
+pub mod tuning;
 pub mod turn;
 pub mod warnings;

@@ -20,26 +20,7 @@ use basr_robot::kinematics::wrap_pi;
 
 use crate::knots::{Knot, MIN_TIP_STEP_M};
 use crate::rungs::Rung;
-
-/// The largest turn off the rung (rad). assumed: 60°, where the footprint
-/// covers half its length across; further turned it smears more along the
-/// stroke (`fan · sin φ`) than it narrows across, and a pointed end's
-/// zero-width rung would ask for 90°.
-pub const MAX_TURN_RAD: f64 = std::f64::consts::FRAC_PI_3;
-
-/// A knot leaned more than this (rad) keeps its fan on the rung: the tilt
-/// leans the fan along its own direction, which the turn would swing off
-/// the rung, and the balance the tilt was chosen for (`tilt`) would be
-/// lost. source: a narrow stroke's straight sides need no lean; 1° is
-/// far below the quadrilateral method's tilts on curves (5–15°).
-const LEANED_RAD: f64 = 1.0_f64.to_radians();
-
-/// Rounds of smoothing of the turn. assumed: 8 rounds round a corner over
-/// ≈ 3 knots either side (30–60 mm at the rung spacing), the distance in
-/// which the fan joint reaches its turn rate at its acceleration limit at
-/// a narrow stroke's painting speed (0.44 rad/s at 5.2 rad/s² in 0.08 s,
-/// 15 mm at 0.16 m/s).
-const SMOOTHING: usize = 8;
+use crate::tuning::Narrow;
 
 /// Turn each clamped knot's fan off its rung (`rungs[i]`, the pass's
 /// rungs) so that it covers the rung, within the fan joint's turn rate
@@ -48,7 +29,13 @@ const SMOOTHING: usize = 8;
 /// its rung turns on from there, the same way for the whole pass; the
 /// knot's `turn_rad` is then its whole angle off the rung. Returns whether
 /// any knot turned (the caller paces the pass again).
-pub fn turn_narrow(rungs: &[Rung], ks: &mut [Knot], max_turn_rps: f64, k_m2ps: f64) -> bool {
+pub fn turn_narrow(
+    rungs: &[Rung],
+    ks: &mut [Knot],
+    max_turn_rps: f64,
+    k_m2ps: f64,
+    tuning: &Narrow,
+) -> bool {
     let n = ks.len().min(rungs.len());
     if n < 3 || !(max_turn_rps > 0.0 && k_m2ps > 0.0) {
         return false;
@@ -72,8 +59,8 @@ pub fn turn_narrow(rungs: &[Rung], ks: &mut [Knot], max_turn_rps: f64, k_m2ps: f
             let k = &ks[i];
             let inner = i > 0 && i + 1 < n;
             let clamped = k.fan_width_m > k.width_m * (1.0 + 1e-9) && k.width_m > 0.0;
-            if inner && clamped && k.tilt_rad.abs() <= LEANED_RAD {
-                (k.width_m / k.fan_width_m).acos().min(MAX_TURN_RAD)
+            if inner && clamped && k.tilt_rad.abs() <= tuning.leaned_rad {
+                (k.width_m / k.fan_width_m).acos().min(tuning.max_turn_rad)
             } else {
                 0.0
             }
@@ -120,7 +107,7 @@ pub fn turn_narrow(rungs: &[Rung], ks: &mut [Knot], max_turn_rps: f64, k_m2ps: f
     // fan joint's acceleration is not asked for a step in its rate, then
     // hold it within the rate again (the mean of three neighbours passes
     // it where the steps differ), never beyond what a rung wants.
-    for _ in 0..SMOOTHING {
+    for _ in 0..tuning.smoothing {
         let prev = phi.clone();
         for i in 1..n - 1 {
             phi[i] = want[i].min((prev[i - 1] + prev[i] + prev[i + 1]) / 3.0);
@@ -150,6 +137,9 @@ pub fn turn_narrow(rungs: &[Rung], ks: &mut [Knot], max_turn_rps: f64, k_m2ps: f
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The planner's default tuning of the turn.
+    const N: Narrow = crate::tuning::Tuning::DEFAULT.narrow;
     use kurbo::Point;
 
     /// A straight pass along +y of `n` rungs `w` wide, 10 mm apart.
@@ -186,7 +176,7 @@ mod tests {
     #[test]
     fn a_clamped_fan_turns_to_cover_the_rung_and_not_at_the_ends() {
         let mut ks = pass(300, 0.073, 0.097);
-        assert!(turn_narrow(&rungs(300, 0.073), &mut ks, 0.44, 0.0158));
+        assert!(turn_narrow(&rungs(300, 0.073), &mut ks, 0.44, 0.0158, &N));
         let mid = &ks[150];
         assert!((mid.covered_width_m() - 0.073).abs() < 1e-9);
         assert!((mid.yaw_rad - mid.turn_rad).abs() < 1e-12);
@@ -204,21 +194,21 @@ mod tests {
     #[test]
     fn a_fan_on_its_rung_or_leaned_does_not_turn() {
         let mut ks = pass(50, 0.2, 0.2);
-        assert!(!turn_narrow(&rungs(50, 0.2), &mut ks, 0.44, 0.0158));
+        assert!(!turn_narrow(&rungs(50, 0.2), &mut ks, 0.44, 0.0158, &N));
         let mut ks = pass(50, 0.07, 0.1);
         for k in &mut ks {
             k.tilt_rad = 0.1;
         }
-        assert!(!turn_narrow(&rungs(50, 0.07), &mut ks, 0.44, 0.0158));
+        assert!(!turn_narrow(&rungs(50, 0.07), &mut ks, 0.44, 0.0158, &N));
         assert!(ks.iter().all(|k| k.turn_rad == 0.0));
     }
 
     #[test]
     fn a_pointed_rung_turns_no_more_than_the_limit() {
         let mut ks = pass(400, 0.01, 0.1);
-        turn_narrow(&rungs(400, 0.01), &mut ks, 10.0, 0.0158);
-        assert!(ks.iter().all(|k| k.turn_rad <= MAX_TURN_RAD + 1e-12));
-        assert!((ks[200].turn_rad - MAX_TURN_RAD).abs() < 1e-12);
+        turn_narrow(&rungs(400, 0.01), &mut ks, 10.0, 0.0158, &N);
+        assert!(ks.iter().all(|k| k.turn_rad <= N.max_turn_rad + 1e-12));
+        assert!((ks[200].turn_rad - N.max_turn_rad).abs() < 1e-12);
     }
 
     #[test]
@@ -228,7 +218,7 @@ mod tests {
         for k in &mut ks {
             k.yaw_rad += 0.2;
         }
-        assert!(turn_narrow(&rungs(300, 0.073), &mut ks, 0.44, 0.0158));
+        assert!(turn_narrow(&rungs(300, 0.073), &mut ks, 0.44, 0.0158, &N));
         let mid = &ks[150];
         // The whole angle off the rung covers it: fan · cos(angle) = rung.
         assert!((mid.yaw_rad.cos().abs() * 0.097 - 0.073).abs() < 1e-9);
@@ -253,7 +243,7 @@ mod tests {
             k.mid = r.mid();
             k.tip = r.mid();
         }
-        turn_narrow(&rs, &mut ks, 0.44, 0.0158);
+        turn_narrow(&rs, &mut ks, 0.44, 0.0158, &N);
         for w in ks.windows(2) {
             let ds = (w[1].tip - w[0].tip).hypot();
             let dt = ds * 0.073 / 0.0158;

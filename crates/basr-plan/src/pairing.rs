@@ -25,6 +25,7 @@ use basr_shape::font::Stroke;
 use super::knots::TiltMethod;
 use super::rungs::Rung;
 use super::tilt;
+use super::tuning::Pairing;
 
 /// What the fan can turn while painting, for choosing rungs.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,6 +41,8 @@ pub struct TurnBudget {
     pub height: Option<HeightFollow>,
     /// The tilt's follow; None for a kind that paints untilted.
     pub tilt: Option<TiltFollow>,
+    /// The search's tuning.
+    pub tuning: Pairing,
 }
 
 /// How fast the nozzle height may change while painting.
@@ -63,16 +66,6 @@ pub struct TiltFollow {
     pub max_speed_rps: f64,
 }
 
-/// Matched rungs are kept unless they ask the nozzle height or the tilt
-/// to change faster than this many times what its joint follows at film
-/// speed, and faster than equal arc-length rungs would. assumed, measured:
-/// the rate limits (`knots::knots_within`, `rate`) spread what a bowl's
-/// quarter asks (B, P, R, 3, D, 5 at 8 ft: 1.8–2.2 × the tilt's follow)
-/// with the film within 1.01×; the arrow's barb tips at 3 m asked 5.1×
-/// and slowed to 2.7–3.2× film (base rotation and tilt acceleration), the
-/// arrow's point 5.1 × the height's follow (equal arc-length: 3.8×).
-pub const MAX_FOLLOW: f64 = 3.0;
-
 impl TurnBudget {
     /// Fan turn rate (rad/s) of a step that turns `dpsi` over `ds` of
     /// travel with rungs `w` wide, at the film law's speed.
@@ -82,33 +75,9 @@ impl TurnBudget {
     }
 }
 
-/// Fine steps per rung spacing. assumed: 8 lets a step's edges advance in
-/// ratios 1/3 … 3 and a rung average eight such steps (4 left the ratio
-/// steps visible as a zigzag in the rungs and the tilt: B's middle bar
-/// slowed to 1.49× film by the tilt's acceleration).
-const FINE_PER_SPACING: f64 = 8.0;
 /// Most fine points per edge. assumed: bounds the search (≈ 0.15 M states)
 /// for long strokes; a bowl quarter at 8 ft needs ≈ 340.
 const MAX_FINE: usize = 400;
-/// Largest fine steps one step may take on either edge.
-const MAX_STEP: usize = 3;
-/// Edges whose lengths differ more than this ratio keep equal arc-length
-/// rungs (the search could not reach the far end within `MAX_STEP`).
-const MAX_LENGTH_RATIO: f64 = 2.5;
-/// Share of the budget a step may turn at before it costs.
-/// assumed: leaves the turn limit (`turn`) a margin.
-const TURN_FREE: f64 = 0.8;
-/// Weights of the costs (per metre of travel). assumed, measured on B, P,
-/// R, 3 (docs/planner.md): a turn over budget outweighs everything; the
-/// distance from equal arc-length (× width², `off_diagonal`) next (20: P
-/// cv 0.081, 100: 0.042, 400: 0.051); lean (sin²) last. A cost on the
-/// ratio of the edges' advance instead of the distance left the wide end
-/// pivoting (P cv 0.060–0.072).
-const W_TURN: f64 = 50.0;
-const W_LEAN: f64 = 1.0;
-const W_DIAG: f64 = 100.0;
-/// Width (m) at which the distance from equal arc-length has weight `W_DIAG`.
-const RATIO_WIDTH_M: f64 = 0.1;
 
 /// The highest fan turn rate (rad/s) equal arc-length rungs would ask for
 /// at film speed.
@@ -174,19 +143,23 @@ pub fn matched_rungs(
     spacing_m: f64,
     budget: &TurnBudget,
 ) -> Option<Vec<(Point, Point)>> {
+    let t = &budget.tuning;
     let (ll, lr) = (stroke.left.length(), stroke.right.length());
-    if !(ll > 0.0 && lr > 0.0) || ll.max(lr) > MAX_LENGTH_RATIO * ll.min(lr) {
+    if !(ll > 0.0 && lr > 0.0) || ll.max(lr) > t.max_length_ratio * ll.min(lr) {
         return None;
     }
-    let fine =
-        |len: f64| ((len * FINE_PER_SPACING / spacing_m).ceil() as usize).clamp(MAX_STEP, MAX_FINE);
+    let max_step = t.max_step;
+    let fine = |len: f64| {
+        ((len * t.fine_per_spacing / spacing_m).ceil() as usize)
+            .clamp(max_step, MAX_FINE.max(max_step))
+    };
     let (nl, nr) = (fine(ll), fine(lr));
     let lp = stroke.left.subdivide(nl);
     let rp = stroke.right.subdivide(nr);
     let (hl, hr) = (ll / nl as f64, lr / nr as f64);
     let idx = |i: usize, j: usize| i * (nr + 1) + j;
     // Every candidate rung's midpoint, vector, width and direction, once
-    // (each state's are met by up to MAX_STEP² steps in and out; two
+    // (each state's are met by up to max_step² steps in and out; two
     // atan2 per step were a third of planning a bowl): the same values the
     // step costs computed per step, so the same bits.
     let candidates: Vec<Candidate> = (0..=nl)
@@ -203,8 +176,8 @@ pub fn matched_rungs(
                 continue;
             }
             let r0 = &candidates[idx(i, j)];
-            for a in 1..=MAX_STEP.min(nl - i) {
-                for b in 1..=MAX_STEP.min(nr - j) {
+            for a in 1..=max_step.min(nl - i) {
+                for b in 1..=max_step.min(nr - j) {
                     let (i1, j1) = (i + a, j + b);
                     let k = idx(i1, j1);
                     let r1 = &candidates[k];
@@ -212,8 +185,14 @@ pub fn matched_rungs(
                     let w = 0.5 * (r0.width + r1.width);
                     let c = c0
                         + step_cost(r0, r1, ds, w, budget)
-                        + W_DIAG
-                            * off_diagonal(i1 as f64 / nl as f64, j1 as f64 / nr as f64, ds, w);
+                        + t.w_diag
+                            * off_diagonal(
+                                i1 as f64 / nl as f64,
+                                j1 as f64 / nr as f64,
+                                ds,
+                                w,
+                                t.ratio_width_m,
+                            );
                     if c < cost[k] {
                         cost[k] = c;
                         from[k] = idx(i, j);
@@ -267,8 +246,8 @@ impl Candidate {
 /// near one end lays film ∝ 1/r across it, the tilt's balance is already at
 /// its limit in a bowl), narrow ones may leave it to stand square. `ds`:
 /// the step's travel between midpoints; `w`: the two rungs' mean width.
-fn off_diagonal(fl: f64, fr: f64, ds: f64, w: f64) -> f64 {
-    let wide = (w / RATIO_WIDTH_M).powi(2);
+fn off_diagonal(fl: f64, fr: f64, ds: f64, w: f64, ratio_width_m: f64) -> f64 {
+    let wide = (w / ratio_width_m).powi(2);
     ds * wide * (fr - fl).powi(2)
 }
 
@@ -278,11 +257,12 @@ fn step_cost(r0: &Candidate, r1: &Candidate, ds: f64, w: f64, budget: &TurnBudge
     let travel = r1.m - r0.m;
     let ds = ds.max(1e-6);
     let dpsi = wrap_pi(r1.psi - r0.psi);
-    let over = (budget.rate(dpsi, ds, w) / budget.max_rate_rps - TURN_FREE).max(0.0);
+    let t = &budget.tuning;
+    let over = (budget.rate(dpsi, ds, w) / budget.max_rate_rps - t.turn_free).max(0.0);
     // Lean: the rung's component along the travel (0 when square).
     let dir = (r0.d + r1.d).normalize();
     let lean = dir.dot(travel / ds);
-    ds * (W_TURN * over * over + W_LEAN * lean * lean)
+    ds * (t.w_turn * over * over + t.w_lean * lean * lean)
 }
 
 /// Rungs at equal steps of the path's edge travel (the larger of the two
@@ -334,6 +314,7 @@ mod tests {
         max_rate_rps: 0.85 * 0.5235987755982988,
         height: None,
         tilt: None,
+        tuning: crate::tuning::Tuning::DEFAULT.pairing,
     };
 
     /// P's upper bowl quarter at 8 ft (a grid unit of 2.4384 m / 25).
@@ -378,7 +359,7 @@ mod tests {
     /// joint's speed × 0.8).
     fn followed() -> TurnBudget {
         let robot = basr_robot::AnyRobot::load_or_default(None).unwrap();
-        crate::passes::turn_budget(&robot)
+        crate::passes::turn_budget(&robot, &crate::tuning::Tuning::DEFAULT)
     }
 
     #[test]
@@ -389,7 +370,10 @@ mod tests {
         let m = matched_rungs(&st, 0.02, &b).unwrap();
         let ask = follow_demand(&m, &b);
         // Over the follow, but within what the rate limits spread.
-        assert!(ask > 1.0 && ask <= MAX_FOLLOW, "{ask}");
+        assert!(
+            ask > 1.0 && ask <= crate::tuning::Tuning::DEFAULT.pairing.max_follow,
+            "{ask}"
+        );
     }
 
     #[test]

@@ -12,18 +12,12 @@ use super::error::CompileError;
 use super::placed::PlacedStrokes;
 use super::rate;
 use super::rungs::StrokeRungs;
+use super::tuning::{Rates, Tuning};
 use super::warnings::Note;
 
 /// Rounds of turn limiting and re-pacing per pass. assumed: the speeds
 /// settle in two; the third is slack.
 const TURN_TRIES: usize = 3;
-/// Knots keep this far inside the tilt range, so the time law's smooth
-/// joint curves between knots (which may overshoot a knot held at a limit
-/// by a fraction of a milliradian) stay inside it. assumed: forty times the
-/// overshoot seen on STOP. (Narrow rungs hold the vertical joint at the
-/// bottom of its stroke, where a millimetre of inset would widen the fan
-/// past 3 %; there the setpoints are clamped instead, see `samples`.)
-const TILT_INSET_RAD: f64 = 0.0044; // 0.25°
 
 /// One continuous gun-on path: a stroke, or one pass of a wide stroke.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,16 +113,19 @@ pub fn passes(
     rungs: &StrokeRungs,
     robot: &AnyRobot,
     method: TiltMethod,
+    tuning: &Tuning,
 ) -> Result<Passes, CompileError> {
+    let rates = &tuning.rates;
     let law = paint_law(robot);
-    let max_tilt = max_tilt_rad(robot);
+    let max_tilt = max_tilt_rad(robot, rates);
     let max_tilt_rate = robot
         .tilt_limit()
-        .map_or(f64::INFINITY, |tl| tl.max_vel * super::turn::TURN_SHARE);
-    let max_turn = max_turn_rps(robot);
+        .map_or(f64::INFINITY, |tl| tl.max_vel * rates.turn_share);
+    let max_turn = max_turn_rps(robot, rates);
     // The tilt and the height within what their joints follow (`rate`).
-    let tilt_follow = rate::tilt_follow(robot);
-    let height_follow = rate::height_follow(robot);
+    let tilt_follow = rate::tilt_follow(robot, rates);
+    let height_follow = rate::height_follow(robot, rates);
+    let smoothing = rates.tilt_smoothing;
     let mut out = Passes::default();
     let mut painted_m2 = 0.0;
     let mut outside = vec![];
@@ -146,7 +143,8 @@ pub fn passes(
         let mut u_tilted = u_untilted;
         for pass in &split {
             let mut kp =
-                knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate).map_err(what)?;
+                knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate, smoothing)
+                    .map_err(what)?;
             tilt_for_turned_fan(
                 pass,
                 &mut kp,
@@ -154,6 +152,7 @@ pub fn passes(
                 method,
                 [max_tilt, max_tilt_rate],
                 max_turn,
+                smoothing,
             )
             .map_err(what)?;
             u_untilted = [
@@ -186,7 +185,8 @@ pub fn passes(
             }
             // A fan longer than its rung turned to cover it, then paced
             // for the road it sweeps turned.
-            if super::narrow::turn_narrow(pass, &mut kp.knots, max_turn, law.k_m2ps) {
+            if super::narrow::turn_narrow(pass, &mut kp.knots, max_turn, law.k_m2ps, &tuning.narrow)
+            {
                 knots::pace(pass, &mut kp.knots, law.k_m2ps);
             }
             // Clamped knots that still paint beside the stroke.
@@ -294,6 +294,7 @@ fn tilt_for_turned_fan(
     method: TiltMethod,
     [max_tilt, max_tilt_rate]: [f64; 2],
     max_turn_rps: f64,
+    tilt_smoothing: usize,
 ) -> Result<(), PlanError> {
     // Only where the fan already paints wider than some rung (a narrow
     // stroke), where a needless tilt costs paint outside the stroke.
@@ -305,7 +306,7 @@ fn tilt_for_turned_fan(
         return Ok(());
     }
     let fans = super::turn::fan_rungs(&turned);
-    let mut re = knots::knots_within(&fans, law, method, max_tilt, max_tilt_rate)?;
+    let mut re = knots::knots_within(&fans, law, method, max_tilt, max_tilt_rate, tilt_smoothing)?;
     knots::pace(pass, &mut re.knots, law.k_m2ps);
     // U (001 eq. 2.7–2.8) of the stroke's own cells at the tilts now used.
     let betas: Vec<f64> = re.knots.iter().map(|k| k.tilt_rad).collect();
@@ -343,48 +344,51 @@ pub fn outside_area(ks: &[Knot]) -> (f64, f64) {
 }
 
 /// The largest tilt either way the knots may take: the tilt joint's range
-/// less `TILT_INSET_RAD`; 0 for a kind that cannot lean the fan (the
+/// less `tilt_inset_rad`; 0 for a kind that cannot lean the fan (the
 /// articulated arm paints untilted).
-fn max_tilt_rad(robot: &AnyRobot) -> f64 {
-    robot
-        .tilt_limit()
-        .map_or(0.0, |tl| (tl.max.min(-tl.min) - TILT_INSET_RAD).max(0.0))
+fn max_tilt_rad(robot: &AnyRobot, rates: &Rates) -> f64 {
+    robot.tilt_limit().map_or(0.0, |tl| {
+        (tl.max.min(-tl.min) - rates.tilt_inset_rad).max(0.0)
+    })
 }
 
-/// Turn rate (rad/s) the fan may take while painting: `turn::TURN_SHARE`
-/// of the fan joint's speed limit.
-fn max_turn_rps(robot: &AnyRobot) -> f64 {
-    robot.limits()[robot.fan_joint()].max_vel * super::turn::TURN_SHARE
+/// Turn rate (rad/s) the fan may take while painting: `turn_share` of the
+/// fan joint's speed limit.
+fn max_turn_rps(robot: &AnyRobot, rates: &Rates) -> f64 {
+    robot.limits()[robot.fan_joint()].max_vel * rates.turn_share
 }
 
 /// What the robot's fan may turn while painting, for choosing rungs: the
 /// share of the fan joint's speed limit the turn limit allows
-/// (`turn::TURN_SHARE`) at the film law's speeds, and what the height and
-/// the tilt may take (`rate`), the tilt's judged for the quadrilateral
-/// method (the default; the others tilt no more).
-pub fn turn_budget(robot: &AnyRobot) -> super::pairing::TurnBudget {
+/// (`tuning::Rates::turn_share`) at the film law's speeds, and what the
+/// height and the tilt may take (`rate`), the tilt's judged for the
+/// quadrilateral method (the default; the others tilt no more); the
+/// search's own tuning.
+pub fn turn_budget(robot: &AnyRobot, tuning: &Tuning) -> super::pairing::TurnBudget {
+    let rates = &tuning.rates;
     use super::pairing::{HeightFollow, TiltFollow, TurnBudget};
     let law = paint_law(robot);
     let dz_dw = match law.height {
         HeightLaw::Geometric => law.height_for_width(1.0),
         HeightLaw::Linear { c1, .. } => c1,
     };
-    let max_tilt_rad = max_tilt_rad(robot);
+    let max_tilt_rad = max_tilt_rad(robot, rates);
     TurnBudget {
         k_m2ps: law.k_m2ps,
         min_width_m: law.width_at_height(law.min_height_m),
-        max_rate_rps: max_turn_rps(robot),
-        height: rate::height_follow(robot).map(|[v, _]| HeightFollow {
+        max_rate_rps: max_turn_rps(robot, rates),
+        height: rate::height_follow(robot, rates).map(|[v, _]| HeightFollow {
             dz_dw,
             max_speed_mps: v,
         }),
-        tilt: rate::tilt_follow(robot)
+        tilt: rate::tilt_follow(robot, rates)
             .filter(|_| max_tilt_rad > 0.0)
             .map(|[v, _]| TiltFollow {
                 fan_angle_rad: law.fan_angle_rad,
                 max_tilt_rad,
                 max_speed_rps: v,
             }),
+        tuning: tuning.pairing,
     }
 }
 
@@ -497,11 +501,10 @@ mod tests {
         let robot = AnyRobot::load_or_default(None).unwrap();
         let law = paint_law(&robot);
         let tl = robot.tilt_limit().unwrap();
-        let limits = [
-            max_tilt_rad(&robot),
-            tl.max_vel * super::super::turn::TURN_SHARE,
-        ];
-        let max_turn = max_turn_rps(&robot);
+        let rates = Tuning::DEFAULT.rates;
+        let limits = [max_tilt_rad(&robot, &rates), tl.max_vel * rates.turn_share];
+        let max_turn = max_turn_rps(&robot, &rates);
+        let sm = rates.tilt_smoothing;
         let n = 18;
         let rungs: Vec<Rung> = (0..=n)
             .map(|k| {
@@ -513,9 +516,9 @@ mod tests {
             })
             .collect();
         let method = TiltMethod::Quadrilateral;
-        let before = knots::knots_within(&rungs, &law, method, limits[0], limits[1]).unwrap();
+        let before = knots::knots_within(&rungs, &law, method, limits[0], limits[1], sm).unwrap();
         let mut after = before.clone();
-        tilt_for_turned_fan(&rungs, &mut after, &law, method, limits, max_turn).unwrap();
+        tilt_for_turned_fan(&rungs, &mut after, &law, method, limits, max_turn, sm).unwrap();
         let tilt = |kp: &knots::KnotPlan| {
             kp.knots.iter().map(|k| k.tilt_rad.abs()).sum::<f64>() / kp.knots.len() as f64
         };
@@ -547,9 +550,9 @@ mod tests {
                 right: Point::new(0.1, 0.02 * k as f64),
             })
             .collect();
-        let plain = knots::knots_within(&straight, &law, method, limits[0], limits[1]).unwrap();
+        let plain = knots::knots_within(&straight, &law, method, limits[0], limits[1], sm).unwrap();
         let mut same = plain.clone();
-        tilt_for_turned_fan(&straight, &mut same, &law, method, limits, max_turn).unwrap();
+        tilt_for_turned_fan(&straight, &mut same, &law, method, limits, max_turn, sm).unwrap();
         assert_eq!(same, plain);
     }
 

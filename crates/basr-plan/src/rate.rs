@@ -16,22 +16,7 @@ use basr_robot::AnyRobot;
 
 use super::knots::{Knot, PaintLaw, MIN_TIP_STEP_M};
 use super::tilt;
-
-/// Share of the tilt joint's speed limit the tilt may take while painting.
-/// assumed: the time law keeps a 3 % margin and bounds the joint's rate by
-/// the steepest slope of its spline between knots, which exceeds the
-/// knot-to-knot slope by up to ≈ 15 % where the rate changes; 0.8 leaves
-/// that room.
-pub const TILT_SHARE: f64 = 0.8;
-/// Share of the tilt joint's acceleration limit the knot-to-knot tilt may
-/// take. assumed: the time law's shape-preserving spline is flat at a
-/// local extremum of the knots' tilts, which about doubles the curvature
-/// next to it (a cubic from slope 0 to the chord's slope d over a step h
-/// bends by 4d/h where a smooth curve bends by 2d/h), so under half, and
-/// the time law's step bounds are conservative on top: measured on 8's
-/// waist, 0.4 left the tilt's acceleration slowing it to 1.16× film there,
-/// 0.3 to 1.08× (its worst is then the base rotation's, 1.10×).
-pub const TILT_ACC_SHARE: f64 = 0.3;
+use super::tuning::Rates;
 
 /// Most relaxation sweeps (each moves every too-steep step half-way).
 /// assumed: far more than a swing over tens of knots needs.
@@ -138,14 +123,14 @@ pub fn step_times(ks: &[Knot]) -> Vec<f64> {
 }
 
 /// The tilt joint's speed (rad/s) and acceleration (rad/s²) the tilt may
-/// take while painting: `TILT_SHARE` and `TILT_ACC_SHARE` of its limits,
+/// take while painting: `tilt_share` and `tilt_acc_share` of its limits,
 /// the speed as its drive allows (`AnyRobot::tilt_speed_limit`: for BASR
 /// also the ball nut's, SPEC §4: 0.11 m/s); None for a kind that paints
 /// untilted.
-pub fn tilt_follow(robot: &AnyRobot) -> Option<[f64; 2]> {
+pub fn tilt_follow(robot: &AnyRobot, rates: &Rates) -> Option<[f64; 2]> {
     let own = robot.tilt_limit()?;
     let vel = robot.tilt_speed_limit()?;
-    Some([vel * TILT_SHARE, own.max_acc * TILT_ACC_SHARE])
+    Some([vel * rates.tilt_share, own.max_acc * rates.tilt_acc_share])
 }
 
 /// Limit the tilt's change between knots to `max_rate_rps` at each knot's
@@ -187,21 +172,20 @@ pub fn limit_tilt_rate(
     true
 }
 
-/// Share of the vertical joint's speed and acceleration limits the nozzle
-/// height may take while painting. assumed: as the tilt's (`TILT_SHARE`,
-/// `TILT_ACC_SHARE`), for the same spline.
-pub const HEIGHT_SHARE: [f64; 2] = [TILT_SHARE, TILT_ACC_SHARE];
-
 /// The vertical joint's speed (m/s) and acceleration (m/s²) the nozzle
-/// height may take while painting (`HEIGHT_SHARE` of its limits); None for
-/// a kind without a vertical joint.
-pub fn height_follow(robot: &AnyRobot) -> Option<[f64; 2]> {
+/// height may take while painting: the same shares of its limits as the
+/// tilt's (`tuning::Rates`), for the same spline; None for a kind without
+/// a vertical joint.
+pub fn height_follow(robot: &AnyRobot, rates: &Rates) -> Option<[f64; 2]> {
     let j = robot
         .joint_names()
         .iter()
         .position(|n| *n == "vertical_m")?;
     let l = robot.limits()[j];
-    Some([l.max_vel * HEIGHT_SHARE[0], l.max_acc * HEIGHT_SHARE[1]])
+    Some([
+        l.max_vel * rates.tilt_share,
+        l.max_acc * rates.tilt_acc_share,
+    ])
 }
 
 /// Keep the nozzle height's change between knots within `follow` (speed,

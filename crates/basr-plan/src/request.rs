@@ -120,6 +120,10 @@ pub struct CompileRequest {
     /// Where the truck really stopped and the road under it (`basr fit`):
     /// compile keeps these stops instead of planning its own.
     pub site: Option<crate::site::Site>,
+    /// The planner's tuning (`tuning::Tuning`): its default for every job
+    /// the command line writes; another only where a caller explores one
+    /// (the sensitivity test). A job does not record it.
+    pub tuning: crate::tuning::Tuning,
 }
 
 impl CompileRequest {
@@ -141,6 +145,7 @@ impl CompileRequest {
             retime_on_spread: true,
             film: true,
             site: None,
+            tuning: crate::tuning::Tuning::DEFAULT,
         }
     }
 }

@@ -42,7 +42,7 @@ pub struct StrokeRungs {
 /// whose equal arc-length rungs would turn the fan faster than it can at
 /// painting speed gets matched rungs instead (`pairing`), unless those ask
 /// the height or the tilt to change faster than their joints follow
-/// (`pairing::MAX_FOLLOW`).
+/// (the budget's `tuning::Pairing::max_follow`).
 pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget>) -> StrokeRungs {
     StrokeRungs {
         rungs: strokes
@@ -59,7 +59,7 @@ pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget
                             // Kept unless the height or the tilt they ask
                             // for outruns its joint (the arrow's tips at 3 m).
                             let ask = pairing::follow_demand(&m, b);
-                            if ask <= pairing::MAX_FOLLOW
+                            if ask <= b.tuning.max_follow
                                 || ask <= pairing::follow_demand(&pairs, b)
                             {
                                 pairs = m;

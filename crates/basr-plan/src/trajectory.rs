@@ -14,6 +14,7 @@ use super::placed::PlacedStrokes;
 use super::stations::StationPlan;
 use super::stow::{stow_joints, truck_rows};
 use super::timing;
+use super::tuning::Joins;
 use super::warnings::{Limit, Note, StopWhy};
 
 /// Every station's timed samples, and the notes of the time law.
@@ -61,6 +62,7 @@ pub fn time_law_paced(
         period_s,
         gun_lead_s,
         gun_lag_s,
+        ref joins,
         ..
     } = *law;
     let stow = stow_joints(robot);
@@ -74,7 +76,7 @@ pub fn time_law_paced(
         .map(|&si| {
             let runs = &paths.stations[si];
             time_station(
-                robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, &paces[si],
+                robot, &stow, runs, period_s, gun_lead_s, gun_lag_s, &paces[si], joins,
             )
         })
         .collect();
@@ -158,12 +160,6 @@ pub struct Timed {
 /// Joint vector in the robot kind's order (`AnyRobot::joint_names`).
 pub use basr_robot::Q;
 
-/// Jerk limit of every joint, as a multiple of its acceleration limit.
-/// assumed: no source gives jerk limits; each joint reaches its
-/// acceleration limit in 0.1 s (as the yaw servo reaches 30°/s in 0.1 s,
-/// SPEC §4).
-const JERK_PER_ACC: f64 = 10.0;
-
 /// The robot's joint limits for the time law. The tilt's ball nut has its
 /// own speed limit (SPEC §4: 0.11 m/s), applied as a tilt-rate limit at the
 /// steepest nut travel per radian of the tilt range.
@@ -202,12 +198,19 @@ pub struct TimeLaw {
     pub gun_lead_s: f64,
     pub gun_lag_s: f64,
     pub pace: Pace,
+    /// How strokes are entered, left and joined (`tuning::Joins`).
+    pub joins: Joins,
 }
 
 /// `pace` (0–1] scales every acceleration and jerk limit, and the speed
 /// limits by its square root; the drives' own speed caps (BASR's tilt
-/// ball nut) hold at every pace.
-pub(super) fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<5> {
+/// ball nut) hold at every pace; the jerk limits are `jerk_per_acc` (1/s)
+/// times the acceleration limits.
+pub(super) fn timing_limits(
+    robot: &AnyRobot,
+    pace: f64,
+    jerk_per_acc: f64,
+) -> timing::JointLimits<5> {
     let mut vel = [0.0; 5];
     let mut acc = [0.0; 5];
     let caps = robot.drive_speed_caps();
@@ -218,7 +221,7 @@ pub(super) fn timing_limits(robot: &AnyRobot, pace: f64) -> timing::JointLimits<
     timing::JointLimits {
         vel,
         acc,
-        jerk: std::array::from_fn(|j| acc[j] * JERK_PER_ACC),
+        jerk: std::array::from_fn(|j| acc[j] * jerk_per_acc),
     }
 }
 
@@ -257,6 +260,7 @@ struct Slow {
 /// acceleration limits and never faster than the film law asks over paint.
 /// Gun windows from the runs' first and last painting knots, shifted by the
 /// lead and lag.
+#[allow(clippy::too_many_arguments)]
 fn time_station(
     robot: &AnyRobot,
     stow: &Q,
@@ -265,11 +269,16 @@ fn time_station(
     gun_lead_s: f64,
     gun_lag_s: f64,
     pace: &Pace,
+    joins: &Joins,
 ) -> Result<StationTiming, CompileError> {
-    let limits = timing_limits(robot, pace.path);
-    let air_limits = timing_limits(robot, pace.air);
-    let back_limits = timing_limits(robot, 1.0);
-    let options = timing::PathOptions::default();
+    let jerk = joins.jerk_per_acc;
+    let limits = timing_limits(robot, pace.path, jerk);
+    let air_limits = timing_limits(robot, pace.air, jerk);
+    let back_limits = timing_limits(robot, 1.0, jerk);
+    let options = timing::PathOptions {
+        margin: joins.path_margin,
+        ..timing::PathOptions::default()
+    };
     let err = |what: String| CompileError::Timing(what);
     let home = *stow;
     if runs.is_empty() {
@@ -291,7 +300,7 @@ fn time_station(
             vec![],
         ));
     }
-    let ch = chain(robot, runs, &limits, &pace.joins);
+    let ch = chain(robot, runs, &limits, &pace.joins, joins);
     let cut = flight::fly(
         robot,
         runs,
@@ -303,6 +312,7 @@ fn time_station(
             back: &back_limits,
             joins: &pace.joins,
             fly_in: pace.fly_in,
+            join_margin: joins.join_margin,
         },
         &options,
     )?;

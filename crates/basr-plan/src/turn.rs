@@ -17,14 +17,6 @@ use basr_robot::kinematics::wrap_pi;
 use super::knots::{Knot, MIN_TIP_STEP_M};
 use super::rungs::Rung;
 
-/// Share of the yaw joint's speed limit the fan's turn may take while
-/// painting. assumed: the base joint also turns the fan in the road frame
-/// (up to ≈ 0.05 rad/s at painting speed and 3 m reach) and the time law
-/// keeps a 3 % margin: 0.85 × 0.524 + 0.05 = 0.495 rad/s stays under
-/// 0.97 × 0.524 = 0.508 rad/s for BASR's 30°/s. (0.8 left more room and
-/// held the fan off the bowls' rungs longer: B, P, R, 3 cv 0.003–0.006
-/// higher; 0.9 passes the margin and STOP's bound ratio goes to 1.204.)
-pub const TURN_SHARE: f64 = 0.85;
 /// Most relaxation sweeps (each moves every too-steep step half-way).
 /// assumed: far more than a bowl's turn needs to spread (tens of knots).
 const MAX_SWEEPS: usize = 20_000;
