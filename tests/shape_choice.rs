@@ -73,7 +73,7 @@ fn each_test_shape_keeps_the_decomposition_measured_best_before() {
         // With matched rungs on its barbs' tips they slowed (the tilt asked
         // for outran its joint) and the search went on to the lobes (cv
         // 0.016); those barbs now keep equal arc-length rungs
-        // (`pairing::MAX_FOLLOW`), as before the bowls' matched rungs.
+        // (`tuning::Pairing::max_follow`), as before the bowls' matched rungs.
         (
             "arrow.dxf",
             Size::FileUnits,
@@ -216,7 +216,7 @@ fn the_shield_at_1_2_m_paints_evenly() {
 /// nozzle to 2.7–3.2× film, so the cells along their own axes carried two
 /// problems and a 90° sweep with a slowed point (1.84×) was kept, NOT
 /// READY. Those barbs now keep equal arc-length rungs
-/// (`pairing::MAX_FOLLOW`), and a decomposition with no problem is kept.
+/// (`tuning::Pairing::max_follow`), and a decomposition with no problem is kept.
 #[test]
 fn the_arrow_at_3_m_keeps_a_decomposition_with_no_problem() {
     let robot = AnyRobot::load_or_default(None).expect("embedded robot");

@@ -7,7 +7,7 @@
 //! in joint space whose end tangents are the runs' own joint rates per
 //! metre (so the path is C¹ where the blend meets a run). Its path
 //! parameter advances by the nozzle's road travel, or by the slowest
-//! joint's travel time at `BLEND_SPEED_MPS` where the joints move more than
+//! joint's travel time at `tuning::Joins::blend_speed_mps` where the joints move more than
 //! the nozzle (a fan turn on the spot). A blend whose curve would leave a
 //! joint's range is flattened (tangents scaled down, at worst to zero: the
 //! arm then stops at the seam, and the stop is reported with its reason).

@@ -12,7 +12,7 @@
 //! so at a stroke's ends it would paint past the end on one side and leave
 //! a wedge on the other: the turn is zero at both ends and grows from them
 //! no faster than the fan joint may turn at the painting speed (what the
-//! rungs' own turning leaves of `turn::TURN_SHARE` of its speed limit).
+//! rungs' own turning leaves of `tuning::Rates::turn_share` of its speed limit).
 //! Between, the heights stay clamped and the ends paint a little wide, as
 //! before.
 

@@ -34,7 +34,7 @@ pub struct TurnBudget {
     pub k_m2ps: f64,
     /// Narrowest band the fan paints (m): narrower rungs are paced by it.
     pub min_width_m: f64,
-    /// Turn rate the fan may take while painting (rad/s, `turn::TURN_SHARE`
+    /// Turn rate the fan may take while painting (rad/s, `tuning::Rates::turn_share`
     /// of the yaw joint's limit).
     pub max_rate_rps: f64,
     /// The nozzle height's follow; None for a kind without a vertical joint.
