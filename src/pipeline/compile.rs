@@ -178,7 +178,17 @@ fn compile_for_tip(
             stale.iter().map(|&si| (si, runs[si].take())).collect();
         let fresh: Vec<Result<Checked, CompileError>> = last
             .into_par_iter()
-            .map(|(si, last)| verify_station(&job, &skeleton, rows[si].clone(), req.period_s, last))
+            .map(|(si, last)| {
+                let rows = rows[si].clone();
+                verify_station(
+                    &job,
+                    &skeleton,
+                    rows,
+                    req.period_s,
+                    last,
+                    req.retime_on_spread,
+                )
+            })
             .collect();
         for (si, c) in stale.into_iter().zip(fresh) {
             let c = c?;
@@ -483,12 +493,15 @@ struct LastRun {
 /// run's either way. A station that passes is then run on the plant set
 /// (`verify::on_spread`), whose failure fails it where that plant first
 /// strayed. Returns the verdict and this nominal run, for the next.
+/// `in_step`: the set's plants end soon after the first of them fails
+/// (`verify::on_spread`), where compile re-times for the set.
 fn verify_station(
     job: &Job,
     skeleton: &Job,
     rows: std::ops::Range<usize>,
     period_s: f64,
     last: Option<LastRun>,
+    in_step: bool,
 ) -> Result<Checked, CompileError> {
     let t0_s = rows.start as f64 * period_s;
     let mut alone = skeleton.clone();
@@ -507,7 +520,7 @@ fn verify_station(
         let resume = plants
             .take()
             .map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
-        if let Some(set) = verify::on_spread(&alone, t0_s, resume)? {
+        if let Some(set) = verify::on_spread(&alone, t0_s, resume, in_step)? {
             on_spread = Some(set.errors);
             if !set.verdict.ok {
                 verdict = set.verdict;

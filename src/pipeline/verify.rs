@@ -193,11 +193,16 @@ pub struct OnSpread {
 /// set's runs of the job as it was and the first row that changed);
 /// `None` for the electric kinds, whose servo plant has no drawn numbers.
 /// A plant that strays more than `spread::SHARE` of the tolerance fails
-/// the job at that plant's first failure.
+/// the job at that plant's first failure. `in_step`: the plants run
+/// together and end soon after the first failure
+/// (`sim::plants::run_each_in_step`: the same verdict; a passing plant's
+/// error is then its largest up to there), for a caller that re-times
+/// where the set fails; else each runs to its end or its own failure.
 pub fn on_spread(
     job: &Job,
     t0_s: f64,
     resume: Option<(Vec<sim::Checkpoints>, usize)>,
+    in_step: bool,
 ) -> Result<Option<OnSpread>, CompileError> {
     let Some(robot) = job.robot.basr() else {
         return Ok(None);
@@ -207,11 +212,15 @@ pub fn on_spread(
     let bound_m = spread::SHARE * opts.tolerance_m;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
-    let (reports, kept): (Vec<sim::Report>, Vec<sim::Checkpoints>) =
+    let runs = if in_step {
+        sim::plants::run_each_in_step(job, &model, &opts, &factors, resume)
+    } else {
         sim::plants::run_each(job, &model, &opts, &factors, resume)
-            .map_err(|e| CompileError::Verify(e.to_string()))?
-            .into_iter()
-            .unzip();
+    };
+    let (reports, kept): (Vec<sim::Report>, Vec<sim::Checkpoints>) = runs
+        .map_err(|e| CompileError::Verify(e.to_string()))?
+        .into_iter()
+        .unzip();
     let errors: Vec<f64> = reports.iter().map(|r| r.max_error_m).collect();
     // The plant that failed first in the job (re-timing starts there),
     // else the one with the largest error.

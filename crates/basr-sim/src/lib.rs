@@ -21,6 +21,7 @@ pub mod circuit;
 pub mod control;
 pub mod ee;
 pub mod fault;
+mod lockstep;
 pub mod model;
 pub mod plant;
 pub mod plants;
@@ -174,7 +175,17 @@ pub fn simulate_resumable(
     opts: &Options,
     resume: Option<(Checkpoints, usize)>,
 ) -> Result<(Outcome, Checkpoints), SimError> {
-    run::run_resumable(job, model, model, opts, &[], &mut |_, _| {}, resume, true)
+    run::run_resumable(
+        job,
+        model,
+        model,
+        opts,
+        &[],
+        &mut |_, _| {},
+        resume,
+        true,
+        None,
+    )
 }
 
 /// [`simulate_resumable`] with the controller built for the `nominal`
@@ -186,7 +197,17 @@ pub fn simulate_plant_resumable(
     opts: &Options,
     resume: Option<(Checkpoints, usize)>,
 ) -> Result<(Outcome, Checkpoints), SimError> {
-    run::run_resumable(job, nominal, model, opts, &[], &mut |_, _| {}, resume, true)
+    run::run_resumable(
+        job,
+        nominal,
+        model,
+        opts,
+        &[],
+        &mut |_, _| {},
+        resume,
+        true,
+        None,
+    )
 }
 
 /// [`simulate`] with hardware faults injected (`--fault`): the report's
@@ -198,7 +219,7 @@ pub fn simulate_faulted(
     faults: &[fault::Fault],
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
-    run::run_resumable(job, model, model, opts, faults, progress, None, false).map(|(o, _)| o)
+    run::run_resumable(job, model, model, opts, faults, progress, None, false, None).map(|(o, _)| o)
 }
 
 /// [`simulate`] with the controller built for the `nominal` model (the
@@ -210,5 +231,5 @@ pub fn simulate_plant(
     opts: &Options,
     progress: &mut dyn FnMut(u64, u64),
 ) -> Result<Outcome, SimError> {
-    run::run_resumable(job, nominal, model, opts, &[], progress, None, false).map(|(o, _)| o)
+    run::run_resumable(job, nominal, model, opts, &[], progress, None, false, None).map(|(o, _)| o)
 }

@@ -273,6 +273,87 @@ pub fn run_each(
     runs.into_iter().collect()
 }
 
+/// [`run_each`], the plants advanced together (`lockstep`): at every
+/// checkpoint each waits for the others, and once one has ended at its
+/// first painting error over `opts.stop_over_m` the others end at the next
+/// checkpoint instead of running on. Compile's verification asks of the
+/// set only which plant failed first, where and why, and re-times there:
+/// that plant's report (and that of every plant that failed before the
+/// checkpoint where the others ended) is the one [`run_each`] gives; a
+/// plant ended early reports the run up to there (its largest error so
+/// far). A plant ended early with a limit broken
+/// is run on to its end, so that its report is a whole run's as well.
+/// One thread per plant (they wait for each other, which a pool of fewer
+/// threads could not); the reports and checkpoints in `factors`' order.
+pub fn run_each_in_step(
+    job: &Job,
+    nominal: &SimModel,
+    opts: &Options,
+    factors: &[Vec<f64>],
+    resume: Option<(Vec<Checkpoints>, usize)>,
+) -> Result<Vec<(super::Report, Checkpoints)>, SimError> {
+    if let Some(f) = factors.iter().find(|f| f.len() != UNCERTAIN.len()) {
+        return Err(SimError::Option(format!(
+            "a plant needs {} factors, not {}",
+            UNCERTAIN.len(),
+            f.len()
+        )));
+    }
+    let resumes: Vec<Option<(Checkpoints, usize)>> = match resume {
+        Some((cps, row)) if cps.len() == factors.len() => {
+            cps.into_iter().map(|c| Some((c, row))).collect()
+        }
+        _ => factors.iter().map(|_| None).collect(),
+    };
+    let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
+    let group = super::lockstep::Group::new(factors.len());
+    let runs = std::thread::scope(|sc| {
+        let handles: Vec<_> = models
+            .iter()
+            .zip(resumes)
+            .enumerate()
+            .map(|(i, (m, resume))| {
+                let group = &group;
+                sc.spawn(move || {
+                    let mut gate = group.gate(i);
+                    let run = super::run::run_resumable(
+                        job,
+                        nominal,
+                        m,
+                        opts,
+                        &[],
+                        &mut |_, _| {},
+                        resume,
+                        true,
+                        Some(&mut gate),
+                    );
+                    (run, gate.stopped)
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
+            .collect::<Vec<_>>()
+    });
+    let end = job.samples.len();
+    models
+        .iter()
+        .zip(runs)
+        .map(|(m, (run, stopped))| {
+            let (outcome, kept) = run?;
+            let broke = outcome.report.limits.iter().any(|l| l.fails);
+            if stopped && broke {
+                // the rest of the run, from its last checkpoint
+                let (o, k) =
+                    super::simulate_plant_resumable(job, nominal, m, opts, Some((kept, end)))?;
+                return Ok((o.report, k));
+            }
+            Ok((outcome.report, kept))
+        })
+        .collect()
+}
+
 /// The p-quantile (0..1) of sorted `v` (nearest rank).
 pub fn quantile(v: &[f64], p: f64) -> f64 {
     let k = ((p * v.len() as f64).ceil() as usize).clamp(1, v.len());
@@ -395,6 +476,61 @@ mod tests {
             1.0097633087039943,
         ];
         assert_eq!(draw(1, 0, 0.1), pinned);
+    }
+
+    /// The plants in step give the first failure (plant, place, report) a
+    /// run of each alone gives, every time; the others report no more
+    /// than their whole runs.
+    #[test]
+    fn plants_in_step_find_the_same_first_failure() {
+        let job = crate::synthetic::letter_job();
+        let nominal = SimModel::basr();
+        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
+        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
+        let mut errors: Vec<f64> = whole.iter().map(|(r, _)| r.max_error_m).collect();
+        errors.sort_by(f64::total_cmp);
+        // a bound some plants pass and some fail, at different places
+        let opts = Options {
+            stop_over_m: Some(0.5 * (errors[2] + errors[3])),
+            ..Options::default()
+        };
+        let alone = run_each(&job, &nominal, &opts, &factors, None).unwrap();
+        let first = |runs: &[(crate::Report, Checkpoints)]| {
+            runs.iter()
+                .enumerate()
+                .filter(|(_, (r, _))| r.cut_short_at_s.is_some())
+                .min_by(|a, b| a.1 .0.worst.t_s.total_cmp(&b.1 .0.worst.t_s))
+                .map(|(i, (r, _))| (i, r.clone()))
+        };
+        let want = first(&alone).expect("a plant fails");
+        let failed = alone
+            .iter()
+            .filter(|(r, _)| r.cut_short_at_s.is_some())
+            .count();
+        assert!((2..6).contains(&failed), "{failed} of 6 fail");
+        let mut last = None;
+        for _ in 0..3 {
+            let step = run_each_in_step(&job, &nominal, &opts, &factors, None).unwrap();
+            assert_eq!(first(&step), Some(want.clone()));
+            for ((s, _), (a, _)) in step.iter().zip(&alone) {
+                if s.cut_short_at_s.is_some() {
+                    assert_eq!(s, a, "a plant that failed in step failed so alone");
+                } else {
+                    assert!(s.max_error_m <= a.max_error_m);
+                }
+            }
+            assert!(
+                step.iter()
+                    .zip(&alone)
+                    .any(|((s, _), (a, _))| s.cut_short_at_s.is_none() && s != a),
+                "a plant ended early, at a checkpoint after the first failure"
+            );
+            let reports: Vec<crate::Report> = step.into_iter().map(|(r, _)| r).collect();
+            if let Some(prev) = &last {
+                assert_eq!(prev, &reports, "the same every time");
+            }
+            last = Some(reports);
+        }
     }
 
     #[test]

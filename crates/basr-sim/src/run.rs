@@ -11,6 +11,7 @@
 
 use super::control::{Command, Controller, Measurement, Reference};
 use super::fault::{self, Active, Fault};
+use super::lockstep;
 use super::model::{ServoAxis, SimModel};
 use super::plant::{self, Inputs, State};
 use super::reference::{curve, within, NutTable, Pose};
@@ -348,6 +349,7 @@ pub(super) fn run_resumable(
     progress: &mut dyn FnMut(u64, u64),
     resume: Option<(Checkpoints, usize)>,
     keep: bool,
+    mut gate: Option<&mut lockstep::Gate>,
 ) -> Result<(Outcome, Checkpoints), SimError> {
     let setup = prepare(job, nominal, model, opts, faults)?;
     let (s, period, ticks) = (setup.samples, setup.period, setup.ticks);
@@ -394,6 +396,15 @@ pub(super) fn run_resumable(
                 logged,
                 monitor: monitor.clone(),
             });
+        }
+        // In step with the other runs of its group (`lockstep`): at each
+        // checkpoint it waits for them, and ends once one has failed.
+        if k > start && k % every == 0 {
+            if let Some(g) = gate.as_deref_mut() {
+                if !g.go_on(k as f64 * period) {
+                    break;
+                }
+            }
         }
         let t = k as f64 * period;
         let row = setup.row(t);
@@ -469,6 +480,12 @@ pub(super) fn run_resumable(
         if monitor.done(t) {
             break;
         }
+    }
+    if let Some(g) = gate {
+        if let Some(t) = tally.cut_short_at_s {
+            g.failed(t);
+        }
+        g.leave();
     }
     progress(ticks, ticks);
     // The marks resumed from and taken here all lie before the run's end:
