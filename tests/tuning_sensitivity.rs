@@ -89,6 +89,22 @@ struct Figures {
     bound_ratio: f64,
 }
 
+impl Figures {
+    /// The figures in one line.
+    fn line(&self) -> String {
+        format!(
+            "cv {:.3}, coverage {:.3}, overspray {:.3}, nozzle {:.2} mm, plants {:.2} mm, \
+             bound ratio {:.3}",
+            self.cv,
+            self.coverage,
+            self.overspray,
+            self.nominal_m * 1e3,
+            self.plants_m * 1e3,
+            self.bound_ratio
+        )
+    }
+}
+
 /// The job's figures, or what in it breaks a bound.
 fn judged(job: &Job) -> Result<Figures, String> {
     let s = &job.summary;
@@ -149,6 +165,7 @@ fn sweep(knobs: &[&str], cases: &[&str]) {
         let base_job = compile_job(&req).unwrap_or_else(|e| panic!("{name}: {e}"));
         let base = judged(&base_job)
             .unwrap_or_else(|e| panic!("{name} fails with the default tuning: {e}"));
+        eprintln!("{name}, the default tuning: {}", base.line());
         for knob in knobs {
             for factor in [0.9, 1.1] {
                 let tuning = Tuning::DEFAULT
@@ -159,30 +176,23 @@ fn sweep(knobs: &[&str], cases: &[&str]) {
                     ..req.clone()
                 };
                 let what = format!("{name}, {knob} × {factor}");
-                match compile_job(&req).map_err(|e| e.to_string()) {
-                    Ok(job) if job.samples == base_job.samples => {
+                let job = match compile_job(&req) {
+                    Ok(job) => job,
+                    Err(e) => {
+                        failed.push(format!("{what}: refused: {e}"));
+                        continue;
+                    }
+                };
+                // every moved job is judged, the same setpoints or not
+                match judged(&job) {
+                    Err(e) => failed.push(format!("{what}: {e}")),
+                    Ok(_) if job.samples == base_job.samples => {
                         eprintln!("{what}: the same setpoints")
                     }
-                    Ok(job) => match judged(&job).inspect(|_| {
+                    Ok(f) => {
                         acting.insert(*knob);
-                    }) {
-                        Ok(f) => eprintln!(
-                            "{what}: cv {:.3} ({:+.3}), coverage {:.3}, overspray {:.3} \
-                             ({:+.3}), nozzle {:.2} mm, plants {:.2} mm, bound ratio {:.3} \
-                             ({:+.3})",
-                            f.cv,
-                            f.cv - base.cv,
-                            f.coverage,
-                            f.overspray,
-                            f.overspray - base.overspray,
-                            f.nominal_m * 1e3,
-                            f.plants_m * 1e3,
-                            f.bound_ratio,
-                            f.bound_ratio - base.bound_ratio,
-                        ),
-                        Err(e) => failed.push(format!("{what}: {e}")),
-                    },
-                    Err(e) => failed.push(format!("{what}: refused: {e}")),
+                        eprintln!("{what}: {}", f.line());
+                    }
                 }
             }
         }

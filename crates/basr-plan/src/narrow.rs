@@ -209,6 +209,32 @@ mod tests {
         turn_narrow(&rungs(400, 0.01), &mut ks, 10.0, 0.0158, &N);
         assert!(ks.iter().all(|k| k.turn_rad <= N.max_turn_rad + 1e-12));
         assert!((ks[200].turn_rad - N.max_turn_rad).abs() < 1e-12);
+        // the limit is the tuning's
+        let low = Narrow {
+            max_turn_rad: 0.5,
+            ..N
+        };
+        let mut ks = pass(400, 0.01, 0.1);
+        turn_narrow(&rungs(400, 0.01), &mut ks, 10.0, 0.0158, &low);
+        assert!((ks[200].turn_rad - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_fan_leaned_up_to_the_tuning_s_lean_still_turns() {
+        let leaned = |lean: f64, tuning: &Narrow| {
+            let mut ks = pass(300, 0.073, 0.097);
+            for k in &mut ks {
+                k.tilt_rad = lean;
+            }
+            turn_narrow(&rungs(300, 0.073), &mut ks, 0.44, 0.0158, tuning)
+        };
+        let two = 2f64.to_radians();
+        assert!(!leaned(two, &N), "2° is leaned at the default 1°");
+        let three = Narrow {
+            leaned_rad: 3f64.to_radians(),
+            ..N
+        };
+        assert!(leaned(two, &three), "and not at 3°");
     }
 
     #[test]

@@ -311,7 +311,7 @@ mod tests {
     const BUDGET: TurnBudget = TurnBudget {
         k_m2ps: 0.4e-3 / 60.0 * 0.9 / 0.38e-3,
         min_width_m: 0.097,
-        max_rate_rps: 0.85 * 0.5235987755982988,
+        max_rate_rps: crate::tuning::Tuning::DEFAULT.rates.turn_share * 0.5235987755982988,
         height: None,
         tilt: None,
         tuning: crate::tuning::Tuning::DEFAULT.pairing,
@@ -398,5 +398,17 @@ mod tests {
         let mut st = s.clone();
         st.right = st.right.transformed(&Affine::scale_non_uniform(1.0, 3.0));
         assert!(matched_rungs(&st, 0.02, &BUDGET).is_none());
+        // the ratio is the tuning's: P's quarter, whose edges differ, is
+        // matched at the default and left to equal arc-length at 1
+        let p = p_quarter();
+        assert!(matched_rungs(&p, 0.02, &BUDGET).is_some());
+        let strict = TurnBudget {
+            tuning: Pairing {
+                max_length_ratio: 1.0,
+                ..BUDGET.tuning
+            },
+            ..BUDGET
+        };
+        assert!(matched_rungs(&p, 0.02, &strict).is_none());
     }
 }

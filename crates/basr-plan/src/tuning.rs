@@ -11,14 +11,18 @@
 //! them.
 //!
 //! `tests/tuning_sensitivity.rs` moves each value by ±10 % (an integer by
-//! ±1, its smallest step) and compiles a reduced sweep with it; the range
-//! each holds over is listed in docs/planner.md ("Tuning"), which a test
-//! keeps in step with [`Tuning::knobs`].
+//! ±1, its smallest step) and compiles a reduced sweep with it; what each
+//! end does to the sweep is listed in docs/planner.md ("Tuning"), which
+//! the test keeps in step with [`Tuning::knobs`] (only the two ends are
+//! measured, not the range between or beyond).
 //!
 //! What is not here is either derived (the painting speed from the film
 //! law, the fan's height from the rung's width, limits from the robot
 //! description), a bound on work (most sweeps of a relaxation, most
 //! points of a search: they end a loop, they do not shape the plan), a
+//! step of a search that tries candidates in turn (`chain`'s tangent
+//! scales 1, ½, ¼, 0; the time law's backward pass asking each step for
+//! half the next point's speed where it can, `timing::path`), a
 //! numerical tolerance, or a judge's threshold (the film's bounds, the
 //! share of the tolerance the verified error may use: the acceptance
 //! figures a plan is held to, not how it is made).
@@ -47,7 +51,8 @@ pub struct Pairing {
     pub max_step: usize,
     /// Edges whose lengths differ more than this ratio keep equal
     /// arc-length rungs (×): the search could not reach the far end within
-    /// `max_step`. assumed: a little under `max_step`.
+    /// `max_step`. assumed (no measurement recorded): a little under
+    /// `max_step`.
     pub max_length_ratio: f64,
     /// Share of the turn budget a step may turn at before it costs (1).
     /// assumed: leaves the turn limit (`turn`) a margin.
@@ -65,7 +70,8 @@ pub struct Pairing {
     /// wide end pivoting (P cv 0.060–0.072).
     pub w_diag: f64,
     /// Width (m) at which the distance from equal arc-length has weight
-    /// `w_diag`. assumed: a one-unit stroke at 8 ft.
+    /// `w_diag`. assumed (no measurement recorded): about a one-unit
+    /// stroke at 8 ft (97 mm).
     pub ratio_width_m: f64,
 }
 
@@ -74,7 +80,10 @@ pub struct Pairing {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rates {
     /// Share of the yaw joint's speed limit the fan's turn may take while
-    /// painting (1). assumed: the base joint also turns the fan in the road
+    /// painting (1); the same share of the tilt joint's speed limit also
+    /// bounds how fast the tilt's change between knots is spread
+    /// (`knots::knots_within`, before `tilt_share`'s rate limit). assumed:
+    /// the base joint also turns the fan in the road
     /// frame (up to ≈ 0.05 rad/s at painting speed and 3 m reach) and the
     /// time law keeps its margin: 0.85 × 0.524 + 0.05 = 0.495 rad/s stays
     /// under 0.97 × 0.524 = 0.508 rad/s for BASR's 30°/s. (0.8 held the fan
@@ -125,7 +134,8 @@ pub struct Narrow {
     /// Rounds of smoothing of the turn (count). assumed: 8 round a corner
     /// over ≈ 3 knots either side (30–60 mm at the rung spacing), the
     /// distance in which the fan joint reaches its turn rate at its
-    /// acceleration limit at a narrow stroke's painting speed.
+    /// acceleration limit at a narrow stroke's painting speed (0.44 rad/s
+    /// at 5.2 rad/s² in 0.08 s, 15 mm at 0.16 m/s).
     pub smoothing: usize,
 }
 
@@ -136,12 +146,12 @@ pub struct Joins {
     /// Lead-in and lead-out length (m): the nozzle reaches the painting
     /// speed before a stroke's first rung and keeps it past the last;
     /// half and none are tried where the arm cannot reach that far.
-    /// assumed: 0.1 m; 0.05 m already lets a path acceleration of 0.3 m/s²
-    /// reach 0.17 m/s (v²/2a; a one-unit stroke at 8 ft), so this leaves
-    /// twice that room.
+    /// assumed: 0.1 m. The reason recorded with it is for 0.05 m: that
+    /// lets a path acceleration of 0.3 m/s² reach 0.17 m/s (v²/2a; a
+    /// one-unit stroke at 8 ft), so 0.1 m leaves twice that room.
     pub lead_m: f64,
-    /// Pseudo-knots per lead (count). assumed: 5, 20 mm apart at the
-    /// default lead, the default rung spacing.
+    /// Pseudo-knots per lead (count). assumed (no measurement recorded):
+    /// 5, 20 mm apart at the default lead, the default rung spacing.
     pub lead_knots: usize,
     /// Path-parameter rate standing in for the joints' own motion in a
     /// blend (m of s per s of the slowest joint at its speed limit).
@@ -155,19 +165,24 @@ pub struct Joins {
     /// starts where the last one ended and runs back. assumed: half the
     /// 0.1 m lead.
     pub blend_min_m: f64,
-    /// Share of the time law's limits a flown join is designed to (1), so
-    /// the time law (its own margin and the spline through the join's
-    /// waypoints) can follow it at the design speed. assumed: 0.9.
+    /// Share of the time law's limits a flown join between two strokes is
+    /// designed to (1). assumed: 0.9, chosen when the time law followed
+    /// the designed join's waypoints. Since `flight` flies each join as a
+    /// jerk-limited move of its own (`timing::join_move`), the designed
+    /// join decides whether a join is flown at all (its synchronised move
+    /// stays in the joints' ranges), prices joins for the stroke order
+    /// (`chain::join_time`), and is the path only where that move is not
+    /// found.
     pub design_share: f64,
-    /// Share of that a flown join's last phase (arriving at the next
-    /// stroke) accelerates at (1): the hydraulic arm lags a hard
-    /// stop-and-go into the first rungs (the verified errors sat at the
-    /// strokes' first rungs). assumed: half, chosen on STOP's and SCHOOL's
-    /// verified errors.
+    /// Share of that the designed join's last phase (arriving at the next
+    /// stroke) accelerates at (1); its roles as `design_share`'s. assumed:
+    /// half, chosen on STOP's and SCHOOL's verified errors (the hydraulic
+    /// arm lagged a hard stop-and-go into the first rungs).
     pub arrival_share: f64,
-    /// Time between a flown join's waypoints (s). assumed: a quarter of
-    /// the yaw servo's 0.1 s to full speed (000 app. C §3.2.1), so the
-    /// spline through them keeps the ramps.
+    /// Time between the designed join's waypoints (s), which matter only
+    /// where `flight`'s own move is not found. assumed: a quarter of the
+    /// yaw servo's 0.1 s to full speed (000 app. C §3.2.1), so the spline
+    /// through them keeps the ramps.
     pub flown_step_s: f64,
     /// Largest gap (m) between one stroke's last rung and the next one's
     /// first for the next to carry on without leads. assumed: a quarter of
@@ -185,10 +200,11 @@ pub struct Joins {
     /// acceleration limit in 0.1 s (as the yaw servo reaches 30°/s in
     /// 0.1 s).
     pub jerk_per_acc: f64,
-    /// Share of every velocity and acceleration limit the painting path's
-    /// time law holds back against its grid's discretisation (1). assumed:
-    /// 3 %, ample for the 20 mm rung spacing; the timing property tests
-    /// check the sampled output.
+    /// Share of every velocity and acceleration limit the time law holds
+    /// back on the painting path (against its grid's discretisation) and
+    /// on the rest-to-rest air moves out of and back to stow (1). assumed:
+    /// 3 % (`timing::DEFAULT_MARGIN`), ample for the 20 mm rung spacing;
+    /// the timing property tests check the sampled output.
     pub path_margin: f64,
 }
 
@@ -217,7 +233,8 @@ pub struct Surface {
     /// narrowing the painting heights for a whole stroke. source: the
     /// nozzle's height over the road is to stay within 3 mm of plan; the
     /// fan's edges then move by at most this × tan(fan/2), 1.9 mm at the
-    /// seed's 63.5° tip.
+    /// seed's 63.5° tip (under a third of the agency's 1/4 in), and only
+    /// where the surface is that far off.
     pub clamp_free_m: f64,
 }
 
@@ -271,7 +288,7 @@ impl Tuning {
             continue_turn_rad: 0.35,
             join_margin: 0.005,
             jerk_per_acc: 10.0,
-            path_margin: 0.03,
+            path_margin: crate::timing::DEFAULT_MARGIN,
         },
         retime: Retime {
             arrival_s: 1.0,
@@ -286,56 +303,101 @@ impl Tuning {
     /// Every value by its name (`stage.field`), for the sensitivity test
     /// and the docs' table.
     pub fn knobs(&mut self) -> Vec<(&'static str, Knob<'_>)> {
-        let Tuning {
-            pairing: p,
-            rates: r,
-            narrow: n,
-            joins: j,
-            retime: t,
-            surface: s,
-        } = self;
         use Knob::{Count, Real};
+        // every field named, so a field added is a compile error here
+        let Tuning {
+            pairing:
+                Pairing {
+                    max_follow,
+                    fine_per_spacing,
+                    max_step,
+                    max_length_ratio,
+                    turn_free,
+                    w_turn,
+                    w_lean,
+                    w_diag,
+                    ratio_width_m,
+                },
+            rates:
+                Rates {
+                    turn_share,
+                    tilt_share,
+                    tilt_acc_share,
+                    tilt_smoothing,
+                    tilt_inset_rad,
+                },
+            narrow:
+                Narrow {
+                    max_turn_rad,
+                    leaned_rad,
+                    smoothing,
+                },
+            joins:
+                Joins {
+                    lead_m,
+                    lead_knots,
+                    blend_speed_mps,
+                    blend_step_m,
+                    blend_min_m,
+                    design_share,
+                    arrival_share,
+                    flown_step_s,
+                    continue_gap_m,
+                    continue_turn_rad,
+                    join_margin,
+                    jerk_per_acc,
+                    path_margin,
+                },
+            retime:
+                Retime {
+                    arrival_s,
+                    pace_step,
+                    min_pace,
+                },
+            surface: Surface { clamp_free_m },
+        } = self;
         vec![
-            ("pairing.max_follow", Real(&mut p.max_follow)),
-            ("pairing.fine_per_spacing", Real(&mut p.fine_per_spacing)),
-            ("pairing.max_step", Count(&mut p.max_step)),
-            ("pairing.max_length_ratio", Real(&mut p.max_length_ratio)),
-            ("pairing.turn_free", Real(&mut p.turn_free)),
-            ("pairing.w_turn", Real(&mut p.w_turn)),
-            ("pairing.w_lean", Real(&mut p.w_lean)),
-            ("pairing.w_diag", Real(&mut p.w_diag)),
-            ("pairing.ratio_width_m", Real(&mut p.ratio_width_m)),
-            ("rates.turn_share", Real(&mut r.turn_share)),
-            ("rates.tilt_share", Real(&mut r.tilt_share)),
-            ("rates.tilt_acc_share", Real(&mut r.tilt_acc_share)),
-            ("rates.tilt_smoothing", Count(&mut r.tilt_smoothing)),
-            ("rates.tilt_inset_rad", Real(&mut r.tilt_inset_rad)),
-            ("narrow.max_turn_rad", Real(&mut n.max_turn_rad)),
-            ("narrow.leaned_rad", Real(&mut n.leaned_rad)),
-            ("narrow.smoothing", Count(&mut n.smoothing)),
-            ("joins.lead_m", Real(&mut j.lead_m)),
-            ("joins.lead_knots", Count(&mut j.lead_knots)),
-            ("joins.blend_speed_mps", Real(&mut j.blend_speed_mps)),
-            ("joins.blend_step_m", Real(&mut j.blend_step_m)),
-            ("joins.blend_min_m", Real(&mut j.blend_min_m)),
-            ("joins.design_share", Real(&mut j.design_share)),
-            ("joins.arrival_share", Real(&mut j.arrival_share)),
-            ("joins.flown_step_s", Real(&mut j.flown_step_s)),
-            ("joins.continue_gap_m", Real(&mut j.continue_gap_m)),
-            ("joins.continue_turn_rad", Real(&mut j.continue_turn_rad)),
-            ("joins.join_margin", Real(&mut j.join_margin)),
-            ("joins.jerk_per_acc", Real(&mut j.jerk_per_acc)),
-            ("joins.path_margin", Real(&mut j.path_margin)),
-            ("retime.arrival_s", Real(&mut t.arrival_s)),
-            ("retime.pace_step", Real(&mut t.pace_step)),
-            ("retime.min_pace", Real(&mut t.min_pace)),
-            ("surface.clamp_free_m", Real(&mut s.clamp_free_m)),
+            ("pairing.max_follow", Real(max_follow)),
+            ("pairing.fine_per_spacing", Real(fine_per_spacing)),
+            ("pairing.max_step", Count(max_step)),
+            ("pairing.max_length_ratio", Real(max_length_ratio)),
+            ("pairing.turn_free", Real(turn_free)),
+            ("pairing.w_turn", Real(w_turn)),
+            ("pairing.w_lean", Real(w_lean)),
+            ("pairing.w_diag", Real(w_diag)),
+            ("pairing.ratio_width_m", Real(ratio_width_m)),
+            ("rates.turn_share", Real(turn_share)),
+            ("rates.tilt_share", Real(tilt_share)),
+            ("rates.tilt_acc_share", Real(tilt_acc_share)),
+            ("rates.tilt_smoothing", Count(tilt_smoothing)),
+            ("rates.tilt_inset_rad", Real(tilt_inset_rad)),
+            ("narrow.max_turn_rad", Real(max_turn_rad)),
+            ("narrow.leaned_rad", Real(leaned_rad)),
+            ("narrow.smoothing", Count(smoothing)),
+            ("joins.lead_m", Real(lead_m)),
+            ("joins.lead_knots", Count(lead_knots)),
+            ("joins.blend_speed_mps", Real(blend_speed_mps)),
+            ("joins.blend_step_m", Real(blend_step_m)),
+            ("joins.blend_min_m", Real(blend_min_m)),
+            ("joins.design_share", Real(design_share)),
+            ("joins.arrival_share", Real(arrival_share)),
+            ("joins.flown_step_s", Real(flown_step_s)),
+            ("joins.continue_gap_m", Real(continue_gap_m)),
+            ("joins.continue_turn_rad", Real(continue_turn_rad)),
+            ("joins.join_margin", Real(join_margin)),
+            ("joins.jerk_per_acc", Real(jerk_per_acc)),
+            ("joins.path_margin", Real(path_margin)),
+            ("retime.arrival_s", Real(arrival_s)),
+            ("retime.pace_step", Real(pace_step)),
+            ("retime.min_pace", Real(min_pace)),
+            ("surface.clamp_free_m", Real(clamp_free_m)),
         ]
     }
 
     /// This tuning with knob `name` moved: a real value times `factor`, a
-    /// count by `factor`'s sign (one step up above 1, down below it, never
-    /// under 1). `None` for a name that is not a knob.
+    /// count one step up for a factor over 1 and one down for a factor
+    /// under 1 (never under 1), unchanged at 1. `None` for a name that is
+    /// not a knob.
     pub fn moved(mut self, name: &str, factor: f64) -> Option<Tuning> {
         let mut found = false;
         for (n, knob) in self.knobs() {
@@ -346,10 +408,10 @@ impl Tuning {
             match knob {
                 Knob::Real(v) => *v *= factor,
                 Knob::Count(c) => {
-                    *c = if factor > 1.0 {
-                        *c + 1
-                    } else {
-                        c.saturating_sub(1).max(1)
+                    if factor > 1.0 {
+                        *c += 1;
+                    } else if factor < 1.0 {
+                        *c = c.saturating_sub(1).max(1);
                     }
                 }
             }
