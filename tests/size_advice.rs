@@ -58,3 +58,78 @@ fn a_not_ready_size_names_the_nearest_that_paint_and_they_do() {
         "the nearest: a quarter foot less is NOT READY"
     );
 }
+
+/// The quarter-foot heights a `sizes:` line names (as `--letter-height`
+/// takes them): "10.75ft (3.28 m) smaller" → ("10.75ft", "smaller").
+fn named(line: &str) -> Vec<(String, String)> {
+    let words: Vec<&str> = line.split_whitespace().collect();
+    words
+        .windows(4)
+        .filter(|w| {
+            w[0].ends_with("ft") && (w[3].starts_with("smaller") || w[3].starts_with("larger"))
+        })
+        .map(|w| {
+            (
+                w[0].to_string(),
+                w[3].trim_end_matches([',', ' ']).to_string(),
+            )
+        })
+        .collect()
+}
+
+/// A refusal for the word's size names the nearest sizes that paint, and
+/// they do; a refusal no size mends searches nothing.
+#[test]
+fn a_size_refused_names_the_nearest_that_paint_and_they_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (what, args) in [
+        // "6" at 12 ft: a join carries the extension past full reach
+        ("past its range", vec!["6", "--letter-height", "12ft"]),
+        // AHEAD at 9 ft is wider than a 3 m lane: searched from the
+        // height it fits at
+        (
+            "wider",
+            vec!["AHEAD", "--letter-height", "9ft", "--lane-width", "3"],
+        ),
+    ] {
+        let mut a = vec!["compile"];
+        a.extend(&args);
+        a.extend(["-o", "refused.job.json"]);
+        let o = basr(d, &a);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            !d.join("refused.job.json").exists(),
+            "{args:?}: no job left"
+        );
+        let line = err
+            .lines()
+            .find(|l| l.trim_start().starts_with("sizes:"))
+            .unwrap_or_else(|| panic!("{args:?} ({what}): no sizes line: {err}"));
+        let found = named(line);
+        assert!(!found.is_empty(), "{args:?}: a size paints: {line}");
+        for (height, _) in &found {
+            let mut a = vec!["compile", args[0]];
+            a.extend(&args[3..]);
+            a.extend([
+                "--letter-height",
+                height,
+                "-o",
+                "named.job.json",
+                "--no-size-search",
+            ]);
+            let o = basr(d, &a);
+            assert_eq!(
+                o.status.code(),
+                Some(0),
+                "{args:?} at {height}: {}",
+                stderr(&o)
+            );
+        }
+    }
+    // A character no font has: refused, and no size searched.
+    let o = basr(d, &["compile", "ST%P", "-o", "bad.job.json"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!stderr(&o).contains("sizes:"), "{}", stderr(&o));
+}

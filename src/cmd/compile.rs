@@ -74,7 +74,8 @@ pub struct Args {
     /// symbols down to 75 % pass the MUTCD checks (11th §3B.20 ¶11).
     #[arg(long)]
     pub low_speed: bool,
-    /// Do not search the letter heights near a NOT READY word marking for
+    /// Do not search the letter heights near a NOT READY word marking, or
+    /// one refused for its size (out of reach, too wide for the lane), for
     /// ones that paint (that search plans up to 16 other heights and
     /// verifies those that plan without problems: seconds, or most of a
     /// minute on a slow laptop). For scripts and comparisons
@@ -543,12 +544,36 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         _ => compile_job(&req),
     };
     spin.finish_and_clear();
+    let floor = basr::layout::rules::MIN_LETTER_HEIGHT_M
+        * if args.low_speed {
+            basr::layout::rules::LOW_SPEED_FACTOR
+        } else {
+            1.0
+        };
     let mut job = compiled.map_err(|e| {
-        let e = anyhow::Error::from(e);
-        match hints.is_empty() {
-            true => e,
-            false => anyhow::anyhow!("{e:#}\n  hint: {}", hints.join("\n  hint: ")),
+        // A word refused for its size (out of reach, too wide for the
+        // lane, too fast to follow): the nearest heights that paint.
+        let sizes = (!args.no_size_search && shape.is_none())
+            .then(|| super::sizes::refused_at(&req, &e))
+            .flatten()
+            .map(|asked| {
+                let spin = super::spinner(
+                    !global.quiet && !args.json,
+                    "refused: searching the letter heights near it for ones that paint",
+                );
+                let advice = super::sizes::nearest_ready(&req, asked, floor);
+                spin.finish_and_clear();
+                advice.line()
+            });
+        let mut text = format!("{:#}", anyhow::Error::from(e));
+        for h in &hints {
+            text.push_str(&format!("\n  hint: {h}"));
         }
+        if let Some(line) = sizes {
+            text.push('\n');
+            text.push_str(&line);
+        }
+        anyhow::anyhow!(text)
     })?;
     // A failed compile carries the hints in its error (above); say them
     // once either way.
@@ -586,12 +611,6 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         && shape.is_none()
         && super::sizes::applies(&req))
     .then(|| {
-        let floor = basr::layout::rules::MIN_LETTER_HEIGHT_M
-            * if args.low_speed {
-                basr::layout::rules::LOW_SPEED_FACTOR
-            } else {
-                1.0
-            };
         let spin = super::spinner(
             !global.quiet && !args.json,
             "NOT READY: searching the letter heights near it for ones that paint",

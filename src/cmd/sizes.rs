@@ -1,10 +1,12 @@
-//! Honest size advice for a NOT READY word marking: compile searches the
-//! letter heights near the one asked for and names the nearest each way
-//! that paints READY (or READY WITH NOTES), instead of guessing which way
-//! a change helps (above 8 ft larger letters paint worse, below it smaller
-//! ones do).
+//! Honest size advice for a NOT READY word marking, or one refused for its
+//! size: compile searches the letter heights near the one asked for (or,
+//! for a word too wide for the lane, the one it fits at) and names the
+//! nearest each way that paints READY (or READY WITH NOTES), instead of
+//! guessing which way a change helps (above 8 ft larger letters paint
+//! worse, below it smaller ones do).
 
-use basr::pipeline::compile::{compile_job, CompileRequest, Source};
+use basr::layout::{LayoutError, Marking};
+use basr::pipeline::compile::{compile_job, CompileError, CompileRequest, Source};
 use rayon::prelude::*;
 
 /// Step between the heights tried (m): a quarter foot, the finest step a
@@ -67,6 +69,29 @@ pub fn applies(req: &CompileRequest) -> bool {
         Source::Marking { text, .. } => !basr::layout::is_scene(text),
         Source::Symbol(_) => false,
     }
+}
+
+/// The letter height to search around for a word marking compile refused
+/// for its size (`CompileError::about_size`): the height the word fits
+/// the lane at when it was too wide, else the one asked for; `None` for a
+/// refusal no other size mends, or a marking without letters.
+pub fn refused_at(req: &CompileRequest, e: &CompileError) -> Option<f64> {
+    if !applies(req) || !e.about_size() {
+        return None;
+    }
+    if let CompileError::Layout(LayoutError::TooWide {
+        fits_at_height_m, ..
+    }) = e
+    {
+        return *fits_at_height_m;
+    }
+    let o = &req.overrides;
+    let marking = match &req.source {
+        Source::Message(m) => Marking::from_message(m, o).ok()?,
+        Source::Marking { text, origin } => Marking::from_toml(text, origin, o).ok()?,
+        Source::Symbol(_) => return None,
+    };
+    Some(marking.letter_height_m)
 }
 
 /// Search the heights around `asked_m` (not below `floor_m`, the smallest

@@ -36,6 +36,39 @@ pub enum CompileError {
          robot description"
     )]
     NotFollowed { pace: f64, why: String },
+    #[error(
+        "time law: setpoint {setpoint}: the smooth path between two planned points carries \
+         {joint} to {value:.4}, {past:.4} past its range [{:.4}, {:.4}]: the marking reaches \
+         the edge of what the arm reaches from its stop; use a smaller --letter-height (or a \
+         robot with more reach)",
+        min,
+        max
+    )]
+    PastRange {
+        setpoint: usize,
+        joint: &'static str,
+        value: f64,
+        past: f64,
+        min: f64,
+        max: f64,
+    },
+}
+
+impl CompileError {
+    /// Whether the marking's size is what the arm cannot paint: out of its
+    /// reach, carried past a joint's range, too fast to follow even at a
+    /// tenth of its limits, or too wide for the lane. A smaller or larger
+    /// letter height may paint; a bad setting or file will not.
+    pub fn about_size(&self) -> bool {
+        matches!(
+            self,
+            CompileError::Unreachable(_)
+                | CompileError::Stations(StationError::Unreachable { .. })
+                | CompileError::NotFollowed { .. }
+                | CompileError::PastRange { .. }
+                | CompileError::Layout(LayoutError::TooWide { .. })
+        )
+    }
 }
 
 /// Errors of station planning.

@@ -95,15 +95,14 @@ fn clamp_to_range(robot: &AnyRobot, timed: &mut [Timed]) -> Result<(), CompileEr
             let v = p.q[j];
             let c = v.clamp(l.min, l.max);
             if (c - v).abs() > CLAMP_MAX {
-                return Err(CompileError::Timing(format!(
-                    "setpoint {k}: the smooth path between two planned points carries \
-                     {name} to {v:.4}, {:.4} past its range [{}, {}]: the marking reaches \
-                     the edge of what the arm reaches from its stop; use a smaller \
-                     --letter-height (or a robot with more reach)",
-                    (c - v).abs(),
-                    l.min,
-                    l.max
-                )));
+                return Err(CompileError::PastRange {
+                    setpoint: k,
+                    joint: name,
+                    value: v,
+                    past: (c - v).abs(),
+                    min: l.min,
+                    max: l.max,
+                });
             }
             p.q[j] = c;
         }
