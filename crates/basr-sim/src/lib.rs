@@ -175,17 +175,7 @@ pub fn simulate_resumable(
     opts: &Options,
     resume: Option<(Checkpoints, usize)>,
 ) -> Result<(Outcome, Checkpoints), SimError> {
-    run::run_resumable(
-        job,
-        model,
-        model,
-        opts,
-        &[],
-        &mut |_, _| {},
-        resume,
-        true,
-        None,
-    )
+    simulate_plant_resumable(job, model, model, opts, resume)
 }
 
 /// [`simulate_resumable`] with the controller built for the `nominal`

@@ -247,23 +247,11 @@ pub fn run_each(
     factors: &[Vec<f64>],
     resume: Option<(Vec<Checkpoints>, usize)>,
 ) -> Result<Vec<(super::Report, Checkpoints)>, SimError> {
-    let resumes: Vec<Option<(Checkpoints, usize)>> = match resume {
-        Some((cps, row)) if cps.len() == factors.len() => {
-            cps.into_iter().map(|c| Some((c, row))).collect()
-        }
-        _ => factors.iter().map(|_| None).collect(),
-    };
+    let resumes = resumes_of(factors, resume)?;
     let runs: Vec<Result<(super::Report, Checkpoints), SimError>> = factors
         .par_iter()
         .zip(resumes)
         .map(|(f, resume)| {
-            if f.len() != UNCERTAIN.len() {
-                return Err(SimError::Option(format!(
-                    "a plant needs {} factors, not {}",
-                    UNCERTAIN.len(),
-                    f.len()
-                )));
-            }
             let m = scaled(nominal, f);
             super::simulate_plant_resumable(job, nominal, &m, opts, resume)
                 .map(|(o, c)| (o.report, c))
@@ -271,6 +259,27 @@ pub fn run_each(
         .collect();
     // the first error in the plants' order, whichever thread met it first
     runs.into_iter().collect()
+}
+
+/// Each plant's checkpoints to resume from (none unless there is one set
+/// per plant), once every plant has a factor per uncertain number.
+fn resumes_of(
+    factors: &[Vec<f64>],
+    resume: Option<(Vec<Checkpoints>, usize)>,
+) -> Result<Vec<Option<(Checkpoints, usize)>>, SimError> {
+    if let Some(f) = factors.iter().find(|f| f.len() != UNCERTAIN.len()) {
+        return Err(SimError::Option(format!(
+            "a plant needs {} factors, not {}",
+            UNCERTAIN.len(),
+            f.len()
+        )));
+    }
+    Ok(match resume {
+        Some((cps, row)) if cps.len() == factors.len() => {
+            cps.into_iter().map(|c| Some((c, row))).collect()
+        }
+        _ => factors.iter().map(|_| None).collect(),
+    })
 }
 
 /// [`run_each`], the plants advanced together (`lockstep`): at every
@@ -281,8 +290,8 @@ pub fn run_each(
 /// that plant's report (and that of every plant that failed before the
 /// checkpoint where the others ended) is the one [`run_each`] gives; a
 /// plant ended early reports the run up to there (its largest error so
-/// far). A plant ended early with a limit broken
-/// is run on to its end, so that its report is a whole run's as well.
+/// far). A plant ended early with a limit broken is run on to its end, so
+/// that its report is a whole run's as well.
 /// One thread per plant (they wait for each other, which a pool of fewer
 /// threads could not); the reports and checkpoints in `factors`' order.
 pub fn run_each_in_step(
@@ -292,19 +301,7 @@ pub fn run_each_in_step(
     factors: &[Vec<f64>],
     resume: Option<(Vec<Checkpoints>, usize)>,
 ) -> Result<Vec<(super::Report, Checkpoints)>, SimError> {
-    if let Some(f) = factors.iter().find(|f| f.len() != UNCERTAIN.len()) {
-        return Err(SimError::Option(format!(
-            "a plant needs {} factors, not {}",
-            UNCERTAIN.len(),
-            f.len()
-        )));
-    }
-    let resumes: Vec<Option<(Checkpoints, usize)>> = match resume {
-        Some((cps, row)) if cps.len() == factors.len() => {
-            cps.into_iter().map(|c| Some((c, row))).collect()
-        }
-        _ => factors.iter().map(|_| None).collect(),
-    };
+    let resumes = resumes_of(factors, resume)?;
     let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
     let group = super::lockstep::Group::new(factors.len());
     let runs = std::thread::scope(|sc| {
