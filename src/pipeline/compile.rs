@@ -164,7 +164,6 @@ fn compile_for_tip(
             options: req.recorded_options(),
         });
         if !req.verify {
-            job.seal();
             return with_film(req, job, strokes);
         }
         // Stations are independent once the arm is stowed: each is
@@ -214,7 +213,6 @@ fn compile_for_tip(
                 v.over = kept_over.iter().flatten().next().cloned();
                 v
             });
-            job.seal();
             return with_film(req, job, strokes);
         }
         let slowed: Vec<(usize, Option<trajectory::Pace>)> = failing
@@ -612,7 +610,8 @@ fn slower(
 }
 
 /// The job with its film measured (`plan::film`, when `req.film`): the
-/// figures in `summary.film` and a problem per failed bound, resealed.
+/// figures in `summary.film` and a problem per failed bound, sealed (once:
+/// sealing serialises the whole job to hash it).
 fn with_film(
     req: &CompileRequest,
     mut job: Job,
