@@ -226,3 +226,41 @@ fn a_film_that_fails_the_preview_makes_the_job_not_ready() {
     let value = p["overspray"].as_f64().unwrap();
     assert!((factor - value / limit).abs() < 1e-12, "{factor}");
 }
+
+/// A round letter painted with the fan untilted fails cv, and the film
+/// problem names each letter it fails and why the fan is not leaned: the
+/// articulated arm has no tilt along its fan (a robot without the degree
+/// of freedom), BASR with `--tilt none` was asked so.
+#[test]
+fn an_untilted_fan_names_the_letters_and_the_missing_lean() {
+    let dir = tempfile::tempdir().unwrap();
+    let robot = concat!(env!("CARGO_MANIFEST_DIR"), "/robots/articulated.toml");
+    for (args, says, todo) in [
+        (
+            vec!["OL", "--robot", robot],
+            "the articulated arm has no tilt along its fan",
+            "paint them with one that leans its fan",
+        ),
+        (
+            vec!["OL", "--tilt", "none"],
+            "--tilt none was asked",
+            "--tilt quadrilateral",
+        ),
+    ] {
+        let (code, v, err) = compile(&args, &dir.path().join("u.job.json"));
+        assert_eq!(code, Some(1), "{args:?}: NOT READY: {err}");
+        let film: Vec<&str> = v["summary"]["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|w| w["kind"] == "film" && w["message"].as_str().unwrap().contains("cv "))
+            .map(|w| w["message"].as_str().unwrap())
+            .collect();
+        assert_eq!(film.len(), 1, "{args:?}: one cv problem: {film:?}");
+        let m = film[0];
+        assert!(m.contains(says) && m.contains(todo), "{args:?}: {m}");
+        // O is named; L, straight, is even untilted and is not
+        assert!(m.contains("curves of letter O of line 1 (cv "), "{m}");
+        assert!(!m.contains("letter L"), "{m}");
+    }
+}

@@ -9,7 +9,7 @@ use crate::paint::metrics::GlyphMetrics;
 use crate::paint::Profile;
 
 use basr_plan::error::CompileError;
-use basr_plan::warnings::{HotSpot, Note, Owner};
+use basr_plan::warnings::{HotSpot, Note, Owner, Untilted};
 
 /// What compile records of the film: the summary's figures and the notes
 /// for the bounds it misses.
@@ -85,6 +85,21 @@ fn notes(measured: &JobFilm, job: &Job, owners: &[Owner]) -> Vec<Note> {
                 ("cv", Some((i, _, _))) => hot_spot(measured, job, i),
                 _ => None,
             };
+            // An uneven film where the fan is painted untilted: the items
+            // over the bound, and why the fan is not leaned.
+            let untilted =
+                (c.metric == "cv" && job.layout.tilt_method == "none").then(|| Untilted {
+                    items: glyphs
+                        .iter()
+                        .zip(owners)
+                        .filter_map(|(g, o)| g.cv.filter(|&v| v > c.limit).map(|v| (o.clone(), v)))
+                        .collect(),
+                    lacks: job
+                        .robot
+                        .tilt_limit()
+                        .is_none()
+                        .then(|| job.robot.kind().name()),
+                });
             Note::Film {
                 failed: c.text(),
                 metric: c.metric,
@@ -92,6 +107,7 @@ fn notes(measured: &JobFilm, job: &Job, owners: &[Owner]) -> Vec<Note> {
                 worst: worst.map(|(_, o, v)| (o.clone(), v)),
                 hot,
                 tip: tip_words(job),
+                untilted: untilted.filter(|u| !u.items.is_empty()),
             }
         })
         .collect()

@@ -56,6 +56,43 @@ pub struct HotSpot {
     pub stroke: Option<usize>,
 }
 
+/// The items whose own film fails the cv bound where the fan is painted
+/// untilted, and why it is: without the lean the quadrilateral tilt gives
+/// a fan on a curve (001 §2.5), the inside of the curve gets more paint
+/// than the outside (BASR with `--tilt none` paints O, B and S with the
+/// cv the articulated arm does: 0.136, 0.130, 0.145).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Untilted {
+    /// Each item over the bound, with its own cv.
+    pub items: Vec<(Owner, f64)>,
+    /// The robot kind that has no tilt along its fan; `None` where the
+    /// request asked for `--tilt none`.
+    pub lacks: Option<&'static str>,
+}
+
+/// What a cv failure on an untilted fan says: which items, and the degree
+/// of freedom that would even them.
+fn untilted_words(u: &Untilted) -> String {
+    let items: Vec<String> = u
+        .items
+        .iter()
+        .map(|(o, cv)| format!("{o} (cv {cv:.3})"))
+        .collect();
+    let why = match u.lacks {
+        Some(kind) => format!(
+            "the {kind} arm has no tilt along its fan, the degree of freedom that leans the \
+             fan on a curve (001 §2.5) and evens the film across it"
+        ),
+        None => "--tilt none was asked; the quadrilateral tilt leans the fan on a curve \
+                 (001 §2.5) and evens the film across it"
+            .to_string(),
+    };
+    format!(
+        "; uneven across the curves of {}, painted with the fan untilted: {why}",
+        items.join(", ")
+    )
+}
+
 /// One note of the planner.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Note {
@@ -124,6 +161,9 @@ pub enum Note {
         /// The tip the film was planned and measured for (`511, uniform-angle
         /// flux`), when the robot names one or a profile other than uniform.
         tip: Option<String>,
+        /// For cv on a fan painted untilted: the items it fails and why
+        /// the fan is not leaned.
+        untilted: Option<Untilted>,
     },
 
     /// The arm comes to rest.
@@ -226,6 +266,23 @@ impl Note {
             (Note::HeightClamped { .. }, _) => {
                 "Expect paint outside the letter there; larger letters (--letter-height) avoid it."
             }
+            (
+                Note::Film {
+                    untilted: Some(Untilted { lacks: Some(_), .. }),
+                    ..
+                },
+                _,
+            ) => {
+                "Do not paint these letters with this robot: paint them with one that leans \
+                 its fan (BASR or the telescopic arm), or leave them out of the job."
+            }
+            (
+                Note::Film {
+                    untilted: Some(Untilted { lacks: None, .. }),
+                    ..
+                },
+                _,
+            ) => "Compile it again with the default --tilt quadrilateral.",
             (Note::Film { .. }, _) => {
                 "Do not paint it as it is: `basr preview` of the job shows where; tell the \
                  engineer who planned it (the job's other notes say which way a different \
@@ -353,6 +410,7 @@ impl Note {
                 worst,
                 hot,
                 tip,
+                untilted,
             } => Warning {
                 kind: WarningKind::Film,
                 owner: None,
@@ -361,7 +419,7 @@ impl Note {
                 t_s: None,
                 factor: *factor,
                 message: format!(
-                    "the film fails the preview's check: {failed}{}{}{}. {todo}",
+                    "the film fails the preview's check: {failed}{}{}{}{}. {todo}",
                     tip.as_ref()
                         .map_or(String::new(), |t| format!(" with tip {t}")),
                     worst.as_ref().map_or(String::new(), |(owner, v)| format!(
@@ -373,7 +431,8 @@ impl Note {
                         h.at_m[0],
                         h.at_m[1],
                         h.stroke.map_or(String::new(), |s| format!(", stroke {s}"))
-                    ))
+                    )),
+                    untilted.as_ref().map_or(String::new(), untilted_words)
                 ),
             },
             Note::Stop {
@@ -490,6 +549,7 @@ mod tests {
                 stroke: Some(7),
             }),
             tip: None,
+            untilted: None,
         };
         assert_eq!(film.severity(), Severity::Problem);
         let w = film.render();
