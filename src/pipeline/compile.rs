@@ -254,7 +254,15 @@ fn compile_for_tip(
                         ));
                         v.ok = true;
                     }
-                    runs[si] = None;
+                    // The set ran in step, its other plants ended at the
+                    // first one's failure: run them to the end, so that
+                    // `summary.verified` has every plant's whole run.
+                    if let Some(last) = runs[si].take().filter(|_| req.retime_on_spread) {
+                        let rows = rows[si].clone();
+                        if let Some(e) = whole_set(&job, &skeleton, rows, req.period_s, last)? {
+                            on_spread[si] = Some(e);
+                        }
+                    }
                 }
             }
         }
@@ -537,6 +545,27 @@ fn verify_station(
         on_spread,
         nominal_m,
     })
+}
+
+/// Each plant's largest error over the whole station (`rows` of `job`),
+/// from `last`, the set's runs in step that ended at its first failure:
+/// each resumes at its last checkpoint and runs to its end or to its own
+/// failure (`None` where the set did not run).
+fn whole_set(
+    job: &Job,
+    skeleton: &Job,
+    rows: std::ops::Range<usize>,
+    period_s: f64,
+    last: LastRun,
+) -> Result<Option<Vec<f64>>, CompileError> {
+    let Some((samples, checkpoints)) = last.plants else {
+        return Ok(None);
+    };
+    let t0_s = rows.start as f64 * period_s;
+    let mut alone = skeleton.clone();
+    alone.samples = job.samples.rows(rows);
+    let first = alone.samples.first_difference(&samples);
+    Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)), false)?.map(|s| s.errors))
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm

@@ -6,14 +6,14 @@
 //! strays over the bound, where and why (`plants::run_each_in_step`): the
 //! station is re-timed there and the set run again. Run one after
 //! another, every plant that passes a failing station runs its whole
-//! length for nothing. Here each run, at every window boundary, waits
-//! until every other run of the group has reached that boundary or
-//! ended; it then ends if some run has already failed at or before the
-//! boundary. A run failing at t ≤ b ends before it could reach b, and no
-//! run passes b before every run has reached b, so the set of failures
-//! known at boundary b is exactly those at or before b whatever the
-//! threads' timing: which runs end where is the same on every machine,
-//! and so is every report.
+//! length for nothing. Here each run, at every window boundary b (before
+//! it simulates the tick at b), waits until every other run of the group
+//! has reached b or ended; it then ends if some run has already failed
+//! before b. A run failing at t < b ends before it reaches b, a run
+//! failing at b or later has reached b first, and no run passes b before
+//! every run has reached it: the failures known at boundary b are exactly
+//! those before b whatever the threads' timing, so which runs end where is
+//! the same on every machine, and so is every report.
 
 use std::sync::{Condvar, Mutex, PoisonError};
 
@@ -77,8 +77,9 @@ pub(super) struct Gate<'a> {
 }
 
 impl Gate<'_> {
-    /// At boundary `t_s`: wait until every run of the group has reached it
-    /// or ended; false (the run ends here) when one failed at or before it.
+    /// At boundary `t_s` (before its tick): wait until every run of the
+    /// group has reached it or ended; false (the run ends here) when one
+    /// failed before it.
     pub(super) fn go_on(&mut self, t_s: f64) -> bool {
         let g = self.group;
         let mut s = g.state.lock().unwrap_or_else(PoisonError::into_inner);
@@ -87,7 +88,7 @@ impl Gate<'_> {
         while s.at.iter().any(|&a| a < t_s) {
             s = g.moved.wait(s).unwrap_or_else(PoisonError::into_inner);
         }
-        let go = !s.failed_at.is_some_and(|f| f <= t_s);
+        let go = !s.failed_at.is_some_and(|f| f < t_s);
         self.stopped = !go;
         go
     }
@@ -123,51 +124,66 @@ impl Drop for Gate<'_> {
 mod tests {
     use super::*;
 
-    /// Runs of different lengths failing at set times, on threads: each
-    /// ends at the first boundary at or after the earliest failure, or at
-    /// its own failure or end if sooner, whatever the threads' timing.
+    /// Runs in `run_resumable`'s order (at each boundary: wait, then the
+    /// window's ticks, the first at the boundary itself), failing at set
+    /// times, on threads: each ends at the first boundary after the
+    /// earliest failure, or at its own failure or end if sooner, whatever
+    /// the threads' timing; a failure on a boundary is seen at the next.
     #[test]
     fn runs_end_at_the_first_boundary_after_the_first_failure() {
         // (ends at, fails at): boundaries every 1.0
-        let runs = [
-            (10.0, None),
-            (10.0, Some(3.5)),
-            (2.5, None),
-            (10.0, Some(6.2)),
+        type Case = (&'static [(f64, Option<f64>)], &'static [f64]);
+        let cases: [Case; 2] = [
+            (
+                &[
+                    (10.0, None),
+                    (10.0, Some(3.5)),
+                    (2.5, None),
+                    (10.0, Some(6.2)),
+                ],
+                &[4.0, 3.5, 2.5, 4.0],
+            ),
+            // failing on the boundary at 4 (its tick at 4 runs after the
+            // others may have passed 4): all end at 5
+            (
+                &[(10.0, Some(4.0)), (10.0, None), (10.0, Some(4.5))],
+                &[4.0, 5.0, 4.5],
+            ),
         ];
-        for _ in 0..20 {
-            let group = Group::new(runs.len());
-            let ended: Vec<f64> = std::thread::scope(|sc| {
-                let handles: Vec<_> = runs
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &(end, fail))| {
-                        let group = &group;
-                        sc.spawn(move || {
-                            let mut gate = group.gate(i);
-                            let mut t = 0.0;
-                            loop {
-                                // one window of "work"
-                                std::thread::yield_now();
-                                let next = t + 1.0;
-                                if let Some(f) = fail.filter(|&f| f < next) {
-                                    gate.failed(f);
-                                    return f;
+        for (runs, want) in cases {
+            for _ in 0..20 {
+                let group = Group::new(runs.len());
+                let gates: Vec<Gate> = (0..runs.len()).map(|i| group.gate(i)).collect();
+                let ended: Vec<f64> = std::thread::scope(|sc| {
+                    let handles: Vec<_> = runs
+                        .iter()
+                        .zip(gates)
+                        .map(|(&(end, fail), mut gate)| {
+                            sc.spawn(move || {
+                                let mut t: f64 = 0.0;
+                                loop {
+                                    if t > 0.0 && !gate.go_on(t) {
+                                        return t;
+                                    }
+                                    // the window's ticks, from t on
+                                    std::thread::yield_now();
+                                    let next = t + 1.0;
+                                    if let Some(f) = fail.filter(|&f| f < next) {
+                                        gate.failed(f);
+                                        return f;
+                                    }
+                                    if end < next {
+                                        return end;
+                                    }
+                                    t = next;
                                 }
-                                if end < next {
-                                    return end;
-                                }
-                                t = next;
-                                if !gate.go_on(t) {
-                                    return t;
-                                }
-                            }
+                            })
                         })
-                    })
-                    .collect();
-                handles.into_iter().map(|h| h.join().unwrap()).collect()
-            });
-            assert_eq!(ended, vec![4.0, 3.5, 2.5, 4.0]);
+                        .collect();
+                    handles.into_iter().map(|h| h.join().unwrap()).collect()
+                });
+                assert_eq!(ended, want.to_vec(), "{runs:?}");
+            }
         }
     }
 }

@@ -291,7 +291,11 @@ fn resumes_of(
 /// checkpoint where the others ended) is the one [`run_each`] gives; a
 /// plant ended early reports the run up to there (its largest error so
 /// far). A plant ended early with a limit broken is run on to its end, so
-/// that its report is a whole run's as well.
+/// that its report is a whole run's as well; one that would break a limit
+/// only after that checkpoint is not seen to fail in this round (run
+/// alone, it would be, and ranked by the time of its largest error: the
+/// set's failure is then found in the next round, if the re-timing did
+/// not remove it).
 /// One thread per plant (they wait for each other, which a pool of fewer
 /// threads could not); the reports and checkpoints in `factors`' order.
 pub fn run_each_in_step(
@@ -304,15 +308,16 @@ pub fn run_each_in_step(
     let resumes = resumes_of(factors, resume)?;
     let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
     let group = super::lockstep::Group::new(factors.len());
+    // Every gate before any thread: a spawn that fails drops the gates not
+    // yet handed over, so no thread waits for a run that never started.
+    let gates: Vec<super::lockstep::Gate> = (0..factors.len()).map(|i| group.gate(i)).collect();
     let runs = std::thread::scope(|sc| {
         let handles: Vec<_> = models
             .iter()
             .zip(resumes)
-            .enumerate()
-            .map(|(i, (m, resume))| {
-                let group = &group;
+            .zip(gates)
+            .map(|((m, resume), mut gate)| {
                 sc.spawn(move || {
-                    let mut gate = group.gate(i);
                     let run = super::run::run_resumable(
                         job,
                         nominal,
