@@ -128,8 +128,21 @@ fn a_size_refused_names_the_nearest_that_paint_and_they_do() {
             );
         }
     }
-    // A character no font has: refused, and no size searched.
-    let o = basr(d, &["compile", "ST%P", "-o", "bad.job.json"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(!stderr(&o).contains("sizes:"), "{}", stderr(&o));
+    // A character no font has, and a lane that fits the word only below
+    // MUTCD's 6 ft: refused, and no size searched.
+    for args in [
+        vec!["compile", "ST%P", "-o", "bad.job.json"],
+        vec![
+            "compile",
+            "STOP",
+            "--lane-width",
+            "0.5",
+            "-o",
+            "bad.job.json",
+        ],
+    ] {
+        let o = basr(d, &args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(!stderr(&o).contains("sizes:"), "{args:?}: {}", stderr(&o));
+    }
 }

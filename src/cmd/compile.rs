@@ -38,7 +38,10 @@ pub enum TiltArg {
 /// then compiles the quarter-foot letter heights around it, up to 2 ft each
 /// way and not below MUTCD's 6 ft (4.5 ft with --low-speed), and names the
 /// nearest each way that paints READY or READY WITH NOTES ("sizes:", and
-/// `sizes` in --json). That takes a few seconds more (up to half a minute
+/// `sizes` in --json). A word refused for its size (out of the arm's reach,
+/// carried past a joint's range, too fast to follow, or too wide for the
+/// lane: then from the height it fits at, downwards) gets the same line
+/// under the reason. That takes a few seconds more (up to half a minute
 /// for a long message); --no-size-search skips it.
 #[derive(clap::Args)]
 #[command(after_help = "\
@@ -75,7 +78,8 @@ pub struct Args {
     #[arg(long)]
     pub low_speed: bool,
     /// Do not search the letter heights near a NOT READY word marking, or
-    /// one refused for its size (out of reach, too wide for the lane), for
+    /// one refused for its size (out of reach, too fast to follow, too wide
+    /// for the lane), for
     /// ones that paint (that search plans up to 16 other heights and
     /// verifies those that plan without problems: seconds, or most of a
     /// minute on a slow laptop). For scripts and comparisons
@@ -554,14 +558,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         // A word refused for its size (out of reach, too wide for the
         // lane, too fast to follow): the nearest heights that paint.
         let sizes = (!args.no_size_search && shape.is_none())
-            .then(|| super::sizes::refused_at(&req, &e))
+            .then(|| super::sizes::refused_at(&req, &e, floor))
             .flatten()
-            .map(|asked| {
+            .map(|(asked, larger)| {
                 let spin = super::spinner(
                     !global.quiet && !args.json,
                     "refused: searching the letter heights near it for ones that paint",
                 );
-                let advice = super::sizes::nearest_ready(&req, asked, floor);
+                let advice = super::sizes::nearest_ready(&req, asked, floor, larger, true);
                 spin.finish_and_clear();
                 advice.line()
             });
@@ -615,7 +619,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             !global.quiet && !args.json,
             "NOT READY: searching the letter heights near it for ones that paint",
         );
-        let advice = super::sizes::nearest_ready(&req, job.layout.letter_height_m, floor);
+        let advice =
+            super::sizes::nearest_ready(&req, job.layout.letter_height_m, floor, true, false);
         spin.finish_and_clear();
         advice
     });

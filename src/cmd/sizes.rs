@@ -27,6 +27,8 @@ pub struct SizeAdvice {
     pub larger_m: Option<f64>,
     /// The heights searched: from the smallest to the largest tried.
     pub searched_m: [f64; 2],
+    /// Searched for a word compile refused (no notes to point to).
+    pub refused: bool,
 }
 
 impl SizeAdvice {
@@ -45,9 +47,14 @@ impl SizeAdvice {
         if found.is_empty() {
             format!(
                 "  sizes: no letter height from {} to {} paints READY or READY WITH NOTES here \
-                 (this robot, its spray tips and this road); the notes above say what fails",
+                 (this robot, its spray tips and this road){}",
                 h(lo),
-                h(hi)
+                h(hi),
+                if self.refused {
+                    ""
+                } else {
+                    "; the notes above say what fails"
+                }
             )
         } else {
             format!(
@@ -72,10 +79,13 @@ pub fn applies(req: &CompileRequest) -> bool {
 }
 
 /// The letter height to search around for a word marking compile refused
-/// for its size (`CompileError::about_size`): the height the word fits
-/// the lane at when it was too wide, else the one asked for; `None` for a
-/// refusal no other size mends, or a marking without letters.
-pub fn refused_at(req: &CompileRequest, e: &CompileError) -> Option<f64> {
+/// for its size (`CompileError::about_size`), and whether larger heights
+/// may paint: the height the word fits the lane at when it was too wide
+/// (only smaller ones fit), else the one asked for; `None` for a refusal
+/// no other size mends, a marking without letters, or a word that fits the
+/// lane only below `floor_m` (MUTCD's smallest: its own message says how
+/// small).
+pub fn refused_at(req: &CompileRequest, e: &CompileError, floor_m: f64) -> Option<(f64, bool)> {
     if !applies(req) || !e.about_size() {
         return None;
     }
@@ -83,7 +93,9 @@ pub fn refused_at(req: &CompileRequest, e: &CompileError) -> Option<f64> {
         fits_at_height_m, ..
     }) = e
     {
-        return *fits_at_height_m;
+        return fits_at_height_m
+            .filter(|&h| h >= floor_m * (1.0 - 1e-9))
+            .map(|h| (h, false));
     }
     let o = &req.overrides;
     let marking = match &req.source {
@@ -91,14 +103,21 @@ pub fn refused_at(req: &CompileRequest, e: &CompileError) -> Option<f64> {
         Source::Marking { text, origin } => Marking::from_toml(text, origin, o).ok()?,
         Source::Symbol(_) => return None,
     };
-    Some(marking.letter_height_m)
+    Some((marking.letter_height_m, true))
 }
 
 /// Search the heights around `asked_m` (not below `floor_m`, the smallest
-/// the agency allows) for the nearest each way whose job is READY or
-/// READY WITH NOTES; the candidates are compiled in parallel, nearest
-/// first, and the search each way stops at the first that paints.
-pub fn nearest_ready(req: &CompileRequest, asked_m: f64, floor_m: f64) -> SizeAdvice {
+/// the agency allows; above it only when `larger`) for the nearest each
+/// way whose job is READY or READY WITH NOTES; the candidates are compiled
+/// in parallel, nearest first, and the search each way stops at the first
+/// that paints. `refused`: searched for a word compile refused.
+pub fn nearest_ready(
+    req: &CompileRequest,
+    asked_m: f64,
+    floor_m: f64,
+    larger: bool,
+    refused: bool,
+) -> SizeAdvice {
     let paints = |r: &CompileRequest| {
         compile_job(r).is_ok_and(|job| super::compile::verdict_of(&job) != "not ready")
     };
@@ -144,11 +163,12 @@ pub fn nearest_ready(req: &CompileRequest, asked_m: f64, floor_m: f64) -> SizeAd
         (None, heights.last().copied().unwrap_or(asked_m))
     };
     let (smaller_m, lo) = side(-1.0);
-    let (larger_m, hi) = side(1.0);
+    let (larger_m, hi) = if larger { side(1.0) } else { (None, asked_m) };
     SizeAdvice {
         asked_m,
         smaller_m,
         larger_m,
         searched_m: [lo.min(asked_m), hi.max(asked_m)],
+        refused,
     }
 }

@@ -339,7 +339,7 @@ fn passes_on_road(
         let planner = robot.on_uneven_road(kept[0], kept[1]);
         let law = basr_robot::paint_law::paint_law(&planner);
         if law.max_height_m <= law.min_height_m {
-            return Err(CompileError::Unreachable(format!(
+            return Err(CompileError::Road(format!(
                 "the road under the marking lies up to {:.0} mm below and {:.0} mm above the \
                  plane the truck stands on: the vertical joint has no painting height left \
                  that reaches all of it; check the [road] crown line or the fitted points",

@@ -22,6 +22,10 @@ pub enum CompileError {
     Robot(String),
     #[error("{0}")]
     Unreachable(String),
+    /// The road's surface leaves the vertical joint no painting height
+    /// (a crown or a fitted plane too far off the truck's plane).
+    #[error("{0}")]
+    Road(String),
     #[error("{0}")]
     Knots(String),
     #[error("time law: {0}")]
