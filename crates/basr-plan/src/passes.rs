@@ -120,7 +120,7 @@ pub fn passes(
     let max_tilt = max_tilt_rad(robot, rates);
     let max_tilt_rate = robot
         .tilt_limit()
-        .map_or(f64::INFINITY, |tl| tl.max_vel * rates.turn_share);
+        .map_or(f64::INFINITY, |tl| tl.max_vel * rates.tilt_spread_share);
     let max_turn = max_turn_rps(robot, rates);
     // The tilt and the height within what their joints follow (`rate`).
     let tilt_follow = rate::tilt_follow(robot, rates);
@@ -502,7 +502,10 @@ mod tests {
         let law = paint_law(&robot);
         let tl = robot.tilt_limit().unwrap();
         let rates = Tuning::DEFAULT.rates;
-        let limits = [max_tilt_rad(&robot, &rates), tl.max_vel * rates.turn_share];
+        let limits = [
+            max_tilt_rad(&robot, &rates),
+            tl.max_vel * rates.tilt_spread_share,
+        ];
         let max_turn = max_turn_rps(&robot, &rates);
         let sm = rates.tilt_smoothing;
         let n = 18;

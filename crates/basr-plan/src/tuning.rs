@@ -80,16 +80,19 @@ pub struct Pairing {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rates {
     /// Share of the yaw joint's speed limit the fan's turn may take while
-    /// painting (1); the same share of the tilt joint's speed limit also
-    /// bounds how fast the tilt's change between knots is spread
-    /// (`knots::knots_within`, before `tilt_share`'s rate limit). assumed:
-    /// the base joint also turns the fan in the road
+    /// painting (1). assumed: the base joint also turns the fan in the road
     /// frame (up to ≈ 0.05 rad/s at painting speed and 3 m reach) and the
     /// time law keeps its margin: 0.85 × 0.524 + 0.05 = 0.495 rad/s stays
     /// under 0.97 × 0.524 = 0.508 rad/s for BASR's 30°/s. (0.8 held the fan
     /// off the bowls' rungs longer: B, P, R, 3 cv 0.003–0.006 higher; 0.9
     /// passes the margin and STOP's bound ratio goes to 1.204.)
     pub turn_share: f64,
+    /// Share of the tilt joint's speed limit at which the tilt's change
+    /// between knots is spread when the knots are first placed
+    /// (`knots::knots_within`, before `tilt_share`'s rate limit) (1).
+    /// assumed: `turn_share`'s 0.85, which it shared until the tuning was
+    /// collected; no measurement of its own.
+    pub tilt_spread_share: f64,
     /// Share of the tilt joint's speed limit the tilt (and the nozzle
     /// height's joint) may take while painting (1). assumed: the time law
     /// keeps its margin and bounds the joint's rate by the steepest slope
@@ -265,6 +268,7 @@ impl Tuning {
         },
         rates: Rates {
             turn_share: 0.85,
+            tilt_spread_share: 0.85,
             tilt_share: 0.8,
             tilt_acc_share: 0.3,
             tilt_smoothing: 4,
@@ -321,6 +325,7 @@ impl Tuning {
             rates:
                 Rates {
                     turn_share,
+                    tilt_spread_share,
                     tilt_share,
                     tilt_acc_share,
                     tilt_smoothing,
@@ -367,6 +372,7 @@ impl Tuning {
             ("pairing.w_diag", Real(w_diag)),
             ("pairing.ratio_width_m", Real(ratio_width_m)),
             ("rates.turn_share", Real(turn_share)),
+            ("rates.tilt_spread_share", Real(tilt_spread_share)),
             ("rates.tilt_share", Real(tilt_share)),
             ("rates.tilt_acc_share", Real(tilt_acc_share)),
             ("rates.tilt_smoothing", Count(tilt_smoothing)),
