@@ -81,8 +81,18 @@ fn too_wide(word: &str, width_m: f64, anchor_x_m: f64, lane_m: f64, fits: Option
     use basr_io::show_num;
     let need = width_m + 2.0 * anchor_x_m.abs();
     let smaller = fits.map_or(String::new(), |h| {
+        // Letters that small are not MUTCD word letters: say so rather
+        // than suggest them as if they were a fix.
+        let low = rules::MIN_LETTER_HEIGHT_M * rules::LOW_SPEED_FACTOR;
+        let below = if h < low * (1.0 - 1e-9) {
+            "; smaller than MUTCD allows for word letters: 6 ft, 4.5 ft under 25 mph"
+        } else if h < rules::MIN_LETTER_HEIGHT_M * (1.0 - 1e-9) {
+            "; under MUTCD's 6 ft, allowed only under 25 mph with --low-speed"
+        } else {
+            ""
+        };
         format!(
-            ", letters at most {} m ({:.1} ft) tall (--letter-height)",
+            ", letters at most {} m ({:.1} ft) tall (--letter-height{below})",
             show_num((h * 1000.0).floor() / 1000.0),
             (h / 0.3048 * 10.0).floor() / 10.0
         )
@@ -913,6 +923,28 @@ mod tests {
         assert!(at(h * 1.001).is_err(), "{h}");
         let text = at(3.048).unwrap_err().to_string();
         assert!(text.contains("letters at most"), "{text}");
+        assert!(!text.contains("MUTCD"), "8.9 ft is a MUTCD size: {text}");
+        // A lane that fits the word only in letters MUTCD does not allow
+        // says so.
+        let narrow = |lane: f64| {
+            let o = Overrides {
+                lane_width_m: Some(lane),
+                ..Overrides::default()
+            };
+            place(&Marking::from_message("SCHOOL", &o).unwrap(), grid)
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(
+            narrow(1.0).contains("smaller than MUTCD allows"),
+            "{}",
+            narrow(1.0)
+        );
+        assert!(
+            narrow(2.2).contains("allowed only under 25 mph"),
+            "{}",
+            narrow(2.2)
+        );
         let need = basr_io::show_num((width_m * 1000.0).ceil() / 1000.0);
         assert!(
             text.contains(&format!("a lane at least {need} m wide")),
