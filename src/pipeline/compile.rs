@@ -509,9 +509,7 @@ fn verify_station(
     last: Option<LastRun>,
     in_step: bool,
 ) -> Result<Checked, CompileError> {
-    let t0_s = rows.start as f64 * period_s;
-    let mut alone = skeleton.clone();
-    alone.samples = job.samples.rows(rows);
+    let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
     let (resume, mut plants) = match last {
         Some(l) => (
             Some((l.checkpoints, alone.samples.first_difference(&l.samples))),
@@ -547,6 +545,20 @@ fn verify_station(
     })
 }
 
+/// Station `rows` of `job` alone, in a copy of `skeleton`, and the job
+/// time its first row is at (its runs report in job time).
+fn station_alone(
+    job: &Job,
+    skeleton: &Job,
+    rows: std::ops::Range<usize>,
+    period_s: f64,
+) -> (Job, f64) {
+    let t0_s = rows.start as f64 * period_s;
+    let mut alone = skeleton.clone();
+    alone.samples = job.samples.rows(rows);
+    (alone, t0_s)
+}
+
 /// Each plant's largest error over the whole station (`rows` of `job`),
 /// from `last`, the set's runs in step that ended at its first failure:
 /// each resumes at its last checkpoint and runs to its end or to its own
@@ -561,9 +573,7 @@ fn whole_set(
     let Some((samples, checkpoints)) = last.plants else {
         return Ok(None);
     };
-    let t0_s = rows.start as f64 * period_s;
-    let mut alone = skeleton.clone();
-    alone.samples = job.samples.rows(rows);
+    let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
     let first = alone.samples.first_difference(&samples);
     Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)), false)?.map(|s| s.errors))
 }
