@@ -561,13 +561,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             .then(|| super::sizes::refused_at(&req, &e, floor))
             .flatten()
             .map(|(asked, larger)| {
-                let spin = super::spinner(
-                    !global.quiet && !args.json,
-                    "refused: searching the letter heights near it for ones that paint",
-                );
-                let advice = super::sizes::nearest_ready(&req, asked, floor, larger, true);
-                spin.finish_and_clear();
-                advice.line()
+                let show = !global.quiet && !args.json;
+                super::sizes::search(&req, asked, floor, larger, true, show).line()
             });
         let mut text = format!("{:#}", anyhow::Error::from(e));
         for h in &hints {
@@ -615,14 +610,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         && shape.is_none()
         && super::sizes::applies(&req))
     .then(|| {
-        let spin = super::spinner(
-            !global.quiet && !args.json,
-            "NOT READY: searching the letter heights near it for ones that paint",
-        );
-        let advice =
-            super::sizes::nearest_ready(&req, job.layout.letter_height_m, floor, true, false);
-        spin.finish_and_clear();
-        advice
+        let show = !global.quiet && !args.json;
+        super::sizes::search(&req, job.layout.letter_height_m, floor, true, false, show)
     });
     if args.json {
         let v = serde_json::json!({

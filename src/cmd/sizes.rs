@@ -106,12 +106,32 @@ pub fn refused_at(req: &CompileRequest, e: &CompileError, floor_m: f64) -> Optio
     Some((marking.letter_height_m, true))
 }
 
+/// [`nearest_ready`] behind a spinner on the terminal (when `show`) saying
+/// why compile searches.
+pub fn search(
+    req: &CompileRequest,
+    asked_m: f64,
+    floor_m: f64,
+    larger: bool,
+    refused: bool,
+    show: bool,
+) -> SizeAdvice {
+    let why = if refused { "refused" } else { "NOT READY" };
+    let spin = super::spinner(
+        show,
+        &format!("{why}: searching the letter heights near it for ones that paint"),
+    );
+    let advice = nearest_ready(req, asked_m, floor_m, larger, refused);
+    spin.finish_and_clear();
+    advice
+}
+
 /// Search the heights around `asked_m` (not below `floor_m`, the smallest
 /// the agency allows; above it only when `larger`) for the nearest each
 /// way whose job is READY or READY WITH NOTES; the candidates are compiled
 /// in parallel, nearest first, and the search each way stops at the first
 /// that paints. `refused`: searched for a word compile refused.
-pub fn nearest_ready(
+fn nearest_ready(
     req: &CompileRequest,
     asked_m: f64,
     floor_m: f64,
