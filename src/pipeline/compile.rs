@@ -517,6 +517,9 @@ fn verify_station(
         ),
         None => (None, None),
     };
+    if in_step && alone.robot.basr().is_some() {
+        return verify_together(alone, t0_s, resume, plants);
+    }
     let (mut verdict, kept) = verify::simulated_resuming(&alone, t0_s, resume)?;
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
@@ -540,6 +543,59 @@ fn verify_station(
     Ok(Checked {
         verdict,
         run,
+        on_spread,
+        nominal_m,
+    })
+}
+
+/// [`verify_station`] in step (`verify::together`): the station `alone`
+/// (its first row at job time `t0_s`) run on the robot description and
+/// the plant set at once, each resumed from its last run (`resume`,
+/// `plants`). The same verdict as the description's run first and the
+/// set's after it passed; the set's runs are kept whenever they ran (a
+/// round the description failed included), so the next round resumes
+/// them where the rows first changed.
+fn verify_together(
+    alone: Job,
+    t0_s: f64,
+    resume: Option<(crate::sim::Checkpoints, usize)>,
+    plants: Option<(crate::job::Samples, Vec<crate::sim::Checkpoints>)>,
+) -> Result<Checked, CompileError> {
+    let set_resume = plants.map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
+    let Some(t) = verify::together(&alone, t0_s, resume, set_resume)? else {
+        return Err(CompileError::Verify(
+            "only BASR's kind has a plant set to run beside its description; this is a planner \
+             bug, please report it"
+                .into(),
+        ));
+    };
+    let mut verdict = t.verdict;
+    let nominal_m = verdict.max_error_m;
+    let mut on_spread = None;
+    let kept_set = match t.set {
+        Ok(set) if verdict.ok => {
+            on_spread = Some(set.errors);
+            if set.verdict.ok {
+                None
+            } else {
+                verdict = set.verdict;
+                Some(set.kept)
+            }
+        }
+        // the description failed: the set's runs wait for the next round
+        Ok(set) => Some(set.kept),
+        Err(kept) => Some(kept),
+    };
+    let plants = kept_set
+        .filter(|cps| !cps.is_empty())
+        .map(|cps| (alone.samples.clone(), cps));
+    Ok(Checked {
+        verdict,
+        run: Some(LastRun {
+            samples: alone.samples,
+            checkpoints: t.kept,
+            plants,
+        }),
         on_spread,
         nominal_m,
     })

@@ -207,9 +207,7 @@ pub fn on_spread(
     let Some(robot) = job.robot.basr() else {
         return Ok(None);
     };
-    // the set is held to the description's own share (`spread::SHARE`)
     let (model, opts) = verifying(robot)?;
-    let bound_m = spread::SHARE * opts.tolerance_m;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
     let runs = if in_step {
@@ -217,10 +215,21 @@ pub fn on_spread(
     } else {
         sim::plants::run_each(job, &model, &opts, &factors, resume)
     };
-    let (reports, kept): (Vec<sim::Report>, Vec<sim::Checkpoints>) = runs
-        .map_err(|e| CompileError::Verify(e.to_string()))?
-        .into_iter()
-        .unzip();
+    let runs = runs.map_err(|e| CompileError::Verify(e.to_string()))?;
+    Ok(judged_set(runs, t0_s, &opts, &set))
+}
+
+/// The plant set's verdict on its runs (`set`'s reports and checkpoints,
+/// in order), as [`on_spread`] gives it.
+fn judged_set(
+    runs: Vec<(sim::Report, sim::Checkpoints)>,
+    t0_s: f64,
+    opts: &sim::Options,
+    set: &[(String, Vec<f64>)],
+) -> Option<OnSpread> {
+    // the set is held to the description's own share (`spread::SHARE`)
+    let bound_m = spread::SHARE * opts.tolerance_m;
+    let (reports, kept): (Vec<sim::Report>, Vec<sim::Checkpoints>) = runs.into_iter().unzip();
     let errors: Vec<f64> = reports.iter().map(|r| r.max_error_m).collect();
     // The plant that failed first in the job (re-timing starts there),
     // else the one with the largest error.
@@ -236,19 +245,62 @@ pub fn on_spread(
                 .enumerate()
                 .max_by(|a, b| a.1.max_error_m.total_cmp(&b.1.max_error_m))
         });
-    let Some((k, r)) = pick else {
-        return Ok(None);
-    };
-    let mut v = judged(r, t0_s, &opts);
+    let (k, r) = pick?;
+    let mut v = judged(r, t0_s, opts);
     v.on_spread = true;
     if !v.ok {
         v.why = format!("on {} (the arm as it may be): {}", set[k].0, v.why);
     }
-    Ok(Some(OnSpread {
+    Some(OnSpread {
         verdict: v,
         errors,
         kept,
-    }))
+    })
+}
+
+/// The robot description's verdict and the plant set's, the runs made
+/// together (`sim::plants::run_beside_description_in_step`).
+pub struct Together {
+    /// The description's verdict and its run, for the next to resume from.
+    pub verdict: Verdict,
+    pub kept: sim::Checkpoints,
+    /// The set's verdict as [`on_spread`] in step gives it, when the
+    /// description's run was not cut short by its own failure; else `Err`
+    /// of the plants' runs as far as the group let them go, for the next
+    /// round to resume from.
+    pub set: Result<OnSpread, Vec<sim::Checkpoints>>,
+}
+
+/// [`simulated_resuming`] and [`on_spread`] in step, run together
+/// (`resume`: the description's last run and the first row that changed;
+/// `set_resume`: the set's): the same verdicts, on two cores that the
+/// description's run no longer leaves one of idle. `None` for the
+/// electric kinds (no plant set).
+pub fn together(
+    job: &Job,
+    t0_s: f64,
+    resume: Option<(sim::Checkpoints, usize)>,
+    set_resume: Option<(Vec<sim::Checkpoints>, usize)>,
+) -> Result<Option<Together>, CompileError> {
+    let Some(robot) = job.robot.basr() else {
+        return Ok(None);
+    };
+    let (model, opts) = verifying(robot)?;
+    let set = spread::plants();
+    let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
+    let ((outcome, kept), plants) = sim::plants::run_beside_description_in_step(
+        job, &model, &opts, resume, &factors, set_resume,
+    )
+    .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let verdict = judged(&outcome.report, t0_s, &opts);
+    let set = match plants {
+        Ok(runs) => match judged_set(runs, t0_s, &opts, &set) {
+            Some(s) => Ok(s),
+            None => Err(Vec::new()),
+        },
+        Err(kept) => Err(kept),
+    };
+    Ok(Some(Together { verdict, kept, set }))
 }
 
 /// The verdict on a simulated job: its painting error within

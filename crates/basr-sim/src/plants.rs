@@ -307,14 +307,92 @@ pub fn run_each_in_step(
 ) -> Result<Vec<(super::Report, Checkpoints)>, SimError> {
     let resumes = resumes_of(factors, resume)?;
     let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
-    let group = super::lockstep::Group::new(factors.len());
+    let runs = in_step(job, nominal, opts, None, &models, resumes);
+    whole_where_broken(job, nominal, opts, &models, runs)
+}
+
+/// The robot description's own run of `job` (resumed from `described`,
+/// as `simulate_resumable` resumes) beside [`run_each_in_step`]'s plants,
+/// all in step: the description's run leads (`lockstep::Group::
+/// leader_gate`): a plant's failure does not end it, and its own failure
+/// (over `opts.stop_over_m`) ends the plants at the next checkpoint.
+/// Compile verifies a station on the description first and on the set
+/// only once it passes; run together, the two cores the set shares are
+/// never idle while the description runs alone. Returns the description's
+/// run and, when it was not cut short, the plants' reports as
+/// [`run_each_in_step`] gives them; when it was, `Err` of the plants'
+/// checkpoints as far as they ran (their reports say nothing: the station
+/// is re-timed for the description first), for the next round to resume
+/// from.
+pub fn run_beside_description_in_step(
+    job: &Job,
+    nominal: &SimModel,
+    opts: &Options,
+    described: Option<(Checkpoints, usize)>,
+    factors: &[Vec<f64>],
+    resume: Option<(Vec<Checkpoints>, usize)>,
+) -> Result<Beside, SimError> {
+    let resumes = resumes_of(factors, resume)?;
+    let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
+    let mut runs = in_step(job, nominal, opts, Some(described), &models, resumes);
+    let (description, _) = runs.remove(0);
+    let description = description?;
+    if description.0.report.cut_short_at_s.is_some() {
+        let kept = runs
+            .into_iter()
+            .map(|(run, _)| run.map(|(_, k)| k))
+            .collect::<Result<_, _>>()?;
+        return Ok((description, Err(kept)));
+    }
+    let plants = whole_where_broken(job, nominal, opts, &models, runs)?;
+    Ok((description, Ok(plants)))
+}
+
+/// A run of a group in step, and whether the group ended it.
+type StepRun = (Result<(super::Outcome, Checkpoints), SimError>, bool);
+
+/// The description's run beside the plants': the plants' reports, or
+/// their checkpoints as far as they ran when the description failed.
+type Beside = (
+    (super::Outcome, Checkpoints),
+    Result<Vec<(super::Report, Checkpoints)>, Vec<Checkpoints>>,
+);
+
+/// Runs of `job` in step on their own threads: the description's (driven
+/// by the controller built for `nominal`, resumed from `leader`'s
+/// checkpoints) first and leading when `leader` is given, then one per
+/// plant of `models` (resumed from `resumes`); each run and whether the
+/// group ended it. One thread per run: they wait for each other, which a
+/// pool of fewer threads could not.
+fn in_step(
+    job: &Job,
+    nominal: &SimModel,
+    opts: &Options,
+    leader: Option<Option<(Checkpoints, usize)>>,
+    models: &[SimModel],
+    resumes: Vec<Option<(Checkpoints, usize)>>,
+) -> Vec<StepRun> {
+    let led = leader.is_some();
+    let mut runs: Vec<(&SimModel, Option<(Checkpoints, usize)>)> = Vec::new();
+    if let Some(resume) = leader {
+        runs.push((nominal, resume));
+    }
+    runs.extend(models.iter().zip(resumes));
+    let group = super::lockstep::Group::new(runs.len());
     // Every gate before any thread: a spawn that fails drops the gates not
     // yet handed over, so no thread waits for a run that never started.
-    let gates: Vec<super::lockstep::Gate> = (0..factors.len()).map(|i| group.gate(i)).collect();
-    let runs = std::thread::scope(|sc| {
-        let handles: Vec<_> = models
-            .iter()
-            .zip(resumes)
+    let gates: Vec<super::lockstep::Gate> = (0..runs.len())
+        .map(|i| {
+            if led && i == 0 {
+                group.leader_gate(i)
+            } else {
+                group.gate(i)
+            }
+        })
+        .collect();
+    std::thread::scope(|sc| {
+        let handles: Vec<_> = runs
+            .into_iter()
             .zip(gates)
             .map(|((m, resume), mut gate)| {
                 sc.spawn(move || {
@@ -337,7 +415,19 @@ pub fn run_each_in_step(
             .into_iter()
             .map(|h| h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)))
             .collect::<Vec<_>>()
-    });
+    })
+}
+
+/// The plants' reports of runs in step: one the group ended with a limit
+/// broken is run on from its last checkpoint to its end, so that its
+/// report is a whole run's as well.
+fn whole_where_broken(
+    job: &Job,
+    nominal: &SimModel,
+    opts: &Options,
+    models: &[SimModel],
+    runs: Vec<StepRun>,
+) -> Result<Vec<(super::Report, Checkpoints)>, SimError> {
     let end = job.samples.len();
     models
         .iter()
