@@ -625,6 +625,59 @@ mod tests {
         }
     }
 
+    /// The description's run beside the set is its run alone, whatever the
+    /// plants do; when it passes, the plants report as in step without it;
+    /// when it fails, the plants end soon after and their checkpoints are
+    /// returned for the next round.
+    #[test]
+    fn the_description_beside_the_set_is_its_run_alone() {
+        let job = crate::synthetic::letter_job();
+        let nominal = SimModel::basr();
+        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
+        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
+        let mut errors: Vec<f64> = whole.iter().map(|(r, _)| r.max_error_m).collect();
+        errors.sort_by(f64::total_cmp);
+        let lone = |opts: &Options| {
+            crate::simulate_resumable(&job, &nominal, opts, None)
+                .unwrap()
+                .0
+                .report
+        };
+        let described = lone(&Options::default()).max_error_m;
+        // plants fail, the description passes
+        let opts = Options {
+            stop_over_m: Some(0.5 * (errors[2] + errors[3]).max(described * 1.01)),
+            ..Options::default()
+        };
+        for _ in 0..3 {
+            let ((d, _), set) =
+                run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None)
+                    .unwrap();
+            assert_eq!(d.report, lone(&opts));
+            let step = run_each_in_step(&job, &nominal, &opts, &factors, None).unwrap();
+            let Ok(set) = set else {
+                panic!("the description passed: the plants report");
+            };
+            let a: Vec<&crate::Report> = set.iter().map(|(r, _)| r).collect();
+            let b: Vec<&crate::Report> = step.iter().map(|(r, _)| r).collect();
+            assert_eq!(a, b);
+        }
+        // the description fails: the plants end at most a checkpoint later
+        let opts = Options {
+            stop_over_m: Some(0.5 * described),
+            ..Options::default()
+        };
+        let want = lone(&opts);
+        assert!(want.cut_short_at_s.is_some(), "the description fails");
+        let ((d, _), set) =
+            run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None).unwrap();
+        assert_eq!(d.report, want);
+        let Err(kept) = set else {
+            panic!("the set's runs wait for the next round");
+        };
+        assert_eq!(kept.len(), factors.len());
+    }
+
     #[test]
     fn quantiles_are_nearest_rank() {
         let v: Vec<f64> = (1..=40).map(f64::from).collect();
