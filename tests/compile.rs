@@ -326,6 +326,10 @@ fn refused(args: &[&str], says: &str) {
 fn bad_input_exits_2_and_leaves_nothing() {
     refused(&["ST*P"], "unsupported character '*'");
     refused(&["ST*P"], "at position 3");
+    // a file's name where the message goes: which option reads it
+    refused(&["crown.toml"], "`basr compile --marking crown.toml`");
+    refused(&["logo.svg"], "`basr compile --shape logo.svg`");
+    refused(&["STOP.job.json"], "`basr preview STOP.job.json`");
     refused(&["   "], "empty");
     refused(&["ABCDEFGHIJKLMNOPQRSTUVWXYZ"], "lane is 3.66 m");
     refused(

@@ -308,6 +308,44 @@ fn symbol_hint(message: &str) -> Option<String> {
     ))
 }
 
+/// A hint when the message is a file's name (`basr compile crown.toml`):
+/// which option or command reads that file. Only for a name with a dot
+/// or a slash, which no message holds.
+fn file_hint(message: &str) -> Option<String> {
+    let m = message.trim();
+    if !m.contains(['.', '/', '\\']) {
+        return None;
+    }
+    let ext = Path::new(m)
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let exists = Path::new(m).is_file();
+    let quoted = if m.contains(char::is_whitespace) {
+        format!("{m:?}")
+    } else {
+        m.to_string()
+    };
+    Some(match ext.as_deref() {
+        Some("toml") => format!(
+            "{m:?} is a marking file's name, not a message: compile it with `basr compile \
+             --marking {quoted}`"
+        ),
+        Some("svg" | "dxf") => format!(
+            "{m:?} is a shape's file name, not a message: paint a filled outline with `basr \
+             compile --shape {quoted}`"
+        ),
+        Some("json") => format!(
+            "{m:?} is a job file's name: compile writes jobs; `basr preview {quoted}`, `basr \
+             simulate {quoted}` and `basr check {quoted}` read them"
+        ),
+        _ if exists => format!(
+            "{m:?} is a file, not a message: compile reads a marking file with --marking \
+             (TOML) or a shape with --shape (SVG, DXF)"
+        ),
+        _ => return None,
+    })
+}
+
 /// Refuse a default job name that holds a job of something else (another
 /// message, symbol, scene or shape): compiling `--symbol rxr` and then
 /// `--marking markings/rxr.toml` must not silently replace the first job.
@@ -522,6 +560,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let mut hints = feet_hints(&args);
     if let Source::Message(m) = &req.source {
         hints.extend(symbol_hint(m));
+        hints.extend(file_hint(m));
     }
     let scene_file =
         matches!(&req.source, Source::Marking { text, .. } if basr::layout::is_scene(text));
