@@ -59,6 +59,37 @@ fn a_not_ready_size_names_the_nearest_that_paint_and_they_do() {
     );
 }
 
+/// STOP at 4.5 ft under 25 mph (`--low-speed`, MUTCD's smallest word
+/// letters) is NOT READY and nothing within 2 ft paints: the search goes
+/// on up to the default 8 ft and names the nearest that does.
+#[test]
+fn low_speed_letters_are_told_the_nearest_larger_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = basr(
+        dir.path(),
+        &[
+            "compile",
+            "STOP",
+            "--letter-height",
+            "4.5ft",
+            "--low-speed",
+            "-o",
+            "a.job.json",
+            "--json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let larger = v["sizes"]["nearest_ready_larger_m"]
+        .as_f64()
+        .unwrap_or_else(|| panic!("a larger size is named: {}", v["sizes"]));
+    // more than 2 ft (8 quarter feet) above 4.5 ft, at most 8 ft
+    assert!(
+        larger > (4.5 + 2.0) * 0.3048 && larger <= 8.0 * 0.3048 + 1e-9,
+        "{larger}"
+    );
+}
+
 /// The quarter-foot heights a `sizes:` line names (as `--letter-height`
 /// takes them): "10.75ft (3.28 m) smaller" → ("10.75ft", "smaller").
 fn named(line: &str) -> Vec<(String, String)> {

@@ -36,7 +36,8 @@ pub enum TiltArg {
 ///
 /// When a word marking (a message or a file of lines) is NOT READY, compile
 /// then compiles the quarter-foot letter heights around it, up to 2 ft each
-/// way and not below MUTCD's 6 ft (4.5 ft with --low-speed), and names the
+/// way (upwards at least to the default 8 ft) and not below MUTCD's 6 ft
+/// (4.5 ft with --low-speed), and names the
 /// nearest each way that paints READY or READY WITH NOTES ("sizes:", and
 /// `sizes` in --json). A word refused for its size (out of the arm's reach,
 /// carried past a joint's range, too fast to follow, or too wide for the

@@ -15,8 +15,23 @@ use rayon::prelude::*;
 const STEP_M: f64 = 0.0762;
 
 /// Heights tried each way: 8 steps, 2 ft, the span between MUTCD's
-/// minimum (6 ft) and the seed's size (8 ft).
+/// minimum (6 ft) and the seed's size (8 ft); upwards at least as far as
+/// the default letter height (`DEFAULT_LETTER_HEIGHT_M`, 8 ft: the size
+/// the arm's vertical stroke was chosen for), so that 4.5 ft letters
+/// under 25 mph (`--low-speed`) are told of the nearest that paints.
 const STEPS: usize = 8;
+
+/// Steps to try upwards from `asked_m`: [`STEPS`], or as many as reach the
+/// default letter height from below it.
+fn steps_up(asked_m: f64) -> usize {
+    let to_default = ((basr::layout::DEFAULT_LETTER_HEIGHT_M - asked_m) / STEP_M).ceil();
+    if to_default.is_finite() && to_default > STEPS as f64 {
+        // bounded: the range below it is at most 10 m / 76 mm
+        (to_default as usize).min(200)
+    } else {
+        STEPS
+    }
+}
 
 /// The nearest letter heights that paint READY, each way from the one
 /// asked for, within what was searched.
@@ -167,7 +182,8 @@ fn nearest_ready(
         } else {
             (at - 1e-6).ceil() - 1.0
         };
-        let heights: Vec<f64> = (0..STEPS)
+        let steps = if sign > 0.0 { steps_up(asked_m) } else { STEPS };
+        let heights: Vec<f64> = (0..steps)
             .map(|k| (first + sign * k as f64) * STEP_M)
             .filter(|&h| h >= floor_m * (1.0 - 1e-9))
             .collect();
