@@ -177,3 +177,49 @@ fn a_size_refused_names_the_nearest_that_paint_and_they_do() {
         assert!(!stderr(&o).contains("sizes:"), "{args:?}: {}", stderr(&o));
     }
 }
+
+/// A robot the arm cannot follow with at any size (a supply pressure a
+/// fifth of the seed's): the search stops at the first pair of heights
+/// either way that are too fast to follow as well, and says the robot,
+/// not the size, is the likely cause; nothing is written.
+#[test]
+fn a_robot_too_weak_to_follow_is_not_sent_searching_sizes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let robot =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/robots/basr.toml")).unwrap();
+    assert!(robot.contains("\nsupply_pa = 2.069e7\n"));
+    std::fs::write(
+        d.join("weak.toml"),
+        robot.replace("\nsupply_pa = 2.069e7\n", "\nsupply_pa = 4e6\n"),
+    )
+    .unwrap();
+    let o = basr(
+        d,
+        &[
+            "compile",
+            "STOP",
+            "--robot",
+            "weak.toml",
+            "-o",
+            "w.job.json",
+        ],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("cannot follow this job closely enough"),
+        "{err}"
+    );
+    let line = err
+        .lines()
+        .find(|l| l.trim_start().starts_with("sizes:"))
+        .unwrap_or_else(|| panic!("a sizes line: {err}"));
+    assert!(
+        line.contains("cannot follow the job at") && line.contains("robot description"),
+        "{line}"
+    );
+    // the first pair each way: 8 and 7.75 ft below, 8.25 and 8.5 ft above
+    assert!(line.contains("7.75ft") && line.contains("8.5ft"), "{line}");
+    assert!(!d.join("w.job.json").exists());
+}

@@ -44,6 +44,10 @@ pub struct SizeAdvice {
     pub searched_m: [f64; 2],
     /// Searched for a word compile refused (no notes to point to).
     pub refused: bool,
+    /// Nothing was found, and the search ended where the arm could not
+    /// follow the job at the nearest heights either (`NotFollowed`): not
+    /// the size, the robot.
+    pub unfollowed: bool,
 }
 
 impl SizeAdvice {
@@ -59,7 +63,15 @@ impl SizeAdvice {
             .iter()
             .filter_map(|(w, m)| m.map(|m| format!("{} {w}", h(m))))
             .collect();
-        if found.is_empty() {
+        if found.is_empty() && self.unfollowed {
+            format!(
+                "  sizes: the arm cannot follow the job at {} to {} either (too fast to follow \
+                 at every height tried): not the letters' size but the robot description (its \
+                 hydraulics, its control) is the likely cause",
+                h(lo),
+                h(hi)
+            )
+        } else if found.is_empty() {
             format!(
                 "  sizes: no letter height from {} to {} paints READY or READY WITH NOTES here \
                  (this robot, its spray tips and this road){}",
@@ -153,8 +165,18 @@ fn nearest_ready(
     larger: bool,
     refused: bool,
 ) -> SizeAdvice {
-    let paints = |r: &CompileRequest| {
-        compile_job(r).is_ok_and(|job| super::compile::verdict_of(&job) != "not ready")
+    /// What a height did.
+    #[derive(Clone, Copy, PartialEq)]
+    enum Tried {
+        Paints,
+        Not,
+        /// Refused: too fast to follow even at a tenth of its limits.
+        Unfollowed,
+    }
+    let paints = |r: &CompileRequest| match compile_job(r) {
+        Ok(job) if super::compile::verdict_of(&job) != "not ready" => Tried::Paints,
+        Err(CompileError::NotFollowed { .. }) => Tried::Unfollowed,
+        _ => Tried::Not,
     };
     // A height is first planned without the closed-loop verification: one
     // whose plan is already NOT READY (its film, its strokes against the
@@ -171,12 +193,18 @@ fn nearest_ready(
             verify: false,
             ..r.clone()
         };
-        paints(&planned) && (!r.verify || paints(&r))
+        match paints(&planned) {
+            Tried::Paints if r.verify => paints(&r),
+            t => t,
+        }
     };
     // The quarter feet either side of the asked height (never the asked
     // one), nearest first: sizes a crew can type as they are printed.
     let at = asked_m / STEP_M;
-    let side = |sign: f64| -> (Option<f64>, f64) {
+    // (nearest that paints, the last height tried, whether the search
+    // ended where the arm could not follow at any height of a pair: `None`
+    // when no height was tried that way)
+    let side = |sign: f64| -> (Option<f64>, f64, Option<bool>) {
         let first = if sign > 0.0 {
             (at + 1e-6).floor() + 1.0
         } else {
@@ -188,23 +216,41 @@ fn nearest_ready(
             .filter(|&h| h >= floor_m * (1.0 - 1e-9))
             .collect();
         // Two at a time (the machine's cores), nearest first; the second
-        // height tried (m) is where the search that way ended.
+        // height tried (m) is where the search that way ended. A pair the
+        // arm cannot follow at all ends it: each such height is a verified
+        // compile slowed to a tenth of the limits (a robot file with a far
+        // too low supply pressure searched 6.7 s for nothing), and the
+        // sizes beyond do not mend the robot.
         for pair in heights.chunks(2) {
-            let ok: Vec<bool> = pair.par_iter().map(|&h| ready(h)).collect();
-            let tried = pair[pair.len() - 1];
-            if let Some(i) = ok.iter().position(|&b| b) {
-                return (Some(pair[i]), tried);
+            let tried: Vec<Tried> = pair.par_iter().map(|&h| ready(h)).collect();
+            let last = pair[pair.len() - 1];
+            if let Some(i) = tried.iter().position(|&t| t == Tried::Paints) {
+                return (Some(pair[i]), last, Some(false));
+            }
+            if tried.iter().all(|&t| t == Tried::Unfollowed) {
+                return (None, last, Some(true));
             }
         }
-        (None, heights.last().copied().unwrap_or(asked_m))
+        match heights.last() {
+            Some(&h) => (None, h, Some(false)),
+            None => (None, asked_m, None),
+        }
     };
-    let (smaller_m, lo) = side(-1.0);
-    let (larger_m, hi) = if larger { side(1.0) } else { (None, asked_m) };
+    let (smaller_m, lo, below) = side(-1.0);
+    let (larger_m, hi, above) = if larger {
+        side(1.0)
+    } else {
+        (None, asked_m, None)
+    };
     SizeAdvice {
         asked_m,
         smaller_m,
         larger_m,
         searched_m: [lo.min(asked_m), hi.max(asked_m)],
         refused,
+        // every way searched ended at heights the arm could not follow
+        unfollowed: (below.is_some() || above.is_some())
+            && below.unwrap_or(true)
+            && above.unwrap_or(true),
     }
 }
