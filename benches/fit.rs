@@ -65,6 +65,7 @@ fn bench(c: &mut Criterion) {
                 stations: vec![f.station],
                 fitted: 0,
                 road,
+                kept: job.summary.stops.clone(),
             });
             compile_job(&req).expect("re-plans")
         })

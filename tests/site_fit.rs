@@ -484,3 +484,71 @@ fn fit_keeps_the_jobs_options_and_its_tolerance() {
     off.replace_range(comma..end, &format!("{:?}", y + 0.013));
     refused(d, &off, &[&format!("point \"{name}\" is 13.")]);
 }
+
+/// A fitted job keeps the job's other stops as the job timed and verified
+/// them (`summary.stops`): they are not simulated again, so a figure put
+/// in the record comes back as it was given, while the fitted stop is
+/// verified afresh; every stop moves as the job's did.
+#[test]
+fn the_other_stops_keep_their_timing_and_are_not_simulated_again() {
+    use basr::pipeline::compile::{compile_job, CompileRequest, Source};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
+    let req = CompileRequest {
+        source: Source::Marking {
+            text: std::fs::read_to_string(&path).unwrap(),
+            origin: path.display().to_string(),
+        },
+        ..CompileRequest::message("")
+    };
+    let job = compile_job(&req).unwrap();
+    let n = job.stations.len();
+    assert!(n >= 3, "a scene of several stops ({n})");
+    assert_eq!(job.summary.stops.len(), n, "one record per stop");
+    let mut kept = job.summary.stops.clone();
+    // a figure no simulation gives: it must come back as given
+    kept[0].max_error_m = 0.001234;
+    let fitted = 2;
+    let again = compile_job(&CompileRequest {
+        site: Some(basr::plan::site::Site {
+            stations: job.stations.clone(),
+            fitted,
+            road: job.road.clone(),
+            kept,
+        }),
+        ..req.clone()
+    })
+    .unwrap();
+    assert_eq!(again.summary.stops[0].max_error_m, 0.001234);
+    // the fitted stop was simulated: its figures are the job's own
+    assert_eq!(again.summary.stops[fitted], job.summary.stops[fitted]);
+    for k in 1..n {
+        assert_eq!(
+            again.summary.stops[k],
+            job.summary.stops[k],
+            "stop {}",
+            k + 1
+        );
+    }
+    assert_eq!(
+        again.samples, job.samples,
+        "every stop moves as the job's did"
+    );
+    // records that do not fit the plan (one missing) are not trusted
+    let mut short = job.summary.stops.clone();
+    short.pop();
+    short[0].max_error_m = 0.001234;
+    let all = compile_job(&CompileRequest {
+        site: Some(basr::plan::site::Site {
+            stations: job.stations.clone(),
+            fitted,
+            road: job.road.clone(),
+            kept: short,
+        }),
+        ..req
+    })
+    .unwrap();
+    assert_eq!(
+        all.summary.stops, job.summary.stops,
+        "every stop verified again"
+    );
+}

@@ -71,6 +71,7 @@ fn case(name: &str) -> CompileRequest {
                     }],
                     fitted: 0,
                     road: job.road.clone(),
+                    kept: vec![],
                 }),
                 ..CompileRequest::message("STOP")
             }

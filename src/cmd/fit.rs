@@ -397,6 +397,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         stations,
         fitted: si,
         road,
+        kept: job.summary.stops.clone(),
     });
     let spin = super::spinner(
         !global.quiet && !args.json,

@@ -128,6 +128,28 @@ fn compile_for_tip(
     // kept_over[s]: a plant's failure on station s compile did not re-time
     // for (`slower` gives none), in words.
     let mut kept_over: Vec<Option<String>> = vec![None; n];
+    // A fitted stop's job keeps its other stops as the job being fitted
+    // timed and verified them (`Site::kept`): not simulated again.
+    for (si, k) in kept_stops(req, n, robot.basr().is_some()) {
+        paces[si] = trajectory::Pace {
+            air: k.air_pace,
+            path: k.path_pace,
+            joins: k.join_paces.clone(),
+            fly_in: k.fly_in,
+        };
+        let verdict = verify::Verdict {
+            max_error_m: k.max_error_m,
+            ok: true,
+            why: String::new(),
+            worst: (si as u32, -1),
+            worst_t_s: 0.0,
+            on_spread: false,
+        };
+        verdicts[si] = Some((paces[si].clone(), verdict));
+        nominal_m[si] = k.max_error_m;
+        on_spread[si] = (!k.plants_max_error_m.is_empty()).then(|| k.plants_max_error_m.clone());
+        kept_over[si] = k.over.clone();
+    }
     loop {
         let timed = trajectory::time_law_paced(
             strokes,
@@ -220,6 +242,17 @@ fn compile_for_tip(
                 v.over = kept_over.iter().flatten().next().cloned();
                 v
             });
+            job.summary.stops = (0..n)
+                .map(|si| crate::job::StopTiming {
+                    air_pace: paces[si].air,
+                    path_pace: paces[si].path,
+                    join_paces: paces[si].joins.clone(),
+                    fly_in: paces[si].fly_in,
+                    max_error_m: nominal_m[si],
+                    plants_max_error_m: on_spread[si].clone().unwrap_or_default(),
+                    over: kept_over[si].clone(),
+                })
+                .collect();
             return with_film(req, job, strokes);
         }
         let slowed: Vec<(usize, Option<trajectory::Pace>)> = failing
@@ -274,6 +307,48 @@ fn compile_for_tip(
             }
         }
     }
+}
+
+/// The stops a fitted job keeps as the job being fitted timed and verified
+/// them (`Site::kept`, every stop but the fitted one), when the request
+/// verifies and the records fit this plan: one per station, each with the
+/// figures of as many plants as this compile's set has (none for the
+/// electric kinds: `on_spread`), finite errors and paces in (0, 1].
+/// Otherwise none: every stop is verified again.
+fn kept_stops(
+    req: &CompileRequest,
+    n: usize,
+    on_spread: bool,
+) -> Vec<(usize, &crate::job::StopTiming)> {
+    let Some(site) = req.site.as_ref() else {
+        return vec![];
+    };
+    let plants = if on_spread {
+        verify::spread::plants().len()
+    } else {
+        0
+    };
+    let fits = req.verify
+        && site.kept.len() == n
+        && site.kept.iter().all(|k| {
+            k.plants_max_error_m.len() == plants
+                && k.plants_max_error_m
+                    .iter()
+                    .chain([&k.max_error_m])
+                    .all(|e| e.is_finite() && *e >= 0.0)
+                && [k.air_pace, k.path_pace]
+                    .into_iter()
+                    .chain(k.join_paces.iter().map(|j| j.1))
+                    .all(|p| p > 0.0 && p <= 1.0)
+        });
+    if !fits {
+        return vec![];
+    }
+    site.kept
+        .iter()
+        .enumerate()
+        .filter(|(si, _)| *si != site.fitted)
+        .collect()
 }
 
 /// Rounds of planning the passes again for the road's surface: each round

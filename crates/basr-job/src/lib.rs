@@ -204,6 +204,37 @@ pub struct Summary {
     /// the job reports at its defaults. `None` in jobs written before it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub film: Option<FilmSummary>,
+    /// Per station, how compile timed it and the errors it was verified
+    /// with: `basr fit` re-plans one stop and keeps the others at these
+    /// paces without simulating them again. Empty in jobs not verified and
+    /// in jobs written before it.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stops: Vec<StopTiming>,
+}
+
+/// How compile timed one station (the shares of the joints' limits its
+/// moves were slowed to, 1 where not) and what verified it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StopTiming {
+    /// The moves out of and back to stow.
+    pub air_pace: f64,
+    /// The painting path.
+    pub path_pace: f64,
+    /// The joins slowed, each `[stroke, share]`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub join_paces: Vec<(usize, f64)>,
+    /// The move out of stow flies into the first stroke without resting.
+    pub fly_in: bool,
+    /// The largest painting error on the robot description, m.
+    pub max_error_m: f64,
+    /// Each plant of the verification set's largest (`verified`), m; empty
+    /// for the electric kinds.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub plants_max_error_m: Vec<f64>,
+    /// A plant's failure compile kept the station with, in words.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub over: Option<String>,
 }
 
 impl Summary {
@@ -230,6 +261,7 @@ impl Summary {
             verified: None,
             truck_moves_m: vec![],
             film: None,
+            stops: vec![],
         }
     }
 }

@@ -73,6 +73,8 @@ pub fn assemble(p: Planned<'_>) -> Job {
             .collect(),
         // Measured on the sealed job by `plan::film` (compile_strokes).
         film: None,
+        // Set by compile once every station is verified.
+        stops: vec![],
     };
     Job {
         format: job::FORMAT.into(),

@@ -21,6 +21,12 @@ pub struct Site {
     /// The road: the job's described surface and the plane fitted under
     /// the stop.
     pub road: Road,
+    /// How the job being fitted timed and verified each stop
+    /// (`summary.stops`, empty in jobs written before it): compile keeps
+    /// every stop but the fitted one at its pace and with its figures
+    /// instead of simulating it again (the caller then checks each kept
+    /// stop moves as the job's did).
+    pub kept: Vec<basr_job::StopTiming>,
 }
 
 /// Rings of the search for a truck position that reaches (m): every
