@@ -223,3 +223,32 @@ fn a_robot_too_weak_to_follow_is_not_sent_searching_sizes() {
     assert!(line.contains("7.75ft") && line.contains("8.5ft"), "{line}");
     assert!(!d.join("w.job.json").exists());
 }
+
+/// A word planned with settings other than compile's (a coarse rung
+/// spacing that leaves STOP NOT READY) is not searched for sizes: the
+/// line names the setting and sends the user to the default first.
+#[test]
+fn a_job_planned_with_other_settings_is_not_searched_for_sizes() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = basr(
+        dir.path(),
+        &[
+            "compile",
+            "STOP",
+            "--rung-spacing-mm",
+            "100",
+            "-o",
+            "r.job.json",
+        ],
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "NOT READY: {err}");
+    let line = err
+        .lines()
+        .find(|l| l.trim_start().starts_with("sizes:"))
+        .unwrap_or_else(|| panic!("a sizes line: {err}"));
+    assert!(
+        line.contains("not searched") && line.contains("--rung-spacing-mm"),
+        "{line}"
+    );
+}

@@ -683,6 +683,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         // Printed once every output is in place.
         let mut text = summary_text(&job, &out, &args);
         text.extend(sizes.as_ref().map(super::sizes::SizeAdvice::line));
+        if verdict == "not ready" && !args.no_size_search && shape.is_none() && sizes.is_none() {
+            text.extend(super::sizes::not_searched_line(&req));
+        }
         super::outputs::after_commit(text.join("\n"));
     }
     // NOT READY is a negative verdict (exit 1): a script that compiles and

@@ -96,13 +96,54 @@ impl SizeAdvice {
 }
 
 /// Whether size advice applies: a word marking (a message, or a marking
-/// file of lines rather than a scene) at a letter height.
+/// file of lines rather than a scene) at a letter height, planned with
+/// compile's own settings ([`settings_changed`]).
 pub fn applies(req: &CompileRequest) -> bool {
-    match &req.source {
+    let word = match &req.source {
         Source::Message(m) => !m.trim().is_empty(),
         Source::Marking { text, .. } => !basr::layout::is_scene(text),
         Source::Symbol(_) => false,
+    };
+    word && settings_changed(req).is_empty()
+}
+
+/// The planning settings `req` changes from compile's defaults, as the
+/// options that set them: a job planned so is not searched for sizes (the
+/// sizes that paint are judged at the defaults, and a fine rung spacing
+/// makes each height a compile of many seconds: `--rung-spacing-mm 1`
+/// searched 5.5 minutes for a STOP the defaults paint).
+pub fn settings_changed(req: &CompileRequest) -> Vec<&'static str> {
+    let d = CompileRequest::message("");
+    let mut out = vec![];
+    if req.rung_spacing_m != d.rung_spacing_m {
+        out.push("--rung-spacing-mm");
     }
+    if req.period_s != d.period_s {
+        out.push("--period-s");
+    }
+    if req.gun_lead_s != d.gun_lead_s || req.gun_lag_s != d.gun_lag_s {
+        out.push("--gun-lead-s/--gun-lag-s");
+    }
+    if req.reach_margin_m != d.reach_margin_m {
+        out.push("the reach margin");
+    }
+    if req.tilt != d.tilt {
+        out.push("--tilt");
+    }
+    out
+}
+
+/// The line for a NOT READY word marking not searched for sizes because
+/// its settings are not compile's ([`settings_changed`]).
+pub fn not_searched_line(req: &CompileRequest) -> Option<String> {
+    let changed = settings_changed(req);
+    (!changed.is_empty()).then(|| {
+        format!(
+            "  sizes: not searched: this job is planned with {} other than compile's default; \
+             compile it at the default first (the sizes that paint are judged there)",
+            changed.join(", ")
+        )
+    })
 }
 
 /// The letter height to search around for a word marking compile refused
