@@ -91,3 +91,44 @@ fn an_electric_kinds_job_records_no_plant_set() {
     assert!(s["verified_max_error_m"].as_f64().is_some(), "{s}");
     assert!(s.get("verified").is_none(), "{s}");
 }
+
+/// A station compile keeps with a plant of the set over the bound (only a
+/// slower path for the whole station would help: glyph C at 2.5 m) says so
+/// where the crew reads: an `arm` notice naming the stop and the plant,
+/// beside `summary.verified.over`.
+#[test]
+fn a_plant_kept_over_the_bound_is_a_notice() {
+    use basr::pipeline::compile::{compile_job, CompileRequest};
+    let job = compile_job(&CompileRequest {
+        overrides: basr::layout::Overrides {
+            letter_height_m: Some(2.5),
+            ..Default::default()
+        },
+        ..CompileRequest::message("C")
+    })
+    .unwrap();
+    let over = job
+        .summary
+        .verified
+        .as_ref()
+        .and_then(|v| v.over.clone())
+        .expect("C at 2.5 m is kept with a plant over the bound");
+    let arm: Vec<&basr::job::Warning> = job
+        .summary
+        .warnings
+        .iter()
+        .filter(|w| w.kind == basr::job::WarningKind::Arm)
+        .collect();
+    assert_eq!(arm.len(), 1, "{:?}", job.summary.warnings);
+    assert_eq!(arm[0].graded(), basr::job::Severity::Notice);
+    assert!(arm[0].message.starts_with("stop 1: "), "{}", arm[0].message);
+    assert!(arm[0].message.contains(&over), "{}", arm[0].message);
+    assert!(arm[0].message.contains("--plants 40"), "{}", arm[0].message);
+    // STOP keeps every plant within: no such notice
+    let stop = compile_job(&CompileRequest::message("STOP")).unwrap();
+    assert!(stop
+        .summary
+        .warnings
+        .iter()
+        .all(|w| w.kind != basr::job::WarningKind::Arm));
+}

@@ -242,6 +242,20 @@ fn compile_for_tip(
                 v.over = kept_over.iter().flatten().next().cloned();
                 v
             });
+            // A plant kept over the bound is a notice the crew reads, not
+            // only a figure in `summary.verified.over`.
+            let arm: Vec<basr_plan::warnings::Note> = kept_over
+                .iter()
+                .enumerate()
+                .filter_map(|(si, over)| {
+                    over.as_ref().map(|text| basr_plan::warnings::Note::Arm {
+                        text: format!("stop {}: {text}", si + 1),
+                    })
+                })
+                .collect();
+            job.summary
+                .warnings
+                .extend(basr_plan::warnings::render_all(&arm));
             job.summary.stops = (0..n)
                 .map(|si| crate::job::StopTiming {
                     air_pace: paces[si].air,

@@ -168,6 +168,7 @@ fn kind_words(kind: WarningKind) -> String {
         WarningKind::Shape => "how a shape is painted".into(),
         WarningKind::Stop => "the arm comes to rest".into(),
         WarningKind::Surface => "the road's surface under the marking".into(),
+        WarningKind::Arm => "the arm as it may be strays over the bound".into(),
     }
 }
 

@@ -55,6 +55,9 @@ pub enum WarningKind {
     Stop,
     /// The road's surface under the marking off the truck's plane.
     Surface,
+    /// A plant of compile's verification set (the arm as it may be) strays
+    /// over the bound where compile kept the job as it was.
+    Arm,
 }
 
 impl WarningKind {
@@ -69,6 +72,7 @@ impl WarningKind {
             WarningKind::Film => "film",
             WarningKind::Stop => "stop",
             WarningKind::Surface => "surface",
+            WarningKind::Arm => "arm",
         }
     }
 }

@@ -101,6 +101,10 @@ pub enum Note {
     /// The road under the marking lies off the plane the truck stands on,
     /// and what that does to the painting heights (`pipeline::compile`).
     Surface { text: String },
+    /// A plant of the verification set strays over the bound on a station
+    /// compile kept as it was (only a slower path for the whole station
+    /// would help): what, where and how far (`pipeline::compile`).
+    Arm { text: String },
     /// How a scene's shape item was decomposed, and why (`plan::shapes`:
     /// the method kept per region, the candidates' measured film, the
     /// places narrower than the fan); `label` is the shape's file stem.
@@ -212,7 +216,7 @@ impl Note {
     /// 1.03× the target is information, 1.7× a problem.
     pub fn severity(&self) -> Severity {
         match self {
-            Note::Layout { .. } => Severity::Notice,
+            Note::Layout { .. } | Note::Arm { .. } => Severity::Notice,
             Note::Passes { .. } | Note::Stop { .. } | Note::Shape { .. } | Note::Surface { .. } => {
                 Severity::Info
             }
@@ -254,6 +258,11 @@ impl Note {
                 ))
             }
             (Note::Layout { .. }, _) => "Check that this is what was asked for.",
+            (Note::Arm { .. }, _) => {
+                "The job passes on the robot as described; on an arm that differs from it \
+                 the nozzle may stray there. Before painting, check it on the arm as it may \
+                 be: `basr simulate JOB --plants 40` (docs/simulate.md)."
+            }
             (Note::HeightClamped { worst_ratio, .. }, Severity::Notice)
                 if *worst_ratio <= WIDER_LARGE =>
             {
@@ -307,6 +316,15 @@ impl Note {
         match self {
             Note::Layout { text } => Warning {
                 kind: WarningKind::Layout,
+                owner: None,
+                severity,
+                stroke: None,
+                t_s: None,
+                factor: None,
+                message: format!("{text}. {todo}"),
+            },
+            Note::Arm { text } => Warning {
+                kind: WarningKind::Arm,
                 owner: None,
                 severity,
                 stroke: None,
