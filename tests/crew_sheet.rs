@@ -145,3 +145,66 @@ fn a_symbol_is_named_and_sized_and_a_not_ready_sheet_says_what_first() {
         "{lines} lines for {problems} problems"
     );
 }
+
+/// `report --sim` takes a saved `basr simulate --json` result only for the
+/// job it simulated (its `job_sha256`): another job's, or one that does
+/// not name its job, is refused (exit 2) and no sheet is written.
+#[test]
+fn a_saved_simulation_of_another_job_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (job, h) in [("a.job.json", "8ft"), ("b.job.json", "9ft")] {
+        let out = basr(
+            d,
+            &["compile", "STOP", "--letter-height", h, "-q", "-o", job],
+        );
+        assert!(out.status.code().is_some_and(|c| c <= 1));
+    }
+    let out = basr(d, &["simulate", "a.job.json", "--json"]);
+    assert!(out.status.success());
+    std::fs::write(d.join("sim.json"), &out.stdout).unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["job_sha256"].is_string(), "simulate names its job");
+    // its own job: the sheet is written
+    let own = basr(
+        d,
+        &[
+            "report",
+            "a.job.json",
+            "--sim",
+            "sim.json",
+            "-o",
+            "a.html",
+            "-q",
+        ],
+    );
+    assert!(
+        own.status.success(),
+        "{}",
+        String::from_utf8_lossy(&own.stderr)
+    );
+    // another job's: refused, nothing written
+    let other = basr(
+        d,
+        &["report", "b.job.json", "--sim", "sim.json", "-o", "b.html"],
+    );
+    let err = String::from_utf8_lossy(&other.stderr);
+    assert_eq!(other.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the simulate result is of another job"),
+        "{err}"
+    );
+    assert!(!d.join("b.html").exists());
+    // a result that does not name its job
+    let mut old = v.clone();
+    old.as_object_mut().unwrap().remove("job_sha256");
+    std::fs::write(d.join("old.json"), old.to_string()).unwrap();
+    let out = basr(
+        d,
+        &["report", "a.job.json", "--sim", "old.json", "-o", "c.html"],
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("does not name the job"), "{err}");
+    assert!(!d.join("c.html").exists());
+}

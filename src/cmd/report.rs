@@ -75,6 +75,32 @@ fn read_sim(path: &Path) -> anyhow::Result<SimVerdict> {
     })
 }
 
+/// `sim` (read from `path`), when it is this job's: a result that names
+/// another job (its `job_sha256`), or one written before results named
+/// their job, is refused (exit 2): the sheet would give another job's
+/// verdict as this one's.
+fn sim_of_job(sim: SimVerdict, path: &Path, job: &basr::job::Job) -> anyhow::Result<SimVerdict> {
+    let again = format!(
+        "simulate this job again: `basr simulate JOB --json > {}`, or leave --sim out",
+        path.display()
+    );
+    let short = |s: &str| s.chars().take(12).collect::<String>();
+    match &sim.job_sha256 {
+        Some(sha) if *sha == job.sha256 => Ok(sim),
+        Some(sha) => anyhow::bail!(
+            "{}: the simulate result is of another job (sha256 {}…), not this one ({}…); {again}",
+            path.display(),
+            short(sha),
+            short(&job.sha256)
+        ),
+        None => anyhow::bail!(
+            "{}: the simulate result does not name the job it simulated (written before \
+             results did); {again}",
+            path.display()
+        ),
+    }
+}
+
 fn simulate(job: &basr::job::Job, show: bool) -> anyhow::Result<SimVerdict> {
     use basr::sim;
     let Some(robot) = job.robot.basr() else {
@@ -150,7 +176,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let origin = args.job.display().to_string();
     let seal = seal(&job, &args)?;
     let sim = match (&args.sim, args.no_sim) {
-        (Some(p), _) => Some(read_sim(p)?),
+        (Some(p), _) => Some(sim_of_job(read_sim(p)?, p, &job)?),
         (None, true) => None,
         (None, false) => Some(simulate(&job, !global.quiet)?),
     };

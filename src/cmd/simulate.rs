@@ -314,20 +314,36 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     for p in args.trace.iter().chain(&args.svg).chain(&args.mcap) {
         super::outputs::after_commit(format!("wrote {}", p.display()));
     }
-    say(&args, global, report, &report.human(), report.passed())
+    say(
+        &args,
+        global,
+        &job.sha256,
+        report,
+        &report.human(),
+        report.passed(),
+    )
 }
 
-/// The report as JSON on stdout (`--json`) or its human lines on stderr;
-/// exit 0 on pass, 1 on fail.
+/// The report as JSON on stdout (`--json`, led by the job's `job_sha256`,
+/// so that `basr report --sim` takes it only for this job) or its human
+/// lines on stderr; exit 0 on pass, 1 on fail.
 fn say(
     args: &Args,
     global: &Global,
+    job_sha256: &str,
     report: &impl serde::Serialize,
     human: &str,
     passed: bool,
 ) -> anyhow::Result<Outcome> {
+    #[derive(serde::Serialize)]
+    struct OfJob<'a, R: serde::Serialize> {
+        job_sha256: &'a str,
+        #[serde(flatten)]
+        report: &'a R,
+    }
     if args.json {
-        basr::io::print_stdout(&(serde_json::to_string_pretty(report)? + "\n"))?;
+        let v = OfJob { job_sha256, report };
+        basr::io::print_stdout(&(serde_json::to_string_pretty(&v)? + "\n"))?;
     } else if !global.quiet {
         crate::note_text(human);
     }
@@ -358,5 +374,12 @@ fn run_servo(args: &Args, global: &Global, job: &basr::job::Job) -> anyhow::Resu
         }
     }
     let report = sim::servo_job::simulate_job(job, args.tolerance_mm * 1e-3)?;
-    say(args, global, &report, &report.human(), report.passed())
+    say(
+        args,
+        global,
+        &job.sha256,
+        &report,
+        &report.human(),
+        report.passed(),
+    )
 }

@@ -22,6 +22,10 @@ pub const TRUCK_MOVE_S: f64 = 60.0;
 /// from `basr simulate --json`).
 #[derive(Clone, Debug, PartialEq, serde::Deserialize)]
 pub struct SimVerdict {
+    /// The job simulated (`basr simulate --json` writes it first; absent
+    /// in results written before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub job_sha256: Option<String>,
     pub controller: String,
     pub verdict: crate::sim::report::Verdict,
     #[serde(default)]
@@ -34,6 +38,7 @@ pub struct SimVerdict {
 impl SimVerdict {
     pub fn from_report(r: &crate::sim::report::Report) -> SimVerdict {
         SimVerdict {
+            job_sha256: None,
             controller: r.controller.clone(),
             verdict: r.verdict,
             reasons: r.reasons.clone(),
@@ -46,6 +51,7 @@ impl SimVerdict {
     /// An electric kind's servo simulation (`sim::servo_job`).
     pub fn from_servo(r: &crate::sim::servo_job::ServoJobReport) -> SimVerdict {
         SimVerdict {
+            job_sha256: None,
             controller: r.controller.clone(),
             verdict: r.verdict,
             reasons: r.reasons.clone(),
