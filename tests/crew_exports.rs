@@ -196,10 +196,26 @@ fn urscript_reads_back_as_the_jobs_setpoints() {
             "--no-size-search",
         ],
     );
-    assert!(matches!(out.status.code(), Some(0 | 1)) && d.join("arm.job.json").exists());
-    ok(d, &["export", "arm.job.json", "--format", "urscript", "-q"]);
+    let compiled = out.status.code();
+    assert!(matches!(compiled, Some(0 | 1)) && d.join("arm.job.json").exists());
+    // A NOT READY job is exported for inspection, said so on its first
+    // line, and exits 1 as compile did.
+    let out = basr(d, &["export", "arm.job.json", "--format", "urscript"]);
+    assert_eq!(
+        out.status.code(),
+        compiled,
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let job: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("arm.job.json")).unwrap()).unwrap();
+    let first = std::fs::read_to_string(d.join("arm.urscript.script")).unwrap();
+    assert_eq!(
+        first.starts_with("# NOT READY:"),
+        compiled == Some(1),
+        "{}",
+        first.lines().next().unwrap_or("")
+    );
     let q = job["samples"]["kind_joints"].as_array().unwrap();
     let paint: Vec<u64> = job["samples"]["paint"]
         .as_array()

@@ -29,7 +29,12 @@ Examples:
   basr compile STOP --robot robots/articulated.toml -o arm.job.json
   basr export arm.job.json --format urscript         # writes arm.urscript.script
 
-Exit 0 written, 2 bad input (nothing is written).")]
+A NOT READY job (its verdict as `basr check` and the job sheet give it) is
+written for the integrator to inspect, with a first line saying so, and
+exits 1: do not run it on the truck.
+
+Exit 0 written, 1 written but the job is NOT READY, 2 bad input (nothing
+is written).")]
 pub struct Args {
     /// The job file written by `basr compile`.
     pub job: PathBuf,
@@ -66,12 +71,35 @@ pub fn run(args: Args, _global: &Global) -> anyhow::Result<Outcome> {
         Format::Ros2 => basr::export::ros2::document(&job, &name),
         Format::Urscript => basr::export::urscript::program(&job, &name)?,
     };
+    // Both formats take `#` comments.
+    let not_ready = super::compile::verdict_of(&job) == "not ready";
+    let text = if not_ready {
+        format!(
+            "# NOT READY: the job has problems (`basr report {name}` says which); this export \
+             is for inspection, do not run it on the truck\n{text}"
+        )
+    } else {
+        text
+    };
     basr::io::write_atomic(&out, text.as_bytes())?;
     super::outputs::after_commit(format!(
-        "wrote {} ({} stop{})",
+        "{}wrote {} ({} stop{}){}",
+        if not_ready { "NOT READY: " } else { "" },
         out.display(),
         job.stations.len(),
-        if job.stations.len() == 1 { "" } else { "s" }
+        if job.stations.len() == 1 { "" } else { "s" },
+        if not_ready {
+            format!(
+                ": the job has problems (`basr report {name}` says which); inspect it, do \
+                 not run it on the truck"
+            )
+        } else {
+            String::new()
+        }
     ));
-    Ok(Outcome::Success)
+    Ok(if not_ready {
+        Outcome::Negative
+    } else {
+        Outcome::Success
+    })
 }
