@@ -453,10 +453,12 @@ impl Marking {
         if self.lines.iter().all(|l| l.is_empty()) {
             return Err(LayoutError::Empty);
         }
+        // The letter height and lane width first: the line gap is derived
+        // from the letter height when not given (1e308 letters once read
+        // "line gap must be a finite number").
         for (field, v) in [
             ("letter height", self.letter_height_m),
             ("lane width", self.lane_width_m),
-            ("line gap", self.line_gap_m),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(LayoutError::BadNumber {
@@ -492,6 +494,13 @@ impl Marking {
                     why,
                 });
             }
+        }
+        if !(self.line_gap_m.is_finite() && self.line_gap_m > 0.0) {
+            return Err(LayoutError::BadNumber {
+                field: "line gap".into(),
+                need: "a finite number of metres above zero",
+                value: self.line_gap_m,
+            });
         }
         for (field, v) in [
             ("letter spacing", self.letter_spacing_m),
