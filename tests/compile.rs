@@ -326,7 +326,10 @@ fn refused(args: &[&str], says: &str) {
 fn bad_input_exits_2_and_leaves_nothing() {
     refused(&["ST*P"], "unsupported character '*'");
     // a letter height too large for the line gap derived from it
-    refused(&["STOP", "--letter-height", "1e308"], "letter height 1e308 m is outside");
+    refused(
+        &["STOP", "--letter-height", "1e308"],
+        "letter height 1e308 m is outside",
+    );
     refused(&["ST*P"], "at position 3");
     // a file's name where the message goes: which option reads it
     refused(&["crown.toml"], "`basr compile --marking crown.toml`");

@@ -345,6 +345,25 @@ fn bad_point_files_are_refused() {
     refused(d, &good.replace("stop = 1\n", ""), &["which stop"]);
     // Not a points file.
     refused(d, "[[point]]\nroad = [0, 0]\n", &["points file"]);
+    // The job given as the points: named as such, nothing written.
+    let out = basr(
+        d,
+        &[
+            "fit",
+            "j.job.json",
+            "--points",
+            "j.job.json",
+            "-o",
+            "f.job.json",
+        ],
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("the job and the points name one file") && err.contains("path of the points"),
+        "{err}"
+    );
+    assert!(!d.join("f.job.json").exists());
 }
 
 /// Points chalked on another stop's part of a scene are named as such.

@@ -63,7 +63,17 @@ pub enum Outcome {
 pub fn refuse_clashes(outputs: &[(&str, &Path)], inputs: &[(&str, &Path)]) -> anyhow::Result<()> {
     let all: Vec<(&str, &Path)> = outputs.iter().chain(inputs).copied().collect();
     if let Some(((a, path), (b, _))) = basr::io::same_file_pair(&all) {
-        let what = if outputs.iter().any(|(n, _)| *n == b) {
+        let written = |x: &str| outputs.iter().any(|(n, _)| *n == x);
+        if !written(a) && !written(b) {
+            // two inputs named by one path: one of them is not what it
+            // should be (`fit JOB --points JOB`)
+            anyhow::bail!(
+                "{a} and {b} name one file, {}: each is a file of its own; give the path of \
+                 {b}",
+                path.display()
+            );
+        }
+        let what = if written(b) {
             "each would be written over the other"
         } else {
             "writing it would destroy the input"
