@@ -228,3 +228,30 @@ fn yaw_is_wrapped_to_one_turn() {
     assert!(err.contains("extension_m would be 1.0000e300 m"), "{err}");
     assert!(err.len() < 300, "{err}");
 }
+
+/// Lengths take units, as every length option does: 10ft is 3.048 m, 6in
+/// of height 0.1524 m; a unit basr does not know is refused naming it.
+#[test]
+fn pose_lengths_take_units() {
+    let v = json_of(
+        basr()
+            .args(["pose", "0", "10ft", "--height", "6in", "--json"])
+            .output()
+            .unwrap(),
+    );
+    let m = json_of(
+        basr()
+            .args(["pose", "0", "3.048", "--height", "0.1524", "--json"])
+            .output()
+            .unwrap(),
+    );
+    for (k, a) in v["joints"].as_object().unwrap() {
+        let b = m["joints"][k].as_f64().unwrap();
+        assert!((a.as_f64().unwrap() - b).abs() < 1e-12, "{k}: {a} against {b}");
+    }
+    basr()
+        .args(["pose", "0", "3x"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("unknown unit \"x\""));
+}

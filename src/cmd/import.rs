@@ -10,16 +10,19 @@ use super::{Global, Outcome};
 /// The size options `import` and `compile --shape` share.
 #[derive(clap::Args, Clone, Debug)]
 pub struct SizeArgs {
-    /// Height of the shape on the road, metres (0.3–10, like a letter).
+    /// Height of the shape on the road, metres unless a unit is written
+    /// (0.3–10 m, like a letter; 8ft).
     #[arg(
         long,
         value_name = "H",
         conflicts_with = "shape_width_m",
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = basr::units::metres_value
     )]
     pub shape_height_m: Option<f64>,
-    /// Width of the shape on the road, metres (its height follows).
-    #[arg(long, value_name = "W", allow_hyphen_values = true)]
+    /// Width of the shape on the road, metres unless a unit is written (its
+    /// height follows).
+    #[arg(long, value_name = "W", allow_hyphen_values = true, value_parser = basr::units::metres_value)]
     pub shape_width_m: Option<f64>,
 }
 

@@ -22,14 +22,15 @@ use super::{Global, Outcome};
     after_help = "Examples:\n  basr pose 0 3 --tilt-deg 10          # 3 m straight back, tilted 10°\n  basr pose -1.2 4 --height 0.15 --yaw-deg 30 --json\n\nJSON: {\"pose\", \"joints\", \"actuators\", \"encoders\", \"solutions\"}; joints,\nactuators and encoders are keyed by the setpoint CSV's column names."
 )]
 pub struct Args {
-    /// Tip x in the base frame (m).
-    #[arg(allow_hyphen_values = true)]
+    /// Tip x in the base frame (m unless a unit is written: 4ft, 120cm).
+    #[arg(allow_hyphen_values = true, value_parser = basr::units::metres_value)]
     pub x: f64,
-    /// Tip y in the base frame (m).
-    #[arg(allow_hyphen_values = true)]
+    /// Tip y in the base frame (m unless a unit is written).
+    #[arg(allow_hyphen_values = true, value_parser = basr::units::metres_value)]
     pub y: f64,
-    /// Tip height over the road (m); default: the middle of the vertical stroke.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Tip height over the road (m unless a unit is written); default: the
+    /// middle of the vertical stroke.
+    #[arg(long, allow_hyphen_values = true, value_parser = basr::units::metres_value)]
     pub height: Option<f64>,
     /// Fan direction in the base frame, degrees from +x counter-clockwise.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
