@@ -8,7 +8,7 @@ use basr_geom::units::{parse, LengthError, M_PER_FT, M_PER_IN};
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum LengthsError {
     /// The same length in metres and in another unit.
-    #[error("{at}give {metric} or {key}, not both")]
+    #[error("{at}{key} and {at}{metric} are one length: give {metric} or {key}, not both")]
     Both {
         at: String,
         metric: String,
