@@ -532,3 +532,23 @@ fn strokes_split_into_sweeps_are_advised_smaller_letters() {
         );
     }
 }
+
+/// A scene's item error names the marking file it is in.
+#[test]
+fn a_scene_item_error_names_its_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("scene.toml"),
+        "[[item]]\nsymbol = \"nosuch\"\nat_m = [0.0, 0.0]\n",
+    )
+    .unwrap();
+    basr()
+        .current_dir(dir.path())
+        .args(["compile", "--marking", "scene.toml"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "scene.toml: item 1: no symbol \"nosuch\"",
+        ));
+    assert!(files(dir.path()).iter().all(|f| f.ends_with(".toml")));
+}

@@ -247,7 +247,10 @@ fn pose_lengths_take_units() {
     );
     for (k, a) in v["joints"].as_object().unwrap() {
         let b = m["joints"][k].as_f64().unwrap();
-        assert!((a.as_f64().unwrap() - b).abs() < 1e-12, "{k}: {a} against {b}");
+        assert!(
+            (a.as_f64().unwrap() - b).abs() < 1e-12,
+            "{k}: {a} against {b}"
+        );
     }
     basr()
         .args(["pose", "0", "3x"])

@@ -604,7 +604,15 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 let show = !global.quiet && !args.json;
                 super::sizes::search(&req, asked, floor, larger, true, show).line()
             });
+        let layout = matches!(e, basr::pipeline::compile::CompileError::Layout(_));
         let mut text = format!("{:#}", anyhow::Error::from(e));
+        // A marking file's layout error names the file (a scene's item
+        // errors said "item 1: …" alone).
+        if let (true, Source::Marking { origin, .. }) = (layout, &req.source) {
+            if !text.starts_with(origin.as_str()) {
+                text = format!("{origin}: {text}");
+            }
+        }
         for h in &hints {
             text.push_str(&format!("\n  hint: {h}"));
         }
