@@ -179,6 +179,16 @@ pub enum Note {
     },
 }
 
+/// How to make the item larger, by what it is: letters by their height, a
+/// symbol by its item's scale, a shape by its size.
+fn larger_avoids(owner: &Owner) -> &'static str {
+    match owner.kind {
+        OwnerKind::Letter => "Larger letters (--letter-height) avoid it.",
+        OwnerKind::Symbol => "A larger symbol (its item's scale in the marking file) avoids it.",
+        OwnerKind::Shape => "A larger shape (--shape-height-m) avoids it.",
+    }
+}
+
 /// Film within this factor of the target is on target: the ±10 % band the
 /// preview's colour scale draws. // assumed: a film 10 % heavy or light is
 /// not visible on the road.
@@ -268,12 +278,19 @@ impl Note {
             {
                 "The edge there is slightly soft; nothing to do unless the edges must be crisp."
             }
-            (Note::HeightClamped { .. }, Severity::Notice) => {
-                "Expect a soft, slightly wide edge there; the job as a whole stays within the \
-                 preview's overspray bound. Larger letters (--letter-height) avoid it."
+            (Note::HeightClamped { owner, .. }, Severity::Notice) => {
+                return Cow::Owned(format!(
+                    "Expect a soft, slightly wide edge there; the job as a whole stays within \
+                     the preview's overspray bound. {}",
+                    larger_avoids(owner)
+                ))
             }
-            (Note::HeightClamped { .. }, _) => {
-                "Expect paint outside the letter there; larger letters (--letter-height) avoid it."
+            (Note::HeightClamped { owner, .. }, _) => {
+                return Cow::Owned(format!(
+                    "Expect paint outside the {} there; {}",
+                    owner.kind.name(),
+                    larger_avoids(owner).to_lowercase()
+                ))
             }
             (
                 Note::Film {
@@ -646,6 +663,16 @@ mod tests {
         assert!(w
             .message
             .contains("2.00 % over the whole job (budget 1.1 %)"));
+        // A symbol is made larger by its item's scale, not the letter height.
+        let mut symbol = clamped(1.297, 0.02);
+        if let Note::HeightClamped { owner, .. } = &mut symbol {
+            owner.kind = OwnerKind::Symbol;
+            owner.label = "arrow-left".into();
+        }
+        let m = symbol.render().message;
+        assert!(m.contains("paint outside the symbol there"), "{m}");
+        assert!(m.contains("a larger symbol (its item's scale"), "{m}");
+        assert!(!m.contains("--letter-height"), "{m}");
         // Within the budget over the whole job: a notice that says why.
         let w = clamped(1.297, 0.008).render();
         assert_eq!(w.severity, Some(Severity::Notice));
