@@ -241,7 +241,17 @@ fn nearest_ready(
     };
     // The quarter feet either side of the asked height (never the asked
     // one), nearest first: sizes a crew can type as they are printed.
-    let at = asked_m / STEP_M;
+    // The asked height on the grid when within a tenth of a step of it: the
+    // default 2.44 m is 8 ft (2.4384 m) to 1.6 mm, and trying 8 ft beside it
+    // spent a compile on the same letters and left 6 ft untried.
+    let at = {
+        let at = asked_m / STEP_M;
+        if (at - at.round()).abs() < 0.1 {
+            at.round()
+        } else {
+            at
+        }
+    };
     // (nearest that paints, the last height tried, whether the search
     // ended where the arm could not follow at any height of a pair: `None`
     // when no height was tried that way)
