@@ -71,8 +71,9 @@ pub fn run(args: Args, _global: &Global) -> anyhow::Result<Outcome> {
         Format::Ros2 => basr::export::ros2::document(&job, &name),
         Format::Urscript => basr::export::urscript::program(&job, &name)?,
     };
-    // Both formats take `#` comments.
+    // Both formats take `#` comments: the job's path on one line.
     let not_ready = super::compile::verdict_of(&job) == "not ready";
+    let name = name.replace(|c: char| c.is_control(), " ");
     let text = if not_ready {
         format!(
             "# NOT READY: the job has problems (`basr report {name}` says which); this export \

@@ -21,10 +21,12 @@ const STEP_M: f64 = 0.0762;
 /// under 25 mph (`--low-speed`) are told of the nearest that paints.
 const STEPS: usize = 8;
 
-/// Steps to try upwards from `asked_m`: [`STEPS`], or as many as reach the
-/// default letter height from below it.
-fn steps_up(asked_m: f64) -> usize {
-    let to_default = ((basr::layout::DEFAULT_LETTER_HEIGHT_M - asked_m) / STEP_M).ceil();
+/// Steps to try upwards from grid position `at` (the asked height in
+/// steps): [`STEPS`], or as many as reach the default letter height on the
+/// grid (8 ft) from below it, the first at the step above `at`.
+fn steps_up(at: f64) -> usize {
+    let top = (basr::layout::DEFAULT_LETTER_HEIGHT_M / STEP_M).round();
+    let to_default = top - (at + 1e-6).floor();
     if to_default.is_finite() && to_default > STEPS as f64 {
         // bounded: the range below it is at most 10 m / 76 mm
         (to_default as usize).min(200)
@@ -65,11 +67,12 @@ impl SizeAdvice {
             .collect();
         if found.is_empty() && self.unfollowed {
             format!(
-                "  sizes: the arm cannot follow the job at {} to {} either (too fast to follow \
-                 at every height tried): not the letters' size but the robot description (its \
+                "  sizes: the arm cannot follow the job at {} to {}{} (too fast to follow at \
+                 every height tried): not the letters' size but the robot description (its \
                  hydraulics, its control) is the likely cause",
                 h(lo),
-                h(hi)
+                h(hi),
+                if self.refused { " either" } else { "" }
             )
         } else if found.is_empty() {
             format!(
@@ -99,12 +102,17 @@ impl SizeAdvice {
 /// file of lines rather than a scene) at a letter height, planned with
 /// compile's own settings ([`settings_changed`]).
 pub fn applies(req: &CompileRequest) -> bool {
-    let word = match &req.source {
+    is_word(req) && settings_changed(req).is_empty()
+}
+
+/// A word marking: a message, or a marking file of lines rather than a
+/// scene.
+fn is_word(req: &CompileRequest) -> bool {
+    match &req.source {
         Source::Message(m) => !m.trim().is_empty(),
         Source::Marking { text, .. } => !basr::layout::is_scene(text),
         Source::Symbol(_) => false,
-    };
-    word && settings_changed(req).is_empty()
+    }
 }
 
 /// The planning settings `req` changes from compile's defaults, as the
@@ -137,7 +145,7 @@ pub fn settings_changed(req: &CompileRequest) -> Vec<&'static str> {
 /// its settings are not compile's ([`settings_changed`]).
 pub fn not_searched_line(req: &CompileRequest) -> Option<String> {
     let changed = settings_changed(req);
-    (!changed.is_empty()).then(|| {
+    (is_word(req) && !changed.is_empty()).then(|| {
         format!(
             "  sizes: not searched: this job is planned with {} other than compile's default; \
              compile it at the default first (the sizes that paint are judged there)",
@@ -261,7 +269,7 @@ fn nearest_ready(
         } else {
             (at - 1e-6).ceil() - 1.0
         };
-        let steps = if sign > 0.0 { steps_up(asked_m) } else { STEPS };
+        let steps = if sign > 0.0 { steps_up(at) } else { STEPS };
         let heights: Vec<f64> = (0..steps)
             .map(|k| (first + sign * k as f64) * STEP_M)
             .filter(|&h| h >= floor_m * (1.0 - 1e-9))
@@ -272,15 +280,19 @@ fn nearest_ready(
         // compile slowed to a tenth of the limits (a robot file with a far
         // too low supply pressure searched 6.7 s for nothing), and the
         // sizes beyond do not mend the robot.
+        // every height tried so far too fast to follow
+        let mut unfollowed = true;
         for pair in heights.chunks(2) {
             let tried: Vec<Tried> = pair.par_iter().map(|&h| ready(h)).collect();
             let last = pair[pair.len() - 1];
             if let Some(i) = tried.iter().position(|&t| t == Tried::Paints) {
                 return (Some(pair[i]), last, Some(false));
             }
-            if tried.iter().all(|&t| t == Tried::Unfollowed) {
-                return (None, last, Some(true));
+            let all = tried.iter().all(|&t| t == Tried::Unfollowed);
+            if all {
+                return (None, last, Some(unfollowed));
             }
+            unfollowed = false;
         }
         match heights.last() {
             Some(&h) => (None, h, Some(false)),

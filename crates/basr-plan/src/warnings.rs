@@ -184,8 +184,8 @@ pub enum Note {
 fn larger_avoids(owner: &Owner) -> &'static str {
     match owner.kind {
         OwnerKind::Letter => "Larger letters (--letter-height) avoid it.",
-        OwnerKind::Symbol => "A larger symbol (its item's scale in the marking file) avoids it.",
-        OwnerKind::Shape => "A larger shape (--shape-height-m) avoids it.",
+        OwnerKind::Symbol => "A larger symbol (its scale) avoids it.",
+        OwnerKind::Shape => "A larger shape (its height or width) avoids it.",
     }
 }
 
@@ -671,7 +671,7 @@ mod tests {
         }
         let m = symbol.render().message;
         assert!(m.contains("paint outside the symbol there"), "{m}");
-        assert!(m.contains("a larger symbol (its item's scale"), "{m}");
+        assert!(m.contains("a larger symbol (its scale)"), "{m}");
         assert!(!m.contains("--letter-height"), "{m}");
         // Within the budget over the whole job: a notice that says why.
         let w = clamped(1.297, 0.008).render();

@@ -678,6 +678,50 @@ mod tests {
         assert_eq!(kept.len(), factors.len());
     }
 
+    /// Runs in step resumed from checkpoints past the group's first
+    /// failure (the set kept from a round its description failed, where a
+    /// plant had failed first) meet that failure at the checkpoint they
+    /// resume at, and report as the set run afresh: a resumed run checks
+    /// the group there as a whole run does.
+    #[test]
+    fn a_set_resumed_past_a_plant_failure_reports_as_a_fresh_set() {
+        let job = crate::synthetic::letter_job();
+        let nominal = SimModel::basr();
+        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
+        let cp = crate::run::CHECKPOINT_S;
+        // a bound some plants fail before the first checkpoint and others
+        // pass it: those end there, with a checkpoint at it
+        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
+        let found = whole
+            .iter()
+            .flat_map(|(r, _)| (3..10).map(move |s| 0.1 * s as f64 * r.max_error_m))
+            .find_map(|b| {
+                let opts = Options {
+                    stop_over_m: Some(b),
+                    ..Options::default()
+                };
+                let alone = run_each(&job, &nominal, &opts, &factors, None).unwrap();
+                let t: Vec<Option<f64>> = alone.iter().map(|(r, _)| r.cut_short_at_s).collect();
+                let early = t.iter().flatten().any(|&t| t < cp);
+                let past = t.iter().any(|t| t.is_none_or(|t| t > 2.0 * cp));
+                (early && past).then_some(opts)
+            });
+        let opts = found.expect("a bound some plants fail before 5 s and others pass 10 s at");
+        let (fresh, kept): (Vec<crate::Report>, Vec<Checkpoints>) =
+            run_each_in_step(&job, &nominal, &opts, &factors, None)
+                .unwrap()
+                .into_iter()
+                .unzip();
+        let rows = job.samples.len();
+        let resumed: Vec<crate::Report> =
+            run_each_in_step(&job, &nominal, &opts, &factors, Some((kept, rows)))
+                .unwrap()
+                .into_iter()
+                .map(|(r, _)| r)
+                .collect();
+        assert_eq!(resumed, fresh);
+    }
+
     #[test]
     fn quantiles_are_nearest_rank() {
         let v: Vec<f64> = (1..=40).map(f64::from).collect();

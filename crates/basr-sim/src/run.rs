@@ -256,7 +256,7 @@ impl Arm {
 /// Simulated time between checkpoints of a resumable run (s). assumed: a
 /// resumed run repeats at most this much of what it already knew, and a
 /// station of STOP (144 s) keeps 29 copies of the run's state.
-const CHECKPOINT_S: f64 = 5.0;
+pub(crate) const CHECKPOINT_S: f64 = 5.0;
 
 /// A run's state at points along it, kept so that a run of the same job
 /// whose rows changed only from some row on resumes at the last point
@@ -398,8 +398,11 @@ pub(super) fn run_resumable(
             });
         }
         // In step with the other runs of its group (`lockstep`): at each
-        // checkpoint it waits for them, and ends once one has failed.
-        if k > start && k % every == 0 {
+        // checkpoint it waits for them, and ends once one has failed. The
+        // checkpoint a run resumes at is one of them: resumed past a
+        // failure of the group (a set kept from a round its description
+        // failed), it ends there as a whole run in step would.
+        if k > 0 && k % every == 0 {
             if let Some(g) = gate.as_deref_mut() {
                 if !g.go_on(k as f64 * period) {
                     break;
