@@ -64,10 +64,33 @@ impl Group {
     /// description beside the plant set: its verdict is wanted whole, the
     /// set's only when it passes).
     pub(super) fn leader_gate(&self, index: usize) -> Gate<'_> {
-        Gate {
-            leader: true,
-            ..self.gate(index)
-        }
+        // Not `Gate { leader: true, ..self.gate(index) }`: the temporary
+        // gate that spells would be dropped, and a dropped gate leaves the
+        // group, so the others would not wait for the leader.
+        let mut g = self.gate(index);
+        g.leader = true;
+        g
+    }
+
+    /// Every run's gate, run `leader`'s the leader's, made together before
+    /// any run starts: a spawn that fails drops the gates not yet handed
+    /// over, so no run waits for one that never started.
+    pub(super) fn gates(&self, leader: Option<usize>) -> Vec<Gate<'_>> {
+        let n = self
+            .state
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .at
+            .len();
+        (0..n)
+            .map(|i| {
+                if leader == Some(i) {
+                    self.leader_gate(i)
+                } else {
+                    self.gate(i)
+                }
+            })
+            .collect()
     }
 
     fn update(&self, f: impl FnOnce(&mut State)) {
@@ -206,19 +229,24 @@ mod tests {
         }
     }
 
+    /// Making the leader's gate leaves it in the group: the others wait for
+    /// it until it reaches a boundary or leaves.
+    #[test]
+    fn a_leader_gate_is_in_its_group_until_it_leaves() {
+        let group = Group::new(2);
+        let mut gates = group.gates(Some(0));
+        let at = |g: &Group| g.state.lock().unwrap().at.clone();
+        assert_eq!(at(&group), vec![f64::NEG_INFINITY; 2]);
+        gates[0].leave();
+        assert_eq!(at(&group)[0], f64::INFINITY);
+        assert_eq!(at(&group)[1], f64::NEG_INFINITY);
+    }
+
     /// Where each run of `runs` (end, failure) ends, in step on threads,
     /// run `leader` with the leader's gate.
     fn ended(runs: &[(f64, Option<f64>)], leader: Option<usize>) -> Vec<f64> {
         let group = Group::new(runs.len());
-        let gates: Vec<Gate> = (0..runs.len())
-            .map(|i| {
-                if leader == Some(i) {
-                    group.leader_gate(i)
-                } else {
-                    group.gate(i)
-                }
-            })
-            .collect();
+        let gates = group.gates(leader);
         std::thread::scope(|sc| {
             let handles: Vec<_> = runs
                 .iter()

@@ -379,17 +379,8 @@ fn in_step(
     }
     runs.extend(models.iter().zip(resumes));
     let group = super::lockstep::Group::new(runs.len());
-    // Every gate before any thread: a spawn that fails drops the gates not
-    // yet handed over, so no thread waits for a run that never started.
-    let gates: Vec<super::lockstep::Gate> = (0..runs.len())
-        .map(|i| {
-            if led && i == 0 {
-                group.leader_gate(i)
-            } else {
-                group.gate(i)
-            }
-        })
-        .collect();
+    // Every gate before any thread (`Group::gates`).
+    let gates = group.gates(led.then_some(0));
     std::thread::scope(|sc| {
         let handles: Vec<_> = runs
             .into_iter()
