@@ -552,3 +552,57 @@ fn a_scene_item_error_names_its_file() {
         ));
     assert!(files(dir.path()).iter().all(|f| f.ends_with(".toml")));
 }
+
+/// A message of two lines compiled with --line-gap is not re-planned from
+/// its message (the gap is not the default): the refusal says how to
+/// write the marking file that re-plans it, and that file does, carrying
+/// everything the job recorded ("not carried: nothing").
+#[test]
+fn a_line_gap_job_is_told_how_to_re_plan_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    basr()
+        .current_dir(d)
+        .args([
+            "compile",
+            "STOP AHEAD",
+            "--line-gap",
+            "12m",
+            "-q",
+            "-o",
+            "j.job.json",
+        ])
+        .assert()
+        .code(predicate::in_iter([0, 1]));
+    basr()
+        .current_dir(d)
+        .args(["preview", "j.job.json", "--compare", "none", "-o", "c.svg"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "[marking] lines = [\"STOP\", \"AHEAD\"], line_gap_m = the gap given",
+        ));
+    std::fs::write(
+        d.join("m.toml"),
+        "[marking]\nlines = [\"STOP\", \"AHEAD\"]\nline_gap_m = 12.0\n",
+    )
+    .unwrap();
+    basr()
+        .current_dir(d)
+        .args([
+            "preview",
+            "j.job.json",
+            "--compare",
+            "none",
+            "--marking",
+            "m.toml",
+            "-o",
+            "c.svg",
+        ])
+        .assert()
+        .code(predicate::in_iter([0, 1]))
+        .stderr(
+            predicate::str::contains("not carried: nothing\n")
+                .or(predicate::str::contains("not carried: nothing;")),
+        );
+}

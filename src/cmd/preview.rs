@@ -11,7 +11,7 @@ use basr::paint::verdict::{self, Thresholds, Verdict};
 use basr::paint::{Depth, Profile};
 use basr::pipeline::compile::Tilt;
 
-use super::replan::{self, NOT_RECORDED, REPLANNED_FROM};
+use super::replan::{self, REPLANNED_FROM};
 use super::{Global, Outcome};
 
 /// Simulate the paint film of a job and draw it.
@@ -197,6 +197,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         opts.profile = basr::pipeline::film::job_profile(&job)?;
     }
     let origin = args.job.display().to_string();
+    let not_carried = replan::not_recorded(&job);
     // (job, re-planned from the one given)
     let jobs: Vec<(Job, bool)> = if args.compare.is_empty() {
         vec![(job, false)]
@@ -238,9 +239,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     };
     let replanned_lines = [
         ("re-planned from".to_string(), REPLANNED_FROM.to_string()),
-        ("not carried".to_string(), NOT_RECORDED.to_string()),
+        ("not carried".to_string(), not_carried.to_string()),
     ];
-    let replanned_note = format!("re-planned from {REPLANNED_FROM}; not carried: {NOT_RECORDED}");
+    let replanned_note = format!("re-planned from {REPLANNED_FROM}; not carried: {not_carried}");
     let bar = super::progress_bar(
         !global.quiet && !args.json,
         if args.from_sim {

@@ -24,6 +24,17 @@ pub const REPLANNED_FROM: &str = "the job's message or symbol (a scene: --markin
 pub const NOT_RECORDED: &str = "nothing (a job written before jobs recorded their rung \
      spacing, gun lead/lag and reach margin: compile's defaults for those)";
 
+/// What `--compare` cannot carry from `job`: nothing for a job that
+/// records how it was timed (`summary.stops`, written since jobs record
+/// their planning options too); else [`NOT_RECORDED`]'s caveat.
+pub fn not_recorded(job: &Job) -> &'static str {
+    if job.summary.stops.is_empty() {
+        NOT_RECORDED
+    } else {
+        "nothing"
+    }
+}
+
 /// Largest difference (m) between a re-laid outline point and the job's
 /// for the layout to count as the job's. assumed: the job stores outlines
 /// to the last bit (serde_json's float round trip), so only a float
@@ -183,15 +194,30 @@ pub fn recover(
             Some(d) => differs = d,
         }
     }
+    let lines: Vec<&str> = job.message.lines().collect();
     let what = match marking {
         Some(p) => format!("the marking file {}", p.display()),
-        None => format!("the job's message {:?}", job.message),
+        None => format!("the job's message \"{}\"", lines.join(" ")),
+    };
+    // A message of several lines compiled with --line-gap lays out again
+    // from a marking file of its lines and that gap.
+    let gap = if lines.len() > 1 {
+        format!(
+            "; a message compiled with --line-gap: write its lines and the gap in a marking \
+             file ([marking] lines = [{}], line_gap_m = the gap given) and pass that",
+            lines
+                .iter()
+                .map(|l| format!("\"{l}\""))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    } else {
+        String::new()
     };
     anyhow::bail!(
         "{origin}: {by} cannot re-plan this job: {what} lays out differently from the \
          job ({differs}); pass the marking file the job was compiled from with --marking \
-         FILE (a job compiled with --line-gap, or a --shape job, cannot be re-planned: \
-         compile it again instead)"
+         FILE{gap} (a --shape job cannot be re-planned: compile it again instead)"
     )
 }
 
