@@ -170,7 +170,10 @@ fn compare_replans_with_the_jobs_own_robot_and_period() {
     );
     assert_ne!(m["gun_on_s"], default_robot["gun_on_s"]);
     let svg = std::fs::read_to_string(job.with_extension("svg")).unwrap();
-    assert!(svg.contains("re-planned from") && svg.contains("rung spacing"));
+    // the rows say what was carried (the list itself is clipped in the
+    // SVG's header; the JSON above has it whole) and that nothing was not
+    assert!(svg.contains("re-planned from") && svg.contains("the job's message or symbol"));
+    assert!(svg.contains("not carried") && svg.contains("\nnothing\n"));
 }
 
 #[test]
