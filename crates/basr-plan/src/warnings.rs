@@ -330,44 +330,24 @@ impl Note {
     pub fn render(&self) -> Warning {
         let severity = Some(self.severity());
         let todo = self.todo();
+        // A note of the whole job: no item, stroke, time or factor.
+        let whole = |kind, message| Warning {
+            kind,
+            owner: None,
+            severity,
+            stroke: None,
+            t_s: None,
+            factor: None,
+            message,
+        };
         match self {
-            Note::Layout { text } => Warning {
-                kind: WarningKind::Layout,
-                owner: None,
-                severity,
-                stroke: None,
-                t_s: None,
-                factor: None,
-                message: format!("{text}. {todo}"),
-            },
-            Note::Arm { text } => Warning {
-                kind: WarningKind::Arm,
-                owner: None,
-                severity,
-                stroke: None,
-                t_s: None,
-                factor: None,
-                message: format!("{text}. {todo}"),
-            },
-            Note::Surface { text } => Warning {
-                kind: WarningKind::Surface,
-                owner: None,
-                severity,
-                stroke: None,
-                t_s: None,
-                factor: None,
-                message: format!("{text}."),
-            },
+            Note::Layout { text } => whole(WarningKind::Layout, format!("{text}. {todo}")),
+            Note::Arm { text } => whole(WarningKind::Arm, format!("{text}. {todo}")),
+            Note::Surface { text } => whole(WarningKind::Surface, format!("{text}.")),
             // As `plan::shapes::compile_shape` writes a `--shape` job's lines.
-            Note::Shape { label, text } => Warning {
-                kind: WarningKind::Shape,
-                owner: None,
-                severity,
-                stroke: None,
-                t_s: None,
-                factor: None,
-                message: format!("shape {label}: {text}"),
-            },
+            Note::Shape { label, text } => {
+                whole(WarningKind::Shape, format!("shape {label}: {text}"))
+            }
             Note::Passes {
                 stroke,
                 owner,
