@@ -616,8 +616,10 @@ fn verify_station(
         ),
         None => (None, None),
     };
-    if in_step && beside && alone.robot.basr().is_some() {
-        return verify_together(alone, t0_s, resume, plants);
+    if let (true, Some(robot)) = (in_step && beside, alone.robot.basr()) {
+        let set_resume = plants.map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
+        let together = verify::together(&alone, robot, t0_s, resume, set_resume)?;
+        return Ok(checked_together(alone, together));
     }
     let (mut verdict, kept) = verify::simulated_resuming(&alone, t0_s, resume)?;
     let nominal_m = verdict.max_error_m;
@@ -647,27 +649,13 @@ fn verify_station(
     })
 }
 
-/// [`verify_station`] in step (`verify::together`): the station `alone`
-/// (its first row at job time `t0_s`) run on the robot description and
-/// the plant set at once, each resumed from its last run (`resume`,
-/// `plants`). The same verdict as the description's run first and the
-/// set's after it passed; the set's runs are kept whenever they ran (a
-/// round the description failed included), so the next round resumes
-/// them where the rows first changed.
-fn verify_together(
-    alone: Job,
-    t0_s: f64,
-    resume: Option<(crate::sim::Checkpoints, usize)>,
-    plants: Option<(crate::job::Samples, Vec<crate::sim::Checkpoints>)>,
-) -> Result<Checked, CompileError> {
-    let set_resume = plants.map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
-    let Some(t) = verify::together(&alone, t0_s, resume, set_resume)? else {
-        return Err(CompileError::Verify(
-            "only BASR's kind has a plant set to run beside its description; this is a planner \
-             bug, please report it"
-                .into(),
-        ));
-    };
+/// [`verify_station`]'s result from the station `alone` run on the robot
+/// description and the plant set at once (`verify::together`): the same
+/// verdict as the description's run first and the set's after it passed;
+/// the set's runs are kept whenever they ran (a round the description
+/// failed included), so the next round resumes them where the rows first
+/// changed.
+fn checked_together(alone: Job, t: verify::Together) -> Checked {
     let mut verdict = t.verdict;
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
@@ -688,7 +676,7 @@ fn verify_together(
     let plants = kept_set
         .filter(|cps| !cps.is_empty())
         .map(|cps| (alone.samples.clone(), cps));
-    Ok(Checked {
+    Checked {
         verdict,
         run: Some(LastRun {
             samples: alone.samples,
@@ -697,7 +685,7 @@ fn verify_together(
         }),
         on_spread,
         nominal_m,
-    })
+    }
 }
 
 /// Station `rows` of `job` alone, in a copy of `skeleton`, and the job

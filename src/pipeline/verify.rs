@@ -271,20 +271,18 @@ pub struct Together {
     pub set: Result<OnSpread, Vec<sim::Checkpoints>>,
 }
 
-/// [`simulated_resuming`] and [`on_spread`] in step, run together
-/// (`resume`: the description's last run and the first row that changed;
-/// `set_resume`: the set's): the same verdicts, on two cores that the
-/// description's run no longer leaves one of idle. `None` for the
-/// electric kinds (no plant set).
+/// [`simulated_resuming`] and [`on_spread`] in step, run together for a
+/// job of BASR's kind (`robot`, the job's; the electric kinds have no
+/// plant set) (`resume`: the description's last run and the first row
+/// that changed; `set_resume`: the set's): the same verdicts, on two
+/// cores that the description's run no longer leaves one of idle.
 pub fn together(
     job: &Job,
+    robot: &crate::robot::Robot,
     t0_s: f64,
     resume: Option<(sim::Checkpoints, usize)>,
     set_resume: Option<(Vec<sim::Checkpoints>, usize)>,
-) -> Result<Option<Together>, CompileError> {
-    let Some(robot) = job.robot.basr() else {
-        return Ok(None);
-    };
+) -> Result<Together, CompileError> {
     let (model, opts) = verifying(robot)?;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
@@ -300,7 +298,7 @@ pub fn together(
         },
         Err(kept) => Err(kept),
     };
-    Ok(Some(Together { verdict, kept, set }))
+    Ok(Together { verdict, kept, set })
 }
 
 /// The verdict on a simulated job: its painting error within
