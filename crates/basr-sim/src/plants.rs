@@ -561,15 +561,28 @@ mod tests {
         assert_eq!(draw(1, 0, 0.1), pinned);
     }
 
+    /// The tests' set: the synthetic letter, the seed's plant, six plants
+    /// drawn wide around it, and each plant's whole run.
+    #[allow(clippy::type_complexity)]
+    fn set_up() -> (
+        Job,
+        SimModel,
+        Vec<Vec<f64>>,
+        Vec<(crate::Report, Checkpoints)>,
+    ) {
+        let job = crate::synthetic::letter_job();
+        let nominal = SimModel::basr();
+        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
+        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
+        (job, nominal, factors, whole)
+    }
+
     /// The plants in step give the first failure (plant, place, report) a
     /// run of each alone gives, every time; the others report no more
     /// than their whole runs.
     #[test]
     fn plants_in_step_find_the_same_first_failure() {
-        let job = crate::synthetic::letter_job();
-        let nominal = SimModel::basr();
-        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
-        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
+        let (job, nominal, factors, whole) = set_up();
         let mut errors: Vec<f64> = whole.iter().map(|(r, _)| r.max_error_m).collect();
         errors.sort_by(f64::total_cmp);
         // a bound some plants pass and some fail, at different places
@@ -622,10 +635,7 @@ mod tests {
     /// returned for the next round.
     #[test]
     fn the_description_beside_the_set_is_its_run_alone() {
-        let job = crate::synthetic::letter_job();
-        let nominal = SimModel::basr();
-        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
-        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
+        let (job, nominal, factors, whole) = set_up();
         let mut errors: Vec<f64> = whole.iter().map(|(r, _)| r.max_error_m).collect();
         errors.sort_by(f64::total_cmp);
         let lone = |opts: &Options| {
@@ -676,13 +686,10 @@ mod tests {
     /// the group there as a whole run does.
     #[test]
     fn a_set_resumed_past_a_plant_failure_reports_as_a_fresh_set() {
-        let job = crate::synthetic::letter_job();
-        let nominal = SimModel::basr();
-        let factors: Vec<Vec<f64>> = (0..6).map(|i| draw(3, i, 0.3)).collect();
+        let (job, nominal, factors, whole) = set_up();
         let cp = crate::run::CHECKPOINT_S;
         // a bound some plants fail before the first checkpoint and others
         // pass it: those end there, with a checkpoint at it
-        let whole = run_each(&job, &nominal, &Options::default(), &factors, None).unwrap();
         let found = whole
             .iter()
             .flat_map(|(r, _)| (3..10).map(move |s| 0.1 * s as f64 * r.max_error_m))
