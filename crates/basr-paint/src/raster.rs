@@ -141,7 +141,7 @@ impl Grid {
     pub fn sample(&self, p: [f64; 2]) -> f64 {
         let fx = (p[0] - self.x0) / self.cell_m - 0.5;
         let fy = (p[1] - self.y0) / self.cell_m - 0.5;
-        let (i0, j0) = (fx.floor(), fy.floor());
+        let (i0, j0) = (floor(fx), floor(fy));
         let (tx, ty) = (fx - i0, fy - j0);
         let get = |i: f64, j: f64| {
             if i < 0.0 || j < 0.0 || i >= self.nx as f64 || j >= self.ny as f64 {
@@ -213,7 +213,7 @@ impl Canvas {
     fn splat(&mut self, p: [f64; 2], m: f64) {
         let fx = (p[0] - self.x0) / self.h - 0.5;
         let fy = (p[1] - self.y0) / self.h - 0.5;
-        let (fi, fj) = (fx.floor(), fy.floor());
+        let (fi, fj) = (floor(fx), floor(fy));
         let (tx, ty) = (fx - fi, fy - fj);
         let i = fi as i64 - self.i0;
         let j = fj as i64 - self.j0;
@@ -228,6 +228,25 @@ impl Canvas {
         self.vol[k + 1] += a * tx;
         self.vol[k + self.nx] += b * (1.0 - tx);
         self.vol[k + self.nx + 1] += b * tx;
+    }
+}
+
+/// `x.floor()`, bit for bit (signed zeros, infinities and NaN included),
+/// without the call into libm that `f64::floor` makes on x86-64 without
+/// SSE4.1 (the default target): splat's two floors per deposit were 5 % of
+/// compile STOP's time.
+#[inline]
+fn floor(x: f64) -> f64 {
+    // 2^52: from there on every f64 is an integer (NaN is returned too)
+    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
+        return x;
+    }
+    // truncation toward zero, exact in this range
+    let t = x as i64 as f64;
+    if t > x {
+        t - 1.0
+    } else {
+        t.copysign(x)
     }
 }
 
@@ -477,6 +496,44 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `floor` is `f64::floor` bit for bit: the edge cases, and any f64.
+    #[test]
+    fn floor_is_libm_floor_bit_for_bit() {
+        let same = |x: f64| {
+            assert_eq!(floor(x).to_bits(), x.floor().to_bits(), "{x:e}");
+        };
+        for x in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            -1.5,
+            2.999_999_999_999_999_6,
+            -2.999_999_999_999_999_6,
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            4_503_599_627_370_496.0,
+            1e300,
+            -1e300,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            same(x);
+        }
+        assert!(floor(f64::NAN).is_nan());
+        proptest::proptest!(|(bits: u64)| {
+            let x = f64::from_bits(bits);
+            if !x.is_nan() {
+                same(x);
+            }
+        });
+        proptest::proptest!(|(x in -1e6f64..1e6)| same(x));
+    }
 
     #[test]
     fn fitted_cell_coarsens_only_what_does_not_fit() {
