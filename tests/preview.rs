@@ -65,7 +65,7 @@ fn film_in_the_middle_of_a_straight_stroke_is_the_target() {
     let job = straight_job(0.25, 1.0);
     let p = preview::preview_job(&job, &Options::default()).unwrap();
     for x in [-0.08, -0.03, 0.0, 0.04, 0.09] {
-        let v = p.film.grid.sample([x, 0.5]);
+        let v = p.film.as_ref().unwrap().grid.sample([x, 0.5]);
         assert!((v / FILM - 1.0).abs() < 0.02, "film {v} at x = {x}");
     }
 }
@@ -115,8 +115,8 @@ fn ring_inner_half_is_heavy_untilted_and_evened_by_tilt() {
     let (umin, umax) = (flat.metrics.u_min.unwrap(), flat.metrics.u_max.unwrap());
     assert!(umin < 0.45 && umax > 0.55, "{umin} {umax}");
     // Film: inner half heavier than outer half.
-    let inner = flat.film.grid.sample([0.0, 1.0 + 0.34]);
-    let outer = flat.film.grid.sample([0.0, 1.0 + 0.46]);
+    let inner = flat.film.as_ref().unwrap().grid.sample([0.0, 1.0 + 0.34]);
+    let outer = flat.film.as_ref().unwrap().grid.sample([0.0, 1.0 + 0.46]);
     assert!(inner > outer * 1.2, "inner {inner} outer {outer}");
 
     // Tilt so the axis meets the road at the radius halving the annulus
@@ -153,12 +153,18 @@ fn tilted_pass_lays_its_rungs_and_throws_the_far_half_thinner() {
     assert!(m.overspray.unwrap() < 0.05, "{m:?}");
     // β > 0: the +ψ (+x) half lands farther and shallower (SPEC §2), so the
     // same half of the paint covers more road there.
-    let near = p.film.grid.sample([-0.1, 0.5]);
-    let far = p.film.grid.sample([0.1, 0.5]);
+    let near = p.film.as_ref().unwrap().grid.sample([-0.1, 0.5]);
+    let far = p.film.as_ref().unwrap().grid.sample([0.1, 0.5]);
     assert!(far < near * 0.95, "near {near} far {far}");
     // Across the whole bar the film still averages the target.
     let mean: f64 = (0..=20)
-        .map(|k| p.film.grid.sample([-0.14 + 0.28 * k as f64 / 20.0, 0.5]))
+        .map(|k| {
+            p.film
+                .as_ref()
+                .unwrap()
+                .grid
+                .sample([-0.14 + 0.28 * k as f64 / 20.0, 0.5])
+        })
         .sum::<f64>()
         / 21.0;
     assert!((mean / FILM - 1.0).abs() < 0.03, "{mean}");

@@ -174,6 +174,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             .resolution_mm
             .is_none()
             .then_some(basr::paint::raster::FIT_CELLS),
+        ..Options::default()
     };
     let out = args
         .output

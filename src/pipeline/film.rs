@@ -117,26 +117,8 @@ fn notes(measured: &JobFilm, job: &Job, owners: &[Owner]) -> Vec<Note> {
 /// outline's box: the hot spots of joins and slowed places are what lift
 /// a letter's cv) and the stroke whose painting setpoint lies nearest it.
 fn hot_spot(measured: &JobFilm, job: &Job, item: usize) -> Option<HotSpot> {
-    let outline = measured.preview.outlines.get(item)?;
-    let b = outline.bounds();
-    let g = &measured.preview.film.grid;
-    let index = |v: f64, o: f64, n: usize| (((v - o) / g.cell_m).floor().max(0.0) as usize).min(n);
-    let (i0, i1) = (index(b.min[0], g.x0, g.nx), index(b.max[0], g.x0, g.nx));
-    let (j0, j1) = (index(b.min[1], g.y0, g.ny), index(b.max[1], g.y0, g.ny));
-    let (mut best, mut at) = (f64::NEG_INFINITY, None);
-    for j in j0..j1 {
-        for i in i0..i1 {
-            let v = g.data[j * g.nx + i];
-            if v > best {
-                best = v;
-                at = Some([
-                    g.x0 + (i as f64 + 0.5) * g.cell_m,
-                    g.y0 + (j as f64 + 0.5) * g.cell_m,
-                ]);
-            }
-        }
-    }
-    let at_m = at?;
+    let peak = (*measured.preview.metrics.peaks.get(item)?)?;
+    let (best, at_m) = (peak.film_m, peak.at_m);
     let s = &job.samples;
     let stroke = (0..s.len())
         .filter(|&k| s.paint[k] == 1 && s.stroke[k] >= 0)

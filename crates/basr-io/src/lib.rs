@@ -476,6 +476,30 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
     sha256_hex_of([bytes])
 }
 
+/// A writer that only hashes what passes through it (SHA-256): a
+/// document's hash taken as it is printed, never held whole.
+#[derive(Default)]
+pub struct Sha256Writer(sha2::Sha256);
+
+impl Sha256Writer {
+    /// Lower-case hex of the SHA-256 of everything written.
+    pub fn hex(self) -> String {
+        use sha2::Digest;
+        hex(&self.0.finalize())
+    }
+}
+
+impl Write for Sha256Writer {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        use sha2::Digest;
+        self.0.update(buf);
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
 /// Lower-case hex SHA-256 of `pieces` one after the other (no copy).
 pub fn sha256_hex_of<'a>(pieces: impl IntoIterator<Item = &'a [u8]>) -> String {
     use sha2::{Digest, Sha256};

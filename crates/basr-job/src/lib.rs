@@ -20,6 +20,7 @@ mod read;
 pub use read::signed_bytes;
 pub mod reference;
 pub mod road;
+mod stream;
 pub mod trust;
 pub mod verify;
 mod warning;
@@ -539,6 +540,12 @@ macro_rules! samples_struct {
                     .unwrap_or(n)
             }
 
+            /// Room for `n` more rows in every column (a long job's columns
+            /// grown by doubling held up to twice their rows).
+            pub fn reserve_exact(&mut self, n: usize) {
+                $(self.$name.reserve_exact(n);)*
+            }
+
             /// Row `i` (SPEC §3's columns), or `None` past the end.
             pub fn row(&self, i: usize) -> Option<SampleRow> {
                 if i >= self.len() {
@@ -570,6 +577,37 @@ macro_rules! samples_struct {
                     kind_joints: self.kind_joints.get(r.clone()).map(<[_]>::to_vec).unwrap_or_default(),
                     kind_encoders: self.kind_encoders.get(r).map(<[_]>::to_vec).unwrap_or_default(),
                 }
+            }
+
+            /// Each column's serialised name and value, in the order of
+            /// their names (the canonical form's), the kind's columns only
+            /// when present (as serialising skips them empty); `write`
+            /// writes the column's value.
+            pub(crate) fn each_column_sorted(
+                &self,
+                write: &mut dyn FnMut(&str, &dyn stream::Column) -> std::io::Result<()>,
+            ) -> std::io::Result<()> {
+                let mut names: Vec<&'static str> = vec![$(stringify!($name)),*];
+                if !self.kind_columns.is_empty() {
+                    names.push("kind_columns");
+                }
+                if !self.kind_joints.is_empty() {
+                    names.push("kind_joints");
+                }
+                if !self.kind_encoders.is_empty() {
+                    names.push("kind_encoders");
+                }
+                names.sort_unstable();
+                for name in names {
+                    match name {
+                        $(stringify!($name) => write(name, &self.$name)?,)*
+                        "kind_columns" => write(name, &self.kind_columns)?,
+                        "kind_joints" => write(name, &self.kind_joints)?,
+                        "kind_encoders" => write(name, &self.kind_encoders)?,
+                        _ => {}
+                    }
+                }
+                Ok(())
             }
 
             /// Row `i` as CSV fields, in [`Samples::header`] order.
@@ -730,6 +768,7 @@ pub struct Job {
     /// flat road, so flat-road jobs keep their bytes.
     #[serde(default, skip_serializing_if = "Road::is_flat")]
     pub road: Road,
+    #[serde(serialize_with = "stream::samples_unless_elided")]
     pub samples: Samples,
     pub summary: Summary,
     /// Files written with this job, by kind (`csv`, `adept`).
@@ -775,8 +814,9 @@ impl Job {
         self.robot_sha256 = self.robot.sha256();
         self.signature = None;
         self.sha256.clear();
-        let v = serde_json::to_value(&*self).expect("job serialises");
-        self.sha256 = document_sha256(v);
+        // The canonical bytes without `sha256` and `signature`
+        // ([`document_sha256`]), hashed as they are made.
+        self.sha256 = stream::sha256_without(self, &["sha256", "signature"]);
     }
 
     /// Record a file written with the job (`kind`: `csv`, `adept`) and the
@@ -800,13 +840,15 @@ impl Job {
     /// The document as written to disk: its canonical bytes (pretty JSON
     /// with sorted keys and a final line end). Deterministic for a given job.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let v = serde_json::to_value(self).expect("job serialises");
-        canonical::to_canonical(&v)
+        let mut out = Vec::new();
+        stream::write_canonical(self, &mut out, &[]).expect("a Vec takes every byte");
+        out
     }
 
-    /// Write atomically to `path`.
+    /// Write atomically to `path`, the canonical bytes as they are made
+    /// (`stream`: a long job's never held whole).
     pub fn write(&self, path: &Path) -> Result<(), basr_io::WriteError> {
-        basr_io::write_atomic(path, &self.to_bytes())
+        basr_io::write_atomic_with(path, |w| stream::write_canonical(self, w, &[]))
     }
 
     /// Parse and verify a job from text; `path` is used in messages only.
@@ -892,6 +934,28 @@ mod tests {
         let back = Job::from_str_verified(&text, "t").unwrap();
         assert_eq!(back, job);
         assert_eq!(back.to_bytes(), job.to_bytes());
+    }
+
+    /// The bytes written a column at a time are the value's canonical
+    /// bytes: a job with samples, one with the electric kinds' columns,
+    /// one with none, one with non-finite numbers (printed `null`).
+    #[test]
+    fn streamed_bytes_are_the_canonical_bytes() {
+        let job = tiny_job();
+        stream::tests::same_as_the_value(&job);
+        let mut kind = job.clone();
+        let n = kind.samples.len();
+        kind.samples.kind_columns = (0..10).map(|i| format!("c{i}")).collect();
+        kind.samples.kind_joints = vec![[0.5, -1.0, 2.0, f64::NAN, 1e-300]; n];
+        kind.samples.kind_encoders = vec![[1, -2, 3, 4, i64::MAX]; n];
+        kind.signature = Some(trust::Signature {
+            key_id: "k".into(),
+            ed25519: "s".into(),
+        });
+        stream::tests::same_as_the_value(&kind);
+        let mut empty = job;
+        empty.samples = Samples::default();
+        stream::tests::same_as_the_value(&empty);
     }
 
     #[test]

@@ -9,7 +9,7 @@ use svg::Document;
 
 use super::captions::{glyph_ids, glyph_table, panel_lines, GLYPH_HEADER};
 use super::preview::Preview;
-use super::raster::Bounds;
+use super::raster::{Bounds, Grid};
 use super::spray::Pose;
 use super::verdict::Verdict;
 use basr_job::Job;
@@ -40,7 +40,7 @@ pub struct Panel<'a> {
 
 /// Road extent a panel shows: the film raster, the nozzle path and stations.
 fn panel_bounds(p: &Panel) -> Bounds {
-    let mut b = p.preview.film.grid.bounds();
+    let mut b = p.preview.raster_bounds;
     for pose in &p.preview.poses {
         if pose.x_m.is_finite() && pose.y_m.is_finite() {
             b.include([pose.x_m, pose.y_m]);
@@ -856,9 +856,31 @@ fn road_layers(
     view: &View,
     stations: &[Option<usize>],
 ) -> Group {
-    let grid = &p.preview.film.grid;
     let target = p.preview.metrics.target_film_m;
-    // Only the cells the frame shows (a line's view of a long job).
+    // Only the cells the frame shows (a line's view of a long job; laid
+    // again for that view when the job was measured band by band). Its
+    // paint was laid once already, so laying it again cannot fail; if it
+    // did, the view shows the road without film.
+    let shown = Bounds {
+        min: frame.road_min,
+        max: frame.road_max,
+    };
+    let film = p.preview.film_over(shown);
+    let bare;
+    let grid: &Grid = match &film {
+        Ok(g) => g,
+        Err(_) => {
+            bare = Grid {
+                x0: frame.road_min[0],
+                y0: frame.road_min[1],
+                cell_m: p.preview.cell_m,
+                nx: 0,
+                ny: 0,
+                data: Vec::new(),
+            };
+            &bare
+        }
+    };
     let cell = grid.cell_m;
     let index = |v: f64, o: f64, n: usize| (((v - o) / cell).floor().max(0.0) as usize).min(n);
     let (i0, i1) = (

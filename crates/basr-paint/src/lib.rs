@@ -12,6 +12,7 @@
 //! `drawing` draws its SVG.
 //! The simulator reuses `deposit` on its own trace (same pose columns).
 
+pub mod bands;
 mod boxes;
 pub mod captions;
 pub mod drawing;

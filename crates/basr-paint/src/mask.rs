@@ -210,6 +210,17 @@ pub(super) fn coverage_share(
     cells: impl Iterator<Item = MaskCell>,
     level: f64,
 ) -> Option<f64> {
+    let [a, c] = coverage_sums(grid, cells, level);
+    (a > 0.0).then(|| c / a)
+}
+
+/// [`coverage_share`]'s two sums: the cells' letter area (in cells) and
+/// its covered part.
+pub(super) fn coverage_sums(
+    grid: &Grid,
+    cells: impl Iterator<Item = MaskCell>,
+    level: f64,
+) -> [f64; 2] {
     let (mut a, mut c) = (0.0, 0.0);
     for m in cells {
         a += m.f;
@@ -221,7 +232,7 @@ pub(super) fn coverage_share(
         };
         c += m.f * share;
     }
-    (a > 0.0).then(|| c / a)
+    [a, c]
 }
 
 /// Covered share of a cell that an outline cuts: of the cell's lattice

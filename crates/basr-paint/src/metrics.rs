@@ -25,7 +25,7 @@ use serde::Serialize;
 
 use super::boxes::BoxIndex;
 pub use super::mask::{coverage_mask, GlyphOutline, MaskCell};
-use super::mask::{coverage_share, signed_area, INSIDE};
+use super::mask::{coverage_share, coverage_sums, signed_area, INSIDE};
 use super::raster::{Bounds, Film, Grid};
 use super::spray::{equivalent_fan, Pose, SprayModel};
 use super::PaintError;
@@ -92,16 +92,40 @@ pub struct Metrics {
     pub resolution_m: f64,
     pub glyphs: Vec<GlyphMetrics>,
     pub strokes: Vec<StrokeU>,
+    /// Each glyph's heaviest film: the fullest raster cell in its outline's
+    /// box and that cell's centre (none for a box off the raster). Not
+    /// printed: compile's film note names it (`pipeline::film`).
+    #[serde(skip)]
+    pub peaks: Vec<Option<Peak>>,
+}
+
+/// The fullest raster cell over a glyph's box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Peak {
+    /// Its film (m).
+    pub film_m: f64,
+    /// Its centre on the road (m).
+    pub at_m: [f64; 2],
 }
 
 /// Mean and CV of `values` weighted by `weights`.
 fn mean_cv(cells: impl Iterator<Item = (f64, f64)>) -> (Option<f64>, Option<f64>) {
+    mean_cv_of(weighted_sums(cells))
+}
+
+/// Σw, Σw·v and Σw·v² of weighted `cells`.
+fn weighted_sums(cells: impl Iterator<Item = (f64, f64)>) -> [f64; 3] {
     let (mut sw, mut s1, mut s2) = (0.0, 0.0, 0.0);
     for (v, w) in cells {
         sw += w;
         s1 += w * v;
         s2 += w * v * v;
     }
+    [sw, s1, s2]
+}
+
+/// Mean and CV from [`weighted_sums`].
+fn mean_cv_of([sw, s1, s2]: [f64; 3]) -> (Option<f64>, Option<f64>) {
     if sw <= 0.0 {
         return (None, None);
     }
@@ -125,10 +149,68 @@ pub fn measure(
     poses: &[Pose],
     stroke_of: &[i64],
 ) -> Result<Metrics, PaintError> {
-    let g = &film.grid;
+    // U per stroke, then the stroke's glyph by majority of its rung centres.
+    let strokes = stroke_u(model, poses, stroke_of, glyphs)?;
+    let all: Vec<usize> = (0..glyphs.len()).collect();
+    let parts = measure_part(&film.grid, glyphs, &all, target_film_m, &strokes);
+    Ok(finish(
+        vec![parts],
+        Whole {
+            target_film_m,
+            resolution_m: film.grid.cell_m,
+            volume_laid_m3: film.laid_m3,
+            gun_on_s: film.gun_on_s,
+            glyphs,
+        },
+        strokes,
+    ))
+}
+
+/// What one raster (the whole job's, or one band's of a long job:
+/// `bands`) adds to the job's metrics: sums that add up over rasters
+/// that share no paint and no glyph, and the rows of the glyphs on it.
+pub struct Part {
+    /// Σ1, Σfilm, Σfilm² over the interior cells.
+    interior: [f64; 3],
+    /// Letter area and its covered share's sum, in cells (`coverage_sums`).
+    covered: [f64; 2],
+    /// Σ of the letters' cell fractions.
+    letter_cells: f64,
+    /// Σ film over every cell, and over what lies outside the letters.
+    film_sum: f64,
+    outside_sum: f64,
+    /// Each glyph on it: its index in the job's glyphs, its row and peak.
+    glyphs: Vec<(usize, GlyphMetrics, Option<Peak>)>,
+    /// The edge widths measured and the true edge points considered.
+    edge_widths: Vec<f64>,
+    edge_considered: usize,
+}
+
+/// What [`finish`] takes of the whole job besides its parts.
+pub struct Whole<'a> {
+    pub target_film_m: f64,
+    pub resolution_m: f64,
+    pub volume_laid_m3: f64,
+    pub gun_on_s: f64,
+    /// The job's glyphs (each on one part).
+    pub glyphs: &'a [GlyphOutline],
+}
+
+/// The part of the metrics `g` holds, for the glyphs `ids` of `glyphs`
+/// (those wholly on it); `strokes`, the job's U per stroke.
+pub fn measure_part(
+    g: &Grid,
+    glyphs: &[GlyphOutline],
+    ids: &[usize],
+    target_film_m: f64,
+    strokes: &[StrokeU],
+) -> Part {
     let n = g.nx * g.ny;
     let area = g.cell_m * g.cell_m;
-    let masks: Vec<Vec<MaskCell>> = glyphs.iter().map(|gl| coverage_mask(g, gl)).collect();
+    let masks: Vec<Vec<MaskCell>> = ids
+        .iter()
+        .map(|&gi| coverage_mask(g, &glyphs[gi]))
+        .collect();
     let mut frac = vec![0.0f64; n];
     // Inside lattice points of the cells an outline cuts, over all glyphs.
     let mut edge_bits: std::collections::HashMap<usize, u64> = Default::default();
@@ -145,16 +227,13 @@ pub fn measure(
         }
         (j - 1..=j + 1).all(|jj| (i - 1..=i + 1).all(|ii| frac[jj * g.nx + ii] >= INSIDE))
     };
-    let letter_area: f64 = frac.iter().sum::<f64>() * area;
-    let volume: f64 = g.volume();
     let level = COVERAGE_SHARE * target_film_m;
-
-    let (mean, cv) = mean_cv(
+    let interior_sums = weighted_sums(
         (0..n)
             .filter(|&k| frac[k] >= INSIDE && interior(k))
             .map(|k| (g.data[k], 1.0)),
     );
-    let coverage = coverage_share(
+    let covered = coverage_sums(
         g,
         (0..n).filter(|&k| frac[k] > 0.0).map(|k| MaskCell {
             k,
@@ -163,17 +242,12 @@ pub fn measure(
         }),
         level,
     );
-    let outside: f64 = (0..n).map(|k| g.data[k] * (1.0 - frac[k])).sum::<f64>() * area;
-    let overspray = (volume > 0.0).then(|| outside / volume);
-
-    // U per stroke, then the stroke's glyph by majority of its rung centres.
-    let strokes = stroke_u(model, poses, stroke_of, glyphs)?;
-    let all_u = merge_u(strokes.iter().map(|s| s.u));
+    let outside_sum: f64 = (0..n).map(|k| g.data[k] * (1.0 - frac[k])).sum::<f64>();
 
     // Per glyph: cells inside it; outside cells go to the nearest glyph box.
-    let boxes: Vec<Bounds> = glyphs.iter().map(|gl| gl.bounds()).collect();
-    let mut owner_vol = vec![(0.0f64, 0.0f64); glyphs.len()]; // (total, outside)
-    if !glyphs.is_empty() {
+    let boxes: Vec<Bounds> = ids.iter().map(|&gi| glyphs[gi].bounds()).collect();
+    let mut owner_vol = vec![(0.0f64, 0.0f64); ids.len()]; // (total, outside)
+    if !ids.is_empty() {
         let index = BoxIndex::new(g, &boxes);
         for (k, (&v, &f)) in g.data.iter().zip(&frac).enumerate() {
             if v <= 0.0 {
@@ -185,37 +259,122 @@ pub fn measure(
             owner_vol[best].1 += v * (1.0 - f) * area;
         }
     }
-    let glyph_rows = glyphs
+    let rows = ids
         .iter()
         .enumerate()
-        .map(|(gi, gl)| {
-            let m = &masks[gi];
+        .map(|(bi, &gi)| {
+            let gl = &glyphs[gi];
+            let m = &masks[bi];
             let (gm, gcv) = mean_cv(
                 m.iter()
                     .filter(|c| c.f >= INSIDE && interior(c.k))
                     .map(|c| (g.data[c.k], 1.0)),
             );
             let u = merge_u(strokes.iter().filter(|s| s.glyph == Some(gi)).map(|s| s.u));
-            GlyphMetrics {
+            let row = GlyphMetrics {
                 char: gl.label.clone(),
                 line: gl.line,
                 area_m2: m.iter().map(|c| c.f).sum::<f64>() * area,
                 mean_film_m: gm,
                 cv: gcv,
                 coverage: coverage_share(g, m.iter().copied(), level),
-                overspray: (owner_vol[gi].0 > 0.0).then(|| owner_vol[gi].1 / owner_vol[gi].0),
+                overspray: (owner_vol[bi].0 > 0.0).then(|| owner_vol[bi].1 / owner_vol[bi].0),
                 u_min: u.map(|u| u.u_min),
                 u_max: u.map(|u| u.u_max),
-            }
+            };
+            (gi, row, peak_over(g, boxes[bi]))
         })
         .collect();
+    let outlines: Vec<&GlyphOutline> = ids.iter().map(|&gi| &glyphs[gi]).collect();
+    let (edge_widths, edge_considered) = edge_samples(g, &outlines, &frac, target_film_m);
+    Part {
+        interior: interior_sums,
+        covered,
+        letter_cells: frac.iter().sum::<f64>(),
+        film_sum: g.data.iter().sum::<f64>(),
+        outside_sum,
+        glyphs: rows,
+        edge_widths,
+        edge_considered,
+    }
+}
 
-    let (edge_width, edge_p90, edge_points) = edge_widths(g, glyphs, &frac, target_film_m);
-    Ok(Metrics {
-        target_film_m,
+/// The fullest cell of `g` over box `b` (the cells whose index range the
+/// box's corners give, clipped to the grid).
+fn peak_over(g: &Grid, b: Bounds) -> Option<Peak> {
+    let index = |v: f64, o: f64, n: usize| (((v - o) / g.cell_m).floor().max(0.0) as usize).min(n);
+    let (i0, i1) = (index(b.min[0], g.x0, g.nx), index(b.max[0], g.x0, g.nx));
+    let (j0, j1) = (index(b.min[1], g.y0, g.ny), index(b.max[1], g.y0, g.ny));
+    let mut best: Option<Peak> = None;
+    for j in j0..j1 {
+        for i in i0..i1 {
+            let v = g.data[j * g.nx + i];
+            if best.is_none_or(|p| v > p.film_m) {
+                best = Some(Peak {
+                    film_m: v,
+                    at_m: g.centre(i, j),
+                });
+            }
+        }
+    }
+    best
+}
+
+/// The job's metrics from the parts of its rasters (one, or one per band
+/// of a long job, in the order of the road) and `strokes`' U.
+pub fn finish(parts: Vec<Part>, whole: Whole<'_>, strokes: Vec<StrokeU>) -> Metrics {
+    let h = whole.resolution_m;
+    let area = h * h;
+    let add = |f: &dyn Fn(&Part) -> f64| parts.iter().fold(0.0, |s, p| s + f(p));
+    let interior = [0, 1, 2].map(|i| add(&|p| p.interior[i]));
+    let (mean, cv) = mean_cv_of(interior);
+    let covered = [add(&|p| p.covered[0]), add(&|p| p.covered[1])];
+    let volume = add(&|p| p.film_sum) * h * h;
+    let outside = add(&|p| p.outside_sum) * area;
+    let overspray = (volume > 0.0).then(|| outside / volume);
+    let all_u = merge_u(strokes.iter().map(|s| s.u));
+    let mut widths: Vec<f64> = parts
+        .iter()
+        .flat_map(|p| p.edge_widths.iter().copied())
+        .collect();
+    let considered = parts.iter().map(|p| p.edge_considered).sum();
+    let (edge_width, edge_p90, edge_points) = edge_figures(&mut widths, considered);
+    let letter_area = add(&|p| p.letter_cells) * area;
+    let mut rows: Vec<Option<(GlyphMetrics, Option<Peak>)>> = vec![None; whole.glyphs.len()];
+    for p in parts {
+        for (gi, row, peak) in p.glyphs {
+            if let Some(slot) = rows.get_mut(gi) {
+                *slot = Some((row, peak));
+            }
+        }
+    }
+    // Every glyph lies on one part (`bands`); one that did not would have
+    // no figures rather than shift the rows after it.
+    let (glyphs, peaks) = rows
+        .into_iter()
+        .zip(whole.glyphs)
+        .map(|(row, gl)| {
+            row.unwrap_or_else(|| {
+                let none = GlyphMetrics {
+                    char: gl.label.clone(),
+                    line: gl.line,
+                    area_m2: 0.0,
+                    mean_film_m: None,
+                    cv: None,
+                    coverage: None,
+                    overspray: None,
+                    u_min: None,
+                    u_max: None,
+                };
+                (none, None)
+            })
+        })
+        .unzip();
+    Metrics {
+        target_film_m: whole.target_film_m,
         mean_film_m: mean,
         cv,
-        coverage,
+        coverage: (covered[0] > 0.0).then(|| covered[1] / covered[0]),
         overspray,
         u_min: all_u.map(|u| u.u_min),
         u_max: all_u.map(|u| u.u_max),
@@ -224,12 +383,13 @@ pub fn measure(
         edge_points,
         letter_area_m2: letter_area,
         volume_on_road_m3: volume,
-        volume_laid_m3: film.laid_m3,
-        gun_on_s: film.gun_on_s,
-        resolution_m: g.cell_m,
-        glyphs: glyph_rows,
+        volume_laid_m3: whole.volume_laid_m3,
+        gun_on_s: whole.gun_on_s,
+        resolution_m: h,
+        glyphs,
         strokes,
-    })
+        peaks,
+    }
 }
 
 fn merge_u(it: impl Iterator<Item = URange>) -> Option<URange> {
@@ -335,13 +495,15 @@ pub fn stroke_u(
     Ok(merged)
 }
 
-/// Median and 90th-percentile 90 %→10 % edge widths along true letter edges.
-fn edge_widths(
+/// The 90 %→10 % edge widths along the true edges of `glyphs` on `g`
+/// (`frac`: each cell's share inside the letters), and how many true edge
+/// points were considered.
+fn edge_samples(
     g: &Grid,
-    glyphs: &[GlyphOutline],
+    glyphs: &[&GlyphOutline],
     frac: &[f64],
     target: f64,
-) -> (Option<f64>, Option<f64>, usize) {
+) -> (Vec<f64>, usize) {
     let h = g.cell_m;
     let frac_at = |p: [f64; 2]| -> Option<f64> {
         let i = ((p[0] - g.x0) / h).floor();
@@ -394,6 +556,12 @@ fn edge_widths(
             }
         }
     }
+    (widths, considered)
+}
+
+/// Median and 90th percentile of edge `widths`, and how many there are
+/// (the points considered when none was measured).
+fn edge_figures(widths: &mut [f64], considered: usize) -> (Option<f64>, Option<f64>, usize) {
     if widths.is_empty() {
         return (None, None, considered);
     }

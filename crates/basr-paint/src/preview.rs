@@ -3,9 +3,10 @@
 
 use serde::Serialize;
 
+use super::bands;
 pub use super::drawing::{panel_frames, render_svg, Panel};
 use super::metrics::{self, GlyphOutline, Metrics};
-use super::raster::{self, Bounds, Film, Progress};
+use super::raster::{self, Bounds, Film, Grid, Progress};
 use super::spray::{Depth, Pose, Profile, SprayModel};
 use super::verdict::Verdict;
 use super::PaintError;
@@ -25,6 +26,10 @@ pub struct Options {
     /// previews); `None` keeps `resolution_m` and refuses a raster over
     /// [`raster::MAX_CELLS`].
     pub fit_cells: Option<usize>,
+    /// The largest raster laid whole; a larger one is laid and measured
+    /// band by band along the road (`bands`; the same figures to rounding,
+    /// at a band's memory).
+    pub band_cells: usize,
 }
 
 impl Default for Options {
@@ -34,6 +39,7 @@ impl Default for Options {
             profile: Profile::Uniform,
             depth: Depth::default(),
             fit_cells: None,
+            band_cells: bands::BAND_CELLS,
         }
     }
 }
@@ -41,7 +47,17 @@ impl Default for Options {
 /// A computed preview of one job.
 #[derive(Clone, Debug)]
 pub struct Preview {
-    pub film: Film,
+    /// The film over everything the job paints and every letter; `None`
+    /// for a long job, measured band by band (`bands`): [`Preview::film_over`]
+    /// lays the part a picture shows.
+    pub film: Option<Film>,
+    /// Where the film was laid: the raster's extent (the bands' together).
+    pub raster_bounds: Bounds,
+    /// The raster's cell (m).
+    pub cell_m: f64,
+    /// The fan and the flow reaching the road (m³/s) it was laid with.
+    pub model: SprayModel,
+    pub flow_eff_m3ps: f64,
     pub metrics: Metrics,
     pub outlines: Vec<GlyphOutline>,
     pub poses: Vec<Pose>,
@@ -176,34 +192,115 @@ pub fn preview_tiled(
     let letters = outlines
         .iter()
         .fold(Bounds::EMPTY, |b, g| b.union(g.bounds()));
+    let painted = raster::painted_bounds(poses, &model)?;
+    let extent = match (painted.is_empty(), letters.is_empty()) {
+        (true, _) => letters,
+        (_, true) => painted,
+        _ => painted.union(letters),
+    };
     let cell_m = match opts.fit_cells {
-        Some(budget) => {
-            let painted = raster::painted_bounds(poses, &model)?;
-            let extent = match (painted.is_empty(), letters.is_empty()) {
-                (true, _) => letters,
-                (_, true) => painted,
-                _ => painted.union(letters),
-            };
-            raster::fitted_cell(extent, opts.resolution_m, budget)
-        }
+        Some(budget) => raster::fitted_cell(extent, opts.resolution_m, budget),
         None => opts.resolution_m,
     };
-    let film = raster::deposit_with_progress(
-        poses,
-        &model,
-        paint.flow_m3ps * paint.transfer_efficiency,
-        cell_m,
-        letters,
-        progress,
-    )?;
-    let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
-    Ok(Preview {
+    let flow_eff_m3ps = paint.flow_m3ps * paint.transfer_efficiency;
+    let preview = |film: Option<Film>, raster_bounds: Bounds, metrics: Metrics| Preview {
         film,
+        raster_bounds,
+        cell_m,
+        model: model.clone(),
+        flow_eff_m3ps,
         metrics,
         outlines: outlines.to_vec(),
         poses: poses.to_vec(),
         profile: opts.profile.name(),
-    })
+    };
+    if extent.is_empty() || bands::whole(extent, cell_m, opts.band_cells) {
+        let film =
+            raster::deposit_with_progress(poses, &model, flow_eff_m3ps, cell_m, letters, progress)?;
+        let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
+        let bounds = film.grid.bounds();
+        return Ok(preview(Some(film), bounds, metrics));
+    }
+    // A long job: band by band, each band's raster dropped once measured.
+    raster::check_poses(poses, flow_eff_m3ps)?;
+    let intervals = raster::painted_intervals(poses);
+    let reach = raster::depth_reach(&model);
+    let bands = bands::bands(poses, &intervals, &model, reach, outlines, cell_m)?;
+    let strokes = metrics::stroke_u(&model, tiles, stroke_of, outlines)?;
+    let mut parts = Vec::with_capacity(bands.len());
+    let (mut done, mut gun_on_s, mut raster_bounds) = (0usize, 0.0, Bounds::EMPTY);
+    for band in &bands {
+        let film = raster::deposit_intervals(
+            poses,
+            &band.intervals,
+            &model,
+            flow_eff_m3ps,
+            cell_m,
+            band.extent,
+            &|n, _| progress(done + n, intervals.len()),
+        )?;
+        done += band.intervals.len();
+        gun_on_s += film.gun_on_s;
+        raster_bounds = raster_bounds.union(film.grid.bounds());
+        parts.push(metrics::measure_part(
+            &film.grid,
+            outlines,
+            &band.glyphs,
+            paint.film_m,
+            &strokes,
+        ));
+    }
+    let metrics = metrics::finish(
+        parts,
+        metrics::Whole {
+            target_film_m: paint.film_m,
+            resolution_m: cell_m,
+            volume_laid_m3: flow_eff_m3ps * gun_on_s,
+            gun_on_s,
+            glyphs: outlines,
+        },
+        strokes,
+    );
+    Ok(preview(None, raster_bounds, metrics))
+}
+
+impl Preview {
+    /// The film over `b` on the preview's raster lattice: the whole film's
+    /// cells there, or, for a long job measured band by band, the paint of
+    /// every interval that lands in `b` laid again (a picture's view).
+    pub fn film_over(&self, b: Bounds) -> Result<std::borrow::Cow<'_, Grid>, PaintError> {
+        if let Some(film) = &self.film {
+            return Ok(std::borrow::Cow::Borrowed(&film.grid));
+        }
+        let reach = raster::depth_reach(&self.model);
+        let mut hits = Vec::new();
+        for i in raster::painted_intervals(&self.poses) {
+            let fa = self.model.footprint(&self.poses[i])?;
+            let fb = self.model.footprint(&self.poses[i + 1])?;
+            let mut fb_box = Bounds::EMPTY;
+            for p in [fa.minus(), fa.plus(), fb.minus(), fb.plus()] {
+                fb_box.include(p);
+            }
+            let f = fb_box.grow(reach);
+            let meets = f.min[0] <= b.max[0]
+                && b.min[0] <= f.max[0]
+                && f.min[1] <= b.max[1]
+                && b.min[1] <= f.max[1];
+            if meets {
+                hits.push(i);
+            }
+        }
+        let film = raster::deposit_intervals(
+            &self.poses,
+            &hits,
+            &self.model,
+            self.flow_eff_m3ps,
+            self.cell_m,
+            b,
+            &|_, _| {},
+        )?;
+        Ok(std::borrow::Cow::Owned(film.grid))
+    }
 }
 
 /// What `--json` prints.

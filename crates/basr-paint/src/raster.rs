@@ -259,7 +259,7 @@ fn footprint_bounds(fp: &Footprint) -> Bounds {
     b
 }
 
-fn depth_reach(model: &SprayModel) -> f64 {
+pub(crate) fn depth_reach(model: &SprayModel) -> f64 {
     model.depth.reach_m()
 }
 
@@ -328,6 +328,30 @@ pub fn deposit_with_progress(
     extra: Bounds,
     progress: Progress,
 ) -> Result<Film, PaintError> {
+    check_poses(poses, flow_eff_m3ps)?;
+    let painted = painted_intervals(poses);
+    let mut extent = painted_bounds(poses, model)?;
+    if !extra.is_empty() {
+        extent = if extent.is_empty() {
+            extra
+        } else {
+            extent.union(extra)
+        };
+    }
+    deposit_intervals(
+        poses,
+        &painted,
+        model,
+        flow_eff_m3ps,
+        cell_m,
+        extent,
+        progress,
+    )
+}
+
+/// What deposition asks of its input: a flow ≥ 0 and time that never goes
+/// back.
+pub fn check_poses(poses: &[Pose], flow_eff_m3ps: f64) -> Result<(), PaintError> {
     if !(flow_eff_m3ps >= 0.0 && flow_eff_m3ps.is_finite()) {
         return Err(PaintError::Model(format!(
             "flow × efficiency {flow_eff_m3ps} m³/s must be a number ≥ 0"
@@ -341,17 +365,31 @@ pub fn deposit_with_progress(
             )));
         }
     }
-    let painted: Vec<usize> = (0..poses.len().saturating_sub(1))
+    Ok(())
+}
+
+/// The intervals of `poses` the gun paints: i for poses i → i + 1, the gun
+/// open at i and time moving on.
+pub fn painted_intervals(poses: &[Pose]) -> Vec<usize> {
+    (0..poses.len().saturating_sub(1))
         .filter(|&i| poses[i].gun && poses[i + 1].t_s > poses[i].t_s)
-        .collect();
-    let mut extent = painted_bounds(poses, model)?;
-    if !extra.is_empty() {
-        extent = if extent.is_empty() {
-            extra
-        } else {
-            extent.union(extra)
-        };
-    }
+        .collect()
+}
+
+/// The paint of the intervals `painted` of `poses` (checked as
+/// [`deposit_with_progress`] checks them) on a grid of `cell_m` covering
+/// `extent`, aligned to the global lattice of `cell_m`: a band of a long
+/// job (`bands`) gets the values the whole job's grid has there. Paint
+/// landing off the grid is `lost_m3`.
+pub fn deposit_intervals(
+    poses: &[Pose],
+    painted: &[usize],
+    model: &SprayModel,
+    flow_eff_m3ps: f64,
+    cell_m: f64,
+    extent: Bounds,
+    progress: Progress,
+) -> Result<Film, PaintError> {
     // Two cells of margin keep every bilinear splat on the grid.
     let mut grid = Grid::covering(extent.grow(2.0 * cell_m), cell_m)?;
     let half = cell_m / 2.0;

@@ -192,6 +192,7 @@ mod tests {
             resolution_m: 0.005,
             glyphs: vec![],
             strokes: vec![],
+            peaks: vec![],
         }
     }
 

@@ -32,6 +32,16 @@ pub fn sample(
         kind_columns: robot.own_sample_columns(),
         ..Samples::default()
     };
+    let rows: usize = (0..plan.stations.len().min(timed.stations.len()))
+        .map(|si| {
+            let drive = match si {
+                0 => 0,
+                _ => truck_rows(robot, &plan.stations[si - 1], &plan.stations[si], period_s),
+            };
+            drive + timed.stations[si].len()
+        })
+        .sum();
+    samples.reserve_exact(rows);
     for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
         if si > 0 {
             // The truck drives to this station with the arm stowed: rows of
