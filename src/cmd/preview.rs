@@ -396,6 +396,7 @@ fn hydraulic_track(
         keep_trace: true,
         substeps: None,
         stop_over_m: None,
+        waviness: true,
     };
     let outcome = sim::simulate(job, &model, &sim_opts, &mut |done, total| {
         // The simulation is the first half of the bar, the paint the second.

@@ -116,6 +116,7 @@ fn simulate(job: &basr::job::Job, show: bool) -> anyhow::Result<SimVerdict> {
         keep_trace: false,
         substeps: None,
         stop_over_m: None,
+        waviness: true,
     };
     let bar = super::progress_bar(show, "simulating the arm");
     let outcome = sim::simulate(job, &model, &opts, &mut |done, total| {

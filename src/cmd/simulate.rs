@@ -232,6 +232,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         keep_trace: args.trace.is_some() || args.svg.is_some() || args.mcap.is_some(),
         substeps: args.substeps,
         stop_over_m: None,
+        waviness: true,
     };
     let show = super::shows_progress(global.quiet, args.json, std::io::stderr().is_terminal());
     let bar = if show {

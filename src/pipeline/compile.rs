@@ -595,11 +595,30 @@ struct Checked {
 }
 
 /// A station's last simulated rows and its run's checkpoints, and the
-/// plant set's last failed runs with the rows they ran.
+/// plant set's last failed runs with the rows they ran: of the rows, those
+/// that decide where the next run resumes ([`rows_that_matter`]).
 struct LastRun {
     samples: crate::job::Samples,
     checkpoints: crate::sim::Checkpoints,
     plants: Option<(crate::job::Samples, Vec<crate::sim::Checkpoints>)>,
+}
+
+/// The first rows of `samples` that decide where a run resumes from any of
+/// `runs` (`Checkpoints::rows_that_matter`): the next round compares its
+/// rows with these. A run cut short early (most stations' first round
+/// fails a second or two in) keeps a few rows, not its station's whole
+/// copy (a long job's kept copies were a fifth of compile's memory).
+fn rows_that_matter<'a>(
+    samples: &crate::job::Samples,
+    runs: impl IntoIterator<Item = &'a crate::sim::Checkpoints>,
+) -> crate::job::Samples {
+    let n = runs
+        .into_iter()
+        .map(crate::sim::Checkpoints::rows_that_matter)
+        .max()
+        .unwrap_or(0)
+        .min(samples.len());
+    samples.rows(0..n)
 }
 
 /// Station `rows` of `job` simulated alone (from the stow pose at rest, as
@@ -647,12 +666,12 @@ fn verify_station(
             on_spread = Some(set.errors);
             if !set.verdict.ok {
                 verdict = set.verdict;
-                plants = Some((alone.samples.clone(), set.kept));
+                plants = Some((rows_that_matter(&alone.samples, &set.kept), set.kept));
             }
         }
     }
     let run = kept.map(|checkpoints| LastRun {
-        samples: alone.samples,
+        samples: rows_that_matter(&alone.samples, [&checkpoints]),
         checkpoints,
         plants,
     });
@@ -696,11 +715,11 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
     };
     let plants = kept_set
         .filter(|cps| !cps.is_empty())
-        .map(|cps| (alone.samples.clone(), cps));
+        .map(|cps| (rows_that_matter(&alone.samples, &cps), cps));
     Checked {
         verdict,
         run: Some(LastRun {
-            samples: alone.samples,
+            samples: rows_that_matter(&alone.samples, [&t.kept]),
             checkpoints: t.kept,
             plants,
         }),

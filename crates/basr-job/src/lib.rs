@@ -388,6 +388,7 @@ pub struct Layout {
     pub lane_width_m: f64,
     /// `none`, `trapezoid` or `quadrilateral`.
     pub tilt_method: String,
+    #[serde(serialize_with = "stream::glyphs_unless_elided")]
     pub glyphs: Vec<PlacedGlyph>,
     /// Planning options given to compile other than its defaults, so that
     /// `basr fit` and `preview --compare` plan again with them; absent

@@ -4,22 +4,24 @@
 //! The canonical form is serde_json's pretty print of the job's JSON value
 //! (object keys in byte order) and a line end. Built as a value first, a
 //! long job's samples were most of compile's memory: the 200-letter job's
-//! 134 MB file took a value tree several times that and the bytes on top.
-//! Here the job is made a value without its samples (they serialise as
-//! `{}` meanwhile), printed, and written around the samples' place; the
-//! samples are printed column by column, in the order of their names, at
-//! their depth: the same bytes, a column at a time.
+//! 134 MB file took a value tree several times that and the bytes on top
+//! (its letters' outlines, `layout.glyphs`, another 17 MB of it). Here the
+//! job is made a value without its samples and glyphs (they serialise as
+//! `{}` and `[]` meanwhile), printed, and written around their places; the
+//! samples are printed column by column, in the order of their names, and
+//! the glyphs one by one, at their depth: the same bytes, a piece at a
+//! time.
 
 use std::cell::Cell;
 use std::io::{self, Write};
 
 use serde::{Serialize, Serializer};
 
-use crate::{Job, Samples};
+use crate::{Job, PlacedGlyph, Samples};
 
 thread_local! {
-    /// While set, a job's samples serialise as `{}` ([`write_canonical`]
-    /// prints them itself).
+    /// While set, a job's samples serialise as `{}` and its layout's glyphs
+    /// as `[]` ([`write_canonical`] prints them itself).
     static ELIDED: Cell<bool> = const { Cell::new(false) };
 }
 
@@ -46,6 +48,19 @@ pub(crate) fn samples_unless_elided<S: Serializer>(s: &Samples, ser: S) -> Resul
         ser.serialize_map(Some(0))?.end()
     } else {
         s.serialize(ser)
+    }
+}
+
+/// `Layout::glyphs`' serialiser: the glyphs, or `[]` while elided.
+pub(crate) fn glyphs_unless_elided<S: Serializer>(
+    g: &Vec<PlacedGlyph>,
+    ser: S,
+) -> Result<S::Ok, S::Error> {
+    if ELIDED.with(Cell::get) {
+        use serde::ser::SerializeSeq;
+        ser.serialize_seq(Some(0))?.end()
+    } else {
+        g.serialize(ser)
     }
 }
 
@@ -86,7 +101,19 @@ impl Write for Indented<'_> {
 
 /// Where the elided samples sit in the printed job: a top-level member
 /// (two spaces in; a line end cannot occur inside a JSON string).
-const PLACE: &[u8] = b"\n  \"samples\": {}";
+const SAMPLES: &[u8] = b"\n  \"samples\": {}";
+/// The layout's place, and its glyphs' within it (the layout's first
+/// member at four spaces in after it).
+const LAYOUT: &[u8] = b"\n  \"layout\": {";
+const GLYPHS: &[u8] = b"\n    \"glyphs\": []";
+
+/// Where `pat` first occurs in `b` at or after `from`.
+fn find(b: &[u8], pat: &[u8], from: usize) -> Option<usize> {
+    b.get(from..)?
+        .windows(pat.len())
+        .position(|w| w == pat)
+        .map(|i| i + from)
+}
 
 /// Writes `job`'s canonical bytes without its top-level members `skip`
 /// (as `canonical::to_canonical` of its value with them removed).
@@ -102,15 +129,54 @@ pub(crate) fn write_canonical(job: &Job, w: &mut dyn Write, skip: &[&str]) -> io
     }
     let head = serde_json::to_vec_pretty(&value).map_err(io::Error::other)?;
     drop(value);
-    let Some(at) = head.windows(PLACE.len()).position(|w| w == PLACE) else {
-        // `samples` skipped: the job without it, as printed
-        w.write_all(&head)?;
-        return w.write_all(b"\n");
-    };
-    w.write_all(&head[..at + PLACE.len() - 2])?;
-    write_samples(&job.samples, w)?;
-    w.write_all(&head[at + PLACE.len()..])?;
+    // The places, in the order of the bytes: (where the placeholder's
+    // value starts, where it ends, what goes there).
+    enum Piece {
+        Samples,
+        Glyphs,
+    }
+    let mut places: Vec<(usize, usize, Piece)> = Vec::new();
+    if let Some(at) = find(&head, SAMPLES, 0) {
+        places.push((at + SAMPLES.len() - 2, at + SAMPLES.len(), Piece::Samples));
+    }
+    if let Some(at) = find(&head, LAYOUT, 0).and_then(|l| find(&head, GLYPHS, l)) {
+        places.push((at + GLYPHS.len() - 2, at + GLYPHS.len(), Piece::Glyphs));
+    }
+    places.sort_by_key(|p| p.0);
+    let mut from = 0;
+    for (start, end, piece) in places {
+        w.write_all(&head[from..start])?;
+        match piece {
+            Piece::Samples => write_samples(&job.samples, w)?,
+            Piece::Glyphs => write_glyphs(&job.layout.glyphs, w)?,
+        }
+        from = end;
+    }
+    w.write_all(&head[from..])?;
     w.write_all(b"\n")
+}
+
+/// The layout's glyphs as the pretty printer prints them as the value of
+/// a member two deep: elements six spaces in, each its own value (keys in
+/// order), printed one at a time.
+fn write_glyphs(glyphs: &[PlacedGlyph], w: &mut dyn Write) -> io::Result<()> {
+    if glyphs.is_empty() {
+        return w.write_all(b"[]");
+    }
+    w.write_all(b"[")?;
+    for (i, g) in glyphs.iter().enumerate() {
+        w.write_all(if i == 0 { b"\n      " } else { b",\n      " })?;
+        let value = serde_json::to_value(g).map_err(io::Error::other)?;
+        serde_json::to_writer_pretty(
+            &mut Indented {
+                inner: &mut *w,
+                indent: b"      ",
+            },
+            &value,
+        )
+        .map_err(io::Error::other)?;
+    }
+    w.write_all(b"\n    ]")
 }
 
 /// The samples object as the pretty printer prints it as a top-level

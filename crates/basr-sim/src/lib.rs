@@ -69,6 +69,12 @@ pub struct Options {
     /// failed without simulating the rest. The report then covers the run
     /// up to that tick (`Report::cut_short_at_s`).
     pub stop_over_m: Option<f64>,
+    /// Log the painting error per tick for the report's waviness (its
+    /// high-pass filtered error, `Report::waviness`). A caller that judges
+    /// the error and the limits only (compile's verification) leaves it off:
+    /// a long job's kept runs held tens of MB of it. Off, the waviness
+    /// reads zero.
+    pub waviness: bool,
 }
 
 impl Default for Options {
@@ -79,6 +85,7 @@ impl Default for Options {
             keep_trace: false,
             substeps: None,
             stop_over_m: None,
+            waviness: true,
         }
     }
 }

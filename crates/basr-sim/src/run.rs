@@ -284,6 +284,7 @@ struct RunKey {
     tolerance_m: f64,
     substeps: u32,
     stop_over_m: Option<f64>,
+    waviness: bool,
     faults: Vec<Fault>,
     stations: Vec<basr_job::Station>,
     dt_job: f64,
@@ -298,6 +299,7 @@ impl RunKey {
             tolerance_m: setup.opts.tolerance_m,
             substeps: setup.substeps,
             stop_over_m: setup.opts.stop_over_m,
+            waviness: setup.opts.waviness,
             faults: setup.faults.to_vec(),
             stations: job.stations.clone(),
             dt_job: setup.dt_job,
@@ -317,6 +319,17 @@ struct Mark {
 }
 
 impl Checkpoints {
+    /// How many of the run's rows decide where a later run resumes from
+    /// these: a first changed row at or past this count leaves every mark
+    /// usable, as the count itself does. A caller that keeps a run's rows
+    /// to compare the next rows with keeps these and no more.
+    pub fn rows_that_matter(&self) -> usize {
+        let (period, dt_job) = (self.of.model.control.period_s, self.of.dt_job);
+        self.marks.last().map_or(0, |m| {
+            (m.tick as f64 * period / dt_job + 3.0).ceil().max(0.0) as usize
+        })
+    }
+
     /// The marks before which no tick read row `first_changed` or later
     /// (each tick reads the rows from one before to two after its own:
     /// `reference::curve`), for a run `of` the same models, options,
@@ -607,5 +620,25 @@ mod tests {
         );
         assert!(at < whole.report.duration_s);
         assert_eq!(whole.report.cut_short_at_s, None);
+    }
+
+    /// A run that does not log its waviness (compile's verification) is
+    /// the same run: its report differs only in the waviness, which reads
+    /// zero.
+    #[test]
+    fn a_run_without_the_waviness_log_is_the_same_run() {
+        let model = SimModel::basr();
+        let job = synthetic::letter_job();
+        let with = simulate(&job, &model, &Options::default(), &mut |_, _| {}).unwrap();
+        let opts = Options {
+            waviness: false,
+            ..Options::default()
+        };
+        let without = simulate(&job, &model, &opts, &mut |_, _| {}).unwrap();
+        assert!(with.report.waviness.max_m > 0.0);
+        assert_eq!(without.report.waviness.max_m, 0.0);
+        let mut same = without.report.clone();
+        same.waviness = with.report.waviness.clone();
+        assert_eq!(same, with.report);
     }
 }

@@ -429,11 +429,13 @@ impl Tally {
             if !self.was_painting {
                 self.seg += 1;
             }
-            self.wav.push((self.seg, tick.error[0], tick.error[1]));
-            let [_, v, a] = tick.refs.arm.nozzle;
-            let v2 = v[0] * v[0] + v[1] * v[1];
-            if v2 > 1e-6 {
-                self.turn_rates.push((v[0] * a[1] - v[1] * a[0]).abs() / v2);
+            if setup.opts.waviness {
+                self.wav.push((self.seg, tick.error[0], tick.error[1]));
+                let [_, v, a] = tick.refs.arm.nozzle;
+                let v2 = v[0] * v[0] + v[1] * v[1];
+                if v2 > 1e-6 {
+                    self.turn_rates.push((v[0] * a[1] - v[1] * a[0]).abs() / v2);
+                }
             }
         }
         self.was_painting = tick.painting;
