@@ -128,9 +128,6 @@ fn compile_for_tip(
     // kept_over[s]: a plant's failure on station s compile did not re-time
     // for (`slower` gives none), in words.
     let mut kept_over: Vec<Option<String>> = vec![None; n];
-    // earlier[s]: a plant of the set that failed station s before its
-    // description failed (`Checked::earlier`), re-timed for first.
-    let mut earlier: Vec<Option<verify::Verdict>> = vec![None; n];
     // A fitted stop's job keeps its other stops as the job being fitted
     // timed and verified them (`Site::kept`): not simulated again.
     for (si, k) in kept_stops(req, n, robot.basr().is_some()) {
@@ -228,7 +225,6 @@ fn compile_for_tip(
             on_spread[si] = c.on_spread;
             nominal_m[si] = c.nominal_m;
             kept_over[si] = None;
-            earlier[si] = c.earlier;
             verdicts[si] = Some((paces[si].clone(), c.verdict));
         }
         let failing: Vec<(usize, &verify::Verdict)> = verdicts
@@ -279,24 +275,16 @@ fn compile_for_tip(
                 if v.on_spread && !req.retime_on_spread {
                     return Ok((si, None));
                 }
-                let slower_for = |v: &verify::Verdict| {
-                    slower(
-                        &paces[si],
-                        v,
-                        &paths,
-                        &job.samples,
-                        rows[si].clone(),
-                        &req.tuning.retime,
-                    )
-                };
-                // A plant that failed before the description did: re-timing
-                // there changes every row after it, the description's
-                // failure included, so it goes first (when a re-timing
-                // helps it; else the description's).
-                if let Some(p) = earlier[si].as_ref().map(slower_for).transpose()?.flatten() {
-                    return Ok((si, Some(p)));
-                }
-                slower_for(v).map(|p| (si, p))
+                let range = rows[si].clone();
+                slower(
+                    &paces[si],
+                    v,
+                    &paths,
+                    &job.samples,
+                    range,
+                    &req.tuning.retime,
+                )
+                .map(|p| (si, p))
             })
             .collect::<Result<_, _>>()?;
         for (si, p) in slowed {
@@ -589,9 +577,6 @@ struct Checked {
     on_spread: Option<Vec<f64>>,
     /// The largest error on the robot description.
     nominal_m: f64,
-    /// When the description failed: a plant of the set that failed before
-    /// it did (runs beside the description only).
-    earlier: Option<verify::Verdict>,
 }
 
 /// A station's last simulated rows and its run's checkpoints, and the
@@ -680,7 +665,6 @@ fn verify_station(
         run,
         on_spread,
         nominal_m,
-        earlier: None,
     })
 }
 
@@ -689,15 +673,13 @@ fn verify_station(
 /// verdict as the description's run first and the set's after it passed;
 /// the set's runs are kept whenever they ran (a round the description
 /// failed included), so the next round resumes them where the rows first
-/// changed. A plant that failed before the description did is kept as
-/// the station's `earlier` failure.
+/// changed.
 fn checked_together(alone: Job, t: verify::Together) -> Checked {
     let mut verdict = t.verdict;
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
-    let mut earlier = None;
     let kept_set = match t.set {
-        Some(set) if verdict.ok && t.set_whole => {
+        Ok(set) if verdict.ok => {
             on_spread = Some(set.errors);
             if set.verdict.ok {
                 None
@@ -707,11 +689,8 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
             }
         }
         // the description failed: the set's runs wait for the next round
-        Some(set) => {
-            earlier = failed_before(&set.verdict, &verdict);
-            Some(set.kept)
-        }
-        None => None,
+        Ok(set) => Some(set.kept),
+        Err(kept) => Some(kept),
     };
     let plants = kept_set
         .filter(|cps| !cps.is_empty())
@@ -725,14 +704,7 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
         }),
         on_spread,
         nominal_m,
-        earlier,
     }
-}
-
-/// The set's verdict when a plant of it failed before the description's
-/// own failure (`description`, failed) did: the failure to re-time first.
-fn failed_before(set: &verify::Verdict, description: &verify::Verdict) -> Option<verify::Verdict> {
-    (!set.ok && !description.ok && set.worst_t_s < description.worst_t_s).then(|| set.clone())
 }
 
 /// Station `rows` of `job` alone, in a copy of `skeleton`, and the job
@@ -900,33 +872,5 @@ mod tests {
         // a station not run on the set (an electric kind) records none
         assert_eq!(verified_on(&[Some(a), None]), None);
         assert_eq!(verified_on(&[]), None);
-    }
-
-    /// A plant's failure is re-timed first only when it came before the
-    /// description's own (the fitted STOP of tests/site_fit.rs: a plant
-    /// strays at 19.7 s, the description at 84.3 s).
-    #[test]
-    fn a_plant_failing_first_is_retimed_first() {
-        let v = |ok: bool, t: f64, on_spread: bool| verify::Verdict {
-            max_error_m: if ok { 3e-3 } else { 5e-3 },
-            ok,
-            why: String::new(),
-            worst: (0, 6),
-            worst_t_s: t,
-            on_spread,
-        };
-        let description = v(false, 84.3, false);
-        assert_eq!(
-            failed_before(&v(false, 19.7, true), &description),
-            Some(v(false, 19.7, true))
-        );
-        // later than the description's, or passed: the description's first
-        assert_eq!(failed_before(&v(false, 85.0, true), &description), None);
-        assert_eq!(failed_before(&v(true, 19.7, true), &description), None);
-        // the description passed: the set's verdict is the station's anyway
-        assert_eq!(
-            failed_before(&v(false, 19.7, true), &v(true, 84.3, false)),
-            None
-        );
     }
 }

@@ -266,14 +266,11 @@ pub struct Together {
     /// The description's verdict and its run, for the next to resume from.
     pub verdict: Verdict,
     pub kept: sim::Checkpoints,
-    /// The set judged on its runs as [`on_spread`] in step judges them
-    /// (`None`: no plants), whose checkpoints the next round resumes from.
-    pub set: Option<OnSpread>,
-    /// The set's runs are whole: the description's run was not cut short
-    /// by its own failure. Otherwise they went as far as the group let
-    /// them (soon after the description's failure), and a plant that
-    /// failed before the description did is among them.
-    pub set_whole: bool,
+    /// The set's verdict as [`on_spread`] in step gives it, when the
+    /// description's run was not cut short by its own failure; else `Err`
+    /// of the plants' runs as far as the group let them go, for the next
+    /// round to resume from.
+    pub set: Result<OnSpread, Vec<sim::Checkpoints>>,
 }
 
 /// [`simulated_resuming`] and [`on_spread`] in step, run together for a
@@ -296,16 +293,14 @@ pub fn together(
     )
     .map_err(|e| CompileError::Verify(e.to_string()))?;
     let verdict = judged(&outcome.report, t0_s, &opts);
-    let (set_whole, runs) = match plants {
-        Ok(runs) => (true, runs),
-        Err(partial) => (false, partial),
+    let set = match plants {
+        Ok(runs) => match judged_set(runs, t0_s, &opts, &set) {
+            Some(s) => Ok(s),
+            None => Err(Vec::new()),
+        },
+        Err(kept) => Err(kept),
     };
-    Ok(Together {
-        verdict,
-        kept,
-        set: judged_set(runs, t0_s, &opts, &set),
-        set_whole,
-    })
+    Ok(Together { verdict, kept, set })
 }
 
 /// The verdict on a simulated job: its painting error within
