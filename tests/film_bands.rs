@@ -173,3 +173,50 @@ fn a_view_laid_again_shows_the_whole_rasters_cells() {
         "{checked} cells, {painted} painted"
     );
 }
+
+/// Paint far from every letter (a line whose letters the job does not
+/// list: a band of paint alone) is measured as the whole raster measures
+/// it: the same volume (no paint lost at a band's border), overspray,
+/// coverage and cv; only a letter's own overspray no longer counts paint
+/// in another band (docs/preview.md).
+#[test]
+fn a_band_of_paint_without_letters_keeps_the_jobs_figures() {
+    let mut job = two_lines();
+    job.layout.glyphs.retain(|g| g.line == 0);
+    let whole = measured(&job, usize::MAX);
+    let banded = measured(&job, 0);
+    assert!(banded.film.is_none());
+    let (a, b) = (&whole.metrics, &banded.metrics);
+    close(
+        a.volume_on_road_m3,
+        b.volume_on_road_m3,
+        "volume on the road",
+    );
+    close_opt(a.overspray, b.overspray, "overspray");
+    close_opt(a.coverage, b.coverage, "coverage");
+    close_opt(a.cv, b.cv, "cv");
+    close(a.letter_area_m2, b.letter_area_m2, "letter area");
+    assert_eq!(a.edge_points, b.edge_points);
+    // half the paint is AHEAD's, outside every listed letter
+    assert!(a.overspray.unwrap() > 0.4, "{:?}", a.overspray);
+    assert_eq!(a.glyphs.len(), b.glyphs.len());
+}
+
+/// A view of the whole of a long job (a `--compare` panel) is laid again
+/// at a cell that keeps it to a band's memory, and holds all the paint.
+#[test]
+fn a_whole_job_view_is_coarsened_to_a_bands_memory() {
+    let job = two_lines();
+    let banded = measured(&job, 0);
+    let view = banded.film_over(banded.raster_bounds).unwrap();
+    assert!(view.nx * view.ny <= basr::paint::bands::BAND_CELLS);
+    let on_view = view.data.iter().sum::<f64>() * view.cell_m * view.cell_m;
+    close_within(on_view, banded.metrics.volume_on_road_m3, 1e-9);
+}
+
+fn close_within(a: f64, b: f64, rel: f64) {
+    assert!(
+        (a - b).abs() <= rel * a.abs().max(b.abs()),
+        "{a:e} vs {b:e}"
+    );
+}

@@ -58,9 +58,9 @@ pub struct Args {
     #[arg(long)]
     pub json: bool,
 
-    /// Raster cell size in millimetres [default: 5, coarsened in 0.5 mm
-    /// steps when a long job's raster would not fit in memory; given, it is
-    /// kept or the job refused].
+    /// Raster cell size in millimetres [default: 5 (a long job's raster is
+    /// held a band at a time; coarsened in 0.5 mm steps only if one band
+    /// would not fit in memory); given, it is kept or the job refused].
     #[arg(allow_negative_numbers = true, long, value_name = "R")]
     pub resolution_mm: Option<f64>,
 
@@ -572,8 +572,8 @@ fn preview_simulated(
         .map(basr::paint::metrics::GlyphOutline::from_placed)
         .collect();
     Ok(preview::preview_tiled(
-        &poses,
-        &tiles,
+        poses,
+        Some(&tiles),
         &tile_strokes,
         &outlines,
         &job.paint,

@@ -541,8 +541,9 @@ macro_rules! samples_struct {
                     .unwrap_or(n)
             }
 
-            /// Room for `n` more rows in every column (a long job's columns
-            /// grown by doubling held up to twice their rows).
+            /// Room for `n` more rows in each of SPEC §3's columns (a long
+            /// job's columns grown by doubling held up to twice their
+            /// rows; the electric kinds' own columns grow as pushed).
             pub fn reserve_exact(&mut self, n: usize) {
                 $(self.$name.reserve_exact(n);)*
             }

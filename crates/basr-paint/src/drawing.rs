@@ -859,8 +859,8 @@ fn road_layers(
     let target = p.preview.metrics.target_film_m;
     // Only the cells the frame shows (a line's view of a long job; laid
     // again for that view when the job was measured band by band). Its
-    // paint was laid once already, so laying it again cannot fail; if it
-    // did, the view shows the road without film.
+    // paint was laid once already, so laying it again fails only where that
+    // did (`film_over`); then the view shows the road without film.
     let shown = Bounds {
         min: frame.road_min,
         max: frame.road_max,

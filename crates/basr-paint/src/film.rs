@@ -19,7 +19,8 @@ pub struct FilmOptions {
 
 impl FilmOptions {
     /// What `basr preview JOB` uses when given no option: the default
-    /// 5 mm cell, coarsened only to fit a long job (`raster::FIT_CELLS`),
+    /// 5 mm cell (coarsened only where the raster held at once would not
+    /// fit, `raster::FIT_CELLS`),
     /// the uniform fan, the default sheet depth and the default bounds.
     /// Compile measures with these, so its figures are preview's.
     pub fn preview_defaults() -> FilmOptions {

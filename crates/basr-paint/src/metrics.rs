@@ -505,11 +505,17 @@ fn edge_samples(
     target: f64,
 ) -> (Vec<f64>, usize) {
     let h = g.cell_m;
+    // Off the raster is road: it covers every letter (a band's, its
+    // letters), so an edge facing the raster's border is judged as one
+    // facing more road, whatever the raster's extent.
     let frac_at = |p: [f64; 2]| -> Option<f64> {
         let i = ((p[0] - g.x0) / h).floor();
         let j = ((p[1] - g.y0) / h).floor();
-        if i < 0.0 || j < 0.0 || i >= g.nx as f64 || j >= g.ny as f64 {
+        if !(i.is_finite() && j.is_finite()) {
             return None;
+        }
+        if i < 0.0 || j < 0.0 || i >= g.nx as f64 || j >= g.ny as f64 {
+            return Some(0.0);
         }
         Some(frac[j as usize * g.nx + i as usize])
     };

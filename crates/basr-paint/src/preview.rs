@@ -21,10 +21,12 @@ pub struct Options {
     pub resolution_m: f64,
     pub profile: Profile,
     pub depth: Depth,
-    /// Coarsen the raster until it holds at most this many cells (the
-    /// command's default when no `--resolution-mm` is given, so a long job
-    /// previews); `None` keeps `resolution_m` and refuses a raster over
-    /// [`raster::MAX_CELLS`].
+    /// Coarsen the raster held at once (the whole raster, or a long job's
+    /// largest band) until it holds at most this many cells (the
+    /// command's default when no `--resolution-mm` is given); `None` keeps
+    /// `resolution_m` and refuses such a raster over [`raster::MAX_CELLS`].
+    /// A picture's view laid again is coarsened to its own budget
+    /// ([`Preview::film_over`]).
     pub fit_cells: Option<usize>,
     /// The largest raster laid whole; a larger one is laid and measured
     /// band by band along the road (`bands`; the same figures to rounding,
@@ -151,8 +153,8 @@ pub fn preview_job_with_progress(
         .map(GlyphOutline::from_placed)
         .collect();
     preview_tiled(
-        &poses,
-        &poses,
+        poses,
+        None,
         &job.samples.stroke,
         &outlines,
         &job.paint,
@@ -171,39 +173,73 @@ pub fn preview_poses(
     paint: &basr_job::Paint,
     opts: &Options,
 ) -> Result<Preview, PaintError> {
-    preview_tiled(poses, poses, stroke_of, outlines, paint, opts, &|_, _| {})
+    preview_tiled(
+        poses.to_vec(),
+        None,
+        stroke_of,
+        outlines,
+        paint,
+        opts,
+        &|_, _| {},
+    )
 }
 
-/// The film of `poses`, with U measured on the tiles between consecutive
-/// `tiles` (`stroke_of[i]` the stroke of `tiles[i]`). The simulator's trace
+/// The film of `poses` (kept in the preview, for its picture), with U
+/// measured on the tiles between consecutive `tiles` (the poses when
+/// `None`; `stroke_of[i]` the stroke of tile i). The simulator's trace
 /// deposits from every 5 ms tick, but its tiles are taken at the job's own
 /// setpoint times: a tile 0.8 mm long is twisted end to end by the servos'
 /// jitter, and its U says nothing about the paint's distribution.
 pub fn preview_tiled(
-    poses: &[Pose],
-    tiles: &[Pose],
+    poses: Vec<Pose>,
+    tiles: Option<&[Pose]>,
     stroke_of: &[i64],
     outlines: &[GlyphOutline],
     paint: &basr_job::Paint,
     opts: &Options,
     progress: Progress,
 ) -> Result<Preview, PaintError> {
+    let tiles = tiles.unwrap_or(&poses);
     let model = SprayModel::new(paint.fan_angle_rad, opts.profile.clone(), opts.depth)?;
     let letters = outlines
         .iter()
         .fold(Bounds::EMPTY, |b, g| b.union(g.bounds()));
-    let painted = raster::painted_bounds(poses, &model)?;
+    let painted = raster::painted_bounds(&poses, &model)?;
     let extent = match (painted.is_empty(), letters.is_empty()) {
         (true, _) => letters,
         (_, true) => painted,
         _ => painted.union(letters),
     };
-    let cell_m = match opts.fit_cells {
-        Some(budget) => raster::fitted_cell(extent, opts.resolution_m, budget),
-        None => opts.resolution_m,
-    };
     let flow_eff_m3ps = paint.flow_m3ps * paint.transfer_efficiency;
-    let preview = |film: Option<Film>, raster_bounds: Bounds, metrics: Metrics| Preview {
+    // The cell: the one asked for, coarsened (`fit_cells`) only where the
+    // raster held at once would pass the budget: the whole raster, or a
+    // long job's largest band (its raster is held a band at a time).
+    let wanted = opts.resolution_m;
+    let fitted = |b: Bounds| match opts.fit_cells {
+        Some(budget) => raster::fitted_cell(b, wanted, budget),
+        None => wanted,
+    };
+    let (cell_m, banded) = if extent.is_empty() || bands::whole(extent, wanted, opts.band_cells) {
+        (fitted(extent), None)
+    } else {
+        raster::check_poses(&poses, flow_eff_m3ps)?;
+        let intervals = raster::painted_intervals(&poses);
+        let reach = raster::depth_reach(&model);
+        let found = bands::bands(&poses, &intervals, &model, reach, outlines, wanted)?;
+        let area = |b: &Bounds| b.width() * b.height();
+        let largest = found
+            .iter()
+            .map(|b| b.extent)
+            .max_by(|a, b| area(a).total_cmp(&area(b)));
+        let cell = fitted(largest.unwrap_or(extent));
+        let found = if cell == wanted {
+            found
+        } else {
+            bands::bands(&poses, &intervals, &model, reach, outlines, cell)?
+        };
+        (cell, Some((intervals, found)))
+    };
+    let preview = |film: Option<Film>, raster_bounds: Bounds, metrics: Metrics, poses| Preview {
         film,
         raster_bounds,
         cell_m,
@@ -211,27 +247,29 @@ pub fn preview_tiled(
         flow_eff_m3ps,
         metrics,
         outlines: outlines.to_vec(),
-        poses: poses.to_vec(),
+        poses,
         profile: opts.profile.name(),
     };
-    if extent.is_empty() || bands::whole(extent, cell_m, opts.band_cells) {
-        let film =
-            raster::deposit_with_progress(poses, &model, flow_eff_m3ps, cell_m, letters, progress)?;
+    let Some((intervals, bands)) = banded else {
+        let film = raster::deposit_with_progress(
+            &poses,
+            &model,
+            flow_eff_m3ps,
+            cell_m,
+            letters,
+            progress,
+        )?;
         let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
         let bounds = film.grid.bounds();
-        return Ok(preview(Some(film), bounds, metrics));
-    }
+        return Ok(preview(Some(film), bounds, metrics, poses));
+    };
     // A long job: band by band, each band's raster dropped once measured.
-    raster::check_poses(poses, flow_eff_m3ps)?;
-    let intervals = raster::painted_intervals(poses);
-    let reach = raster::depth_reach(&model);
-    let bands = bands::bands(poses, &intervals, &model, reach, outlines, cell_m)?;
     let strokes = metrics::stroke_u(&model, tiles, stroke_of, outlines)?;
     let mut parts = Vec::with_capacity(bands.len());
     let (mut done, mut gun_on_s, mut raster_bounds) = (0usize, 0.0, Bounds::EMPTY);
     for band in &bands {
         let film = raster::deposit_intervals(
-            poses,
+            &poses,
             &band.intervals,
             &model,
             flow_eff_m3ps,
@@ -261,7 +299,7 @@ pub fn preview_tiled(
         },
         strokes,
     );
-    Ok(preview(None, raster_bounds, metrics))
+    Ok(preview(None, raster_bounds, metrics, poses))
 }
 
 impl Preview {
@@ -272,6 +310,10 @@ impl Preview {
         if let Some(film) = &self.film {
             return Ok(std::borrow::Cow::Borrowed(&film.grid));
         }
+        // A view of many bands (the whole scene of a long job, `--compare`'s
+        // panels) is a picture, drawn far coarser than the raster's cell: it
+        // is laid at a cell that keeps it to a band's memory.
+        let cell_m = raster::fitted_cell(b, self.cell_m, bands::BAND_CELLS);
         let reach = raster::depth_reach(&self.model);
         let mut hits = Vec::new();
         for i in raster::painted_intervals(&self.poses) {
@@ -295,7 +337,7 @@ impl Preview {
             &hits,
             &self.model,
             self.flow_eff_m3ps,
-            self.cell_m,
+            cell_m,
             b,
             &|_, _| {},
         )?;

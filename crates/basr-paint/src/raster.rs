@@ -231,7 +231,8 @@ impl Canvas {
     }
 }
 
-/// `x.floor()`, bit for bit (signed zeros, infinities and NaN included),
+/// `x.floor()`, bit for bit (signed zeros and infinities included; NaN
+/// stays NaN),
 /// without the call into libm that `f64::floor` makes on x86-64 without
 /// SSE4.1 (the default target): splat's two floors per deposit were 5 % of
 /// compile STOP's time.
@@ -280,10 +281,13 @@ pub fn painted_bounds(poses: &[Pose], model: &SprayModel) -> Result<Bounds, Pain
     Ok(b.grow(depth_reach(model)))
 }
 
-/// Cells a preview raster is coarsened to fit when the user did not ask for
+/// Cells the raster held at once (a job's whole raster, or one band of a
+/// long job's: `bands`) is coarsened to fit when the user did not ask for
 /// a cell size. // assumed: 40 M cells (320 MB of f64 plus the metrics'
-/// masks) fits a 200-letter job at about 6 mm on a small machine shared
-/// with other work; MAX_CELLS stays the hard limit for an explicit size.
+/// masks) on a small machine shared with other work; a band of letters is
+/// about half a million at 5 mm, so only a marking painted without a break
+/// over about 1000 m² meets it. MAX_CELLS stays the hard limit for an
+/// explicit size.
 pub const FIT_CELLS: usize = 40_000_000;
 
 /// The finest cell, at least `wanted_m` and in steps of 0.5 mm, whose grid

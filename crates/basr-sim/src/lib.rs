@@ -72,8 +72,8 @@ pub struct Options {
     /// Log the painting error per tick for the report's waviness (its
     /// high-pass filtered error, `Report::waviness`). A caller that judges
     /// the error and the limits only (compile's verification) leaves it off:
-    /// a long job's kept runs held tens of MB of it. Off, the waviness
-    /// reads zero.
+    /// a long job's kept runs held tens of MB of it. Off, the waviness's
+    /// figures read zero.
     pub waviness: bool,
 }
 

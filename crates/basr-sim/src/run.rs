@@ -563,6 +563,37 @@ mod tests {
         assert_eq!(resumed3.report, whole3.report);
     }
 
+    /// A run's rows kept only as far as `rows_that_matter` find the same
+    /// resume as the whole rows: for a change before that count and one
+    /// past it, on a run cut short early (as compile's failed runs are).
+    #[test]
+    fn the_rows_that_matter_resume_as_all_the_rows_do() {
+        let model = SimModel::basr();
+        let (first, _) = bumped(0.0, 0.0);
+        let n = first.samples.len();
+        // Cut short a third of the way in: the bound is what the run
+        // reaches there.
+        let whole = simulate(&first, &model, &Options::default(), &mut |_, _| {}).unwrap();
+        assert!(whole.report.max_error_m > 0.0);
+        let opts = Options {
+            stop_over_m: Some(whole.report.max_error_m * 0.999),
+            ..Options::default()
+        };
+        let run = || simulate_resumable(&first, &model, &opts, None).unwrap().1;
+        let keep = run().rows_that_matter();
+        assert!(keep > 0 && keep < n, "{keep} of {n} rows");
+        let kept_rows = first.samples.rows(0..keep);
+        for at in [0.1, 0.95] {
+            let (second, _) = bumped(at, 0.004);
+            let all = second.samples.first_difference(&first.samples);
+            let short = second.samples.first_difference(&kept_rows);
+            assert_eq!(short, all.min(keep), "change at {at}");
+            let (a, _) = simulate_resumable(&second, &model, &opts, Some((run(), all))).unwrap();
+            let (b, _) = simulate_resumable(&second, &model, &opts, Some((run(), short))).unwrap();
+            assert_eq!(a.report, b.report, "change at {at}");
+        }
+    }
+
     #[test]
     fn checkpoints_of_another_run_are_not_used() {
         let model = SimModel::basr();
