@@ -21,6 +21,7 @@
 //!   the swept quadrilateral into two tiles; U = A/(A_i + A_j) of each tile
 //!   (0.5 ideal; above 0.5 the same paint covers more road, so a lighter film).
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::boxes::BoxIndex;
@@ -208,7 +209,7 @@ pub fn measure_part(
     let n = g.nx * g.ny;
     let area = g.cell_m * g.cell_m;
     let masks: Vec<Vec<MaskCell>> = ids
-        .iter()
+        .par_iter()
         .map(|&gi| coverage_mask(g, &glyphs[gi]))
         .collect();
     let mut frac = vec![0.0f64; n];
@@ -260,7 +261,7 @@ pub fn measure_part(
         }
     }
     let rows = ids
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(bi, &gi)| {
             let gl = &glyphs[gi];
@@ -524,45 +525,60 @@ fn edge_samples(
     let reach = (6.0 * h).max(0.04);
     let step = h / 4.0;
     let steps = (2.0 * reach / step).round() as usize;
-    let mut widths = Vec::new();
-    let mut considered = 0usize;
-    for gl in glyphs {
-        for poly in &gl.strokes {
-            let ccw = signed_area(poly) > 0.0;
-            let n = poly.len();
-            for k in 0..n {
-                let (a, b) = (poly[k], poly[(k + 1) % n]);
-                let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-                if len <= 0.0 {
-                    continue;
+    // Each glyph's edges on their own (in parallel), in the glyphs' order.
+    let per_glyph: Vec<(Vec<f64>, usize)> = glyphs
+        .par_iter()
+        .map(|gl| {
+            let mut widths = Vec::new();
+            let mut considered = 0usize;
+            edges_of(gl, h, |p, out| {
+                let at = |s: f64| [p[0] + s * out[0], p[1] + s * out[1]];
+                // A true edge: road just outside, letter just inside.
+                let (fo, fi) = (frac_at(at(3.0 * h)), frac_at(at(-3.0 * h)));
+                if !(fo == Some(0.0) && fi.is_some_and(|f| f >= INSIDE)) {
+                    return;
                 }
-                let d = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
-                let out = if ccw { [d[1], -d[0]] } else { [-d[1], d[0]] };
-                let count = (len / h).floor() as usize;
-                for m in 0..count {
-                    let t = (m as f64 + 0.5) * len / count as f64;
-                    let p = [a[0] + t * d[0], a[1] + t * d[1]];
-                    let at = |s: f64| [p[0] + s * out[0], p[1] + s * out[1]];
-                    // A true edge: road just outside, letter just inside.
-                    let (fo, fi) = (frac_at(at(3.0 * h)), frac_at(at(-3.0 * h)));
-                    if !(fo == Some(0.0) && fi.is_some_and(|f| f >= INSIDE)) {
-                        continue;
-                    }
-                    considered += 1;
-                    let profile: Vec<(f64, f64)> = (0..=steps)
-                        .map(|s| {
-                            let off = -reach + s as f64 * step;
-                            (off, g.sample(at(off)))
-                        })
-                        .collect();
-                    if let Some(w) = fall_width(&profile, target) {
-                        widths.push(w);
-                    }
+                considered += 1;
+                let profile: Vec<(f64, f64)> = (0..=steps)
+                    .map(|s| {
+                        let off = -reach + s as f64 * step;
+                        (off, g.sample(at(off)))
+                    })
+                    .collect();
+                if let Some(w) = fall_width(&profile, target) {
+                    widths.push(w);
                 }
+            });
+            (widths, considered)
+        })
+        .collect();
+    let considered = per_glyph.iter().map(|p| p.1).sum();
+    let widths = per_glyph.into_iter().flat_map(|p| p.0).collect();
+    (widths, considered)
+}
+
+/// Calls `visit` at points every cell `h` along each edge of `gl`'s
+/// outlines, with the edge's outward normal there.
+fn edges_of(gl: &GlyphOutline, h: f64, mut visit: impl FnMut([f64; 2], [f64; 2])) {
+    for poly in &gl.strokes {
+        let ccw = signed_area(poly) > 0.0;
+        let n = poly.len();
+        for k in 0..n {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            if len <= 0.0 {
+                continue;
+            }
+            let d = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+            let out = if ccw { [d[1], -d[0]] } else { [-d[1], d[0]] };
+            let count = (len / h).floor() as usize;
+            for m in 0..count {
+                let t = (m as f64 + 0.5) * len / count as f64;
+                let p = [a[0] + t * d[0], a[1] + t * d[1]];
+                visit(p, out);
             }
         }
     }
-    (widths, considered)
 }
 
 /// Median and 90th percentile of edge `widths`, and how many there are

@@ -1,6 +1,7 @@
 //! A job's preview: its samples as poses, the film they lay, the metrics
 //! against the letters' outlines; `drawing` makes the SVG that shows it all.
 
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::bands;
@@ -265,28 +266,35 @@ pub fn preview_tiled(
     };
     // A long job: band by band, each band's raster dropped once measured.
     let strokes = metrics::stroke_u(&model, tiles, stroke_of, outlines)?;
-    let mut parts = Vec::with_capacity(bands.len());
-    let (mut done, mut gun_on_s, mut raster_bounds) = (0usize, 0.0, Bounds::EMPTY);
-    for band in &bands {
-        let film = raster::deposit_intervals(
-            &poses,
-            &band.intervals,
-            &model,
-            flow_eff_m3ps,
-            cell_m,
-            band.extent,
-            &|n, _| progress(done + n, intervals.len()),
-        )?;
-        done += band.intervals.len();
-        gun_on_s += film.gun_on_s;
-        raster_bounds = raster_bounds.union(film.grid.bounds());
-        parts.push(metrics::measure_part(
-            &film.grid,
-            outlines,
-            &band.glyphs,
-            paint.film_m,
-            &strokes,
-        ));
+    // The bands in parallel (a band's measuring is one thread's work, its
+    // deposit every thread's): each band's figures are its own whatever
+    // the order they are made in, and they are added in the road's order.
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let per_band: Vec<(metrics::Part, f64, Bounds)> = bands
+        .par_iter()
+        .map(|band| {
+            let film = raster::deposit_intervals(
+                &poses,
+                &band.intervals,
+                &model,
+                flow_eff_m3ps,
+                cell_m,
+                band.extent,
+                &|_, _| {},
+            )?;
+            let part =
+                metrics::measure_part(&film.grid, outlines, &band.glyphs, paint.film_m, &strokes);
+            let n = done.fetch_add(band.intervals.len(), std::sync::atomic::Ordering::Relaxed);
+            progress(n + band.intervals.len(), intervals.len());
+            Ok((part, film.gun_on_s, film.grid.bounds()))
+        })
+        .collect::<Result<_, PaintError>>()?;
+    let (mut parts, mut gun_on_s, mut raster_bounds) =
+        (Vec::with_capacity(bands.len()), 0.0, Bounds::EMPTY);
+    for (part, gun_on, bounds) in per_band {
+        parts.push(part);
+        gun_on_s += gun_on;
+        raster_bounds = raster_bounds.union(bounds);
     }
     let metrics = metrics::finish(
         parts,
