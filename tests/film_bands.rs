@@ -42,7 +42,8 @@ fn close_opt(a: Option<f64>, b: Option<f64>, what: &str) {
     }
 }
 
-fn same_metrics(a: &Metrics, b: &Metrics) {
+/// The whole job's figures (not its glyphs').
+fn same_job_figures(a: &Metrics, b: &Metrics) {
     close_opt(a.cv, b.cv, "cv");
     close_opt(a.coverage, b.coverage, "coverage");
     close_opt(a.overspray, b.overspray, "overspray");
@@ -53,11 +54,15 @@ fn same_metrics(a: &Metrics, b: &Metrics) {
         b.volume_on_road_m3,
         "volume on the road",
     );
+    assert_eq!(a.edge_points, b.edge_points);
+}
+
+fn same_metrics(a: &Metrics, b: &Metrics) {
+    same_job_figures(a, b);
     close(a.volume_laid_m3, b.volume_laid_m3, "volume laid");
     close(a.gun_on_s, b.gun_on_s, "gun-on time");
     close_opt(a.edge_width_m, b.edge_width_m, "edge width");
     close_opt(a.edge_width_p90_m, b.edge_width_p90_m, "edge width p90");
-    assert_eq!(a.edge_points, b.edge_points);
     assert_eq!((a.u_min, a.u_max), (b.u_min, b.u_max));
     assert_eq!(a.resolution_m, b.resolution_m);
     assert_eq!(a.strokes, b.strokes);
@@ -187,16 +192,7 @@ fn a_band_of_paint_without_letters_keeps_the_jobs_figures() {
     let banded = measured(&job, 0);
     assert!(banded.film.is_none());
     let (a, b) = (&whole.metrics, &banded.metrics);
-    close(
-        a.volume_on_road_m3,
-        b.volume_on_road_m3,
-        "volume on the road",
-    );
-    close_opt(a.overspray, b.overspray, "overspray");
-    close_opt(a.coverage, b.coverage, "coverage");
-    close_opt(a.cv, b.cv, "cv");
-    close(a.letter_area_m2, b.letter_area_m2, "letter area");
-    assert_eq!(a.edge_points, b.edge_points);
+    same_job_figures(a, b);
     // half the paint is AHEAD's, outside every listed letter
     assert!(a.overspray.unwrap() > 0.4, "{:?}", a.overspray);
     assert_eq!(a.glyphs.len(), b.glyphs.len());
