@@ -15,7 +15,7 @@
 //! are the whole raster's there (their sums taken in another order).
 
 use super::mask::GlyphOutline;
-use super::raster::Bounds;
+use super::raster::{self, Bounds};
 use super::spray::{Pose, SprayModel};
 use super::PaintError;
 
@@ -70,7 +70,7 @@ pub fn bands(
     }
     let mut items: Vec<(Bounds, Item)> = Vec::with_capacity(painted.len() + outlines.len());
     for &i in painted {
-        let b = footprint_box(model, &poses[i])?.union(footprint_box(model, &poses[i + 1])?);
+        let b = raster::interval_bounds(poses, i, model)?;
         items.push((b.grow(reach), Item::Interval(i)));
     }
     for (g, outline) in outlines.iter().enumerate() {
@@ -109,13 +109,4 @@ pub fn bands(
         band.glyphs.sort_unstable();
     }
     Ok(out)
-}
-
-/// The road a pose's footprint spans.
-fn footprint_box(model: &SprayModel, pose: &Pose) -> Result<Bounds, PaintError> {
-    let fp = model.footprint(pose)?;
-    let mut b = Bounds::EMPTY;
-    b.include(fp.minus());
-    b.include(fp.plus());
-    Ok(b)
 }

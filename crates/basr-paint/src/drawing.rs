@@ -925,13 +925,12 @@ fn road_layers(
     // line drew every line's outlines, clipped: 40 views of a 200-letter
     // job made a 137 MB picture).
     let mut d = String::new();
-    let meets = |b: Bounds| {
-        b.min[0] <= frame.road_max[0]
-            && frame.road_min[0] <= b.max[0]
-            && b.min[1] <= frame.road_max[1]
-            && frame.road_min[1] <= b.max[1]
-    };
-    for gl in p.preview.outlines.iter().filter(|gl| meets(gl.bounds())) {
+    for gl in p
+        .preview
+        .outlines
+        .iter()
+        .filter(|gl| gl.bounds().meets(&shown))
+    {
         for poly in &gl.strokes {
             d.push_str(&frame.path_data(poly, true));
         }

@@ -330,6 +330,8 @@ pub fn finish(parts: Vec<Part>, whole: Whole<'_>, strokes: Vec<StrokeU>) -> Metr
     let interior = [0, 1, 2].map(|i| add(&|p| p.interior[i]));
     let (mean, cv) = mean_cv_of(interior);
     let covered = [add(&|p| p.covered[0]), add(&|p| p.covered[1])];
+    // (Σ·h)·h and Σ·(h·h), as `Grid::volume` and the single raster's
+    // outside sum took them: one part gives its figures bit for bit.
     let volume = add(&|p| p.film_sum) * h * h;
     let outside = add(&|p| p.outside_sum) * area;
     let overspray = (volume > 0.0).then(|| outside / volume);

@@ -61,6 +61,9 @@ pub struct Preview {
     /// The fan and the flow reaching the road (m³/s) it was laid with.
     pub model: SprayModel,
     pub flow_eff_m3ps: f64,
+    /// A long job's bands (none when the film was laid whole), for
+    /// [`Preview::film_over`] to lay again the ones a view meets.
+    pub bands: Vec<bands::Band>,
     pub metrics: Metrics,
     pub outlines: Vec<GlyphOutline>,
     pub poses: Vec<Pose>,
@@ -240,12 +243,13 @@ pub fn preview_tiled(
         };
         (cell, Some((intervals, found)))
     };
-    let preview = |film: Option<Film>, raster_bounds: Bounds, metrics: Metrics, poses| Preview {
+    let preview = |film: Option<Film>, raster_bounds, metrics, poses, bands| Preview {
         film,
         raster_bounds,
         cell_m,
         model: model.clone(),
         flow_eff_m3ps,
+        bands,
         metrics,
         outlines: outlines.to_vec(),
         poses,
@@ -262,7 +266,7 @@ pub fn preview_tiled(
         )?;
         let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
         let bounds = film.grid.bounds();
-        return Ok(preview(Some(film), bounds, metrics, poses));
+        return Ok(preview(Some(film), bounds, metrics, poses, Vec::new()));
     };
     // A long job: band by band, each band's raster dropped once measured.
     let strokes = metrics::stroke_u(&model, tiles, stroke_of, outlines)?;
@@ -307,7 +311,7 @@ pub fn preview_tiled(
         },
         strokes,
     );
-    Ok(preview(None, raster_bounds, metrics, poses))
+    Ok(preview(None, raster_bounds, metrics, poses, bands))
 }
 
 impl Preview {
@@ -322,24 +326,14 @@ impl Preview {
         // panels) is a picture, drawn far coarser than the raster's cell: it
         // is laid at a cell that keeps it to a band's memory.
         let cell_m = raster::fitted_cell(b, self.cell_m, bands::BAND_CELLS);
-        let reach = raster::depth_reach(&self.model);
-        let mut hits = Vec::new();
-        for i in raster::painted_intervals(&self.poses) {
-            let fa = self.model.footprint(&self.poses[i])?;
-            let fb = self.model.footprint(&self.poses[i + 1])?;
-            let mut fb_box = Bounds::EMPTY;
-            for p in [fa.minus(), fa.plus(), fb.minus(), fb.plus()] {
-                fb_box.include(p);
-            }
-            let f = fb_box.grow(reach);
-            let meets = f.min[0] <= b.max[0]
-                && b.min[0] <= f.max[0]
-                && f.min[1] <= b.max[1]
-                && b.min[1] <= f.max[1];
-            if meets {
-                hits.push(i);
-            }
-        }
+        // Every interval whose paint can land in `b` is in a band whose
+        // extent meets it (a band's extent holds its paint).
+        let hits: Vec<usize> = self
+            .bands
+            .iter()
+            .filter(|band| band.extent.meets(&b))
+            .flat_map(|band| band.intervals.iter().copied())
+            .collect();
         let film = raster::deposit_intervals(
             &self.poses,
             &hits,

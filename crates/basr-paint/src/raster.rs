@@ -54,6 +54,14 @@ impl Bounds {
         self
     }
 
+    /// Whether the two rectangles share a point (edges included).
+    pub fn meets(&self, o: &Bounds) -> bool {
+        self.min[0] <= o.max[0]
+            && o.min[0] <= self.max[0]
+            && self.min[1] <= o.max[1]
+            && o.min[1] <= self.max[1]
+    }
+
     pub fn grow(self, by: f64) -> Bounds {
         Bounds {
             min: [self.min[0] - by, self.min[1] - by],
@@ -264,6 +272,17 @@ pub(crate) fn depth_reach(model: &SprayModel) -> f64 {
     model.depth.reach_m()
 }
 
+/// The road the fan sweeps between poses `i` and `i + 1` of `poses` (both
+/// footprints' bounds; the depth's reach not added).
+pub(crate) fn interval_bounds(
+    poses: &[Pose],
+    i: usize,
+    model: &SprayModel,
+) -> Result<Bounds, PaintError> {
+    Ok(footprint_bounds(&model.footprint(&poses[i])?)
+        .union(footprint_bounds(&model.footprint(&poses[i + 1])?)))
+}
+
 /// Road-frame extent of everything `poses` paint (empty when the gun is
 /// never on).
 pub fn painted_bounds(poses: &[Pose], model: &SprayModel) -> Result<Bounds, PaintError> {
@@ -462,9 +481,7 @@ fn deposit_chunk(
     let reach = depth_reach(model);
     let mut b = Bounds::EMPTY;
     for &i in chunk {
-        b = b
-            .union(footprint_bounds(&model.footprint(&poses[i])?))
-            .union(footprint_bounds(&model.footprint(&poses[i + 1])?));
+        b = b.union(interval_bounds(poses, i, model)?);
     }
     let b = b.grow(reach + 2.0 * h);
     // Window in global cell indices, clipped to the grid.

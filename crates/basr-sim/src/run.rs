@@ -324,9 +324,8 @@ impl Checkpoints {
     /// usable, as the count itself does. A caller that keeps a run's rows
     /// to compare the next rows with keeps these and no more.
     pub fn rows_that_matter(&self) -> usize {
-        let (period, dt_job) = (self.of.model.control.period_s, self.of.dt_job);
         self.marks.last().map_or(0, |m| {
-            (m.tick as f64 * period / dt_job + 3.0).ceil().max(0.0) as usize
+            rows_read_before(m, &self.of).ceil().max(0.0) as usize
         })
     }
 
@@ -339,11 +338,16 @@ impl Checkpoints {
         if self.of != *of {
             return (vec![], Logs::default());
         }
-        let (period, dt_job) = (of.model.control.period_s, of.dt_job);
         self.marks
-            .retain(|m| m.tick as f64 * period / dt_job + 3.0 <= first_changed as f64);
+            .retain(|m| rows_read_before(m, of) <= first_changed as f64);
         (self.marks, self.logs)
     }
+}
+
+/// The row no tick before mark `m` of a run `of` read, nor any after it
+/// (each tick reads the rows from one before to two after its own).
+fn rows_read_before(m: &Mark, of: &RunKey) -> f64 {
+    m.tick as f64 * of.model.control.period_s / of.dt_job + 3.0
 }
 
 /// The run: prepare, then tick (measure, control, monitor, tally, advance)
@@ -571,8 +575,7 @@ mod tests {
         let model = SimModel::basr();
         let (first, _) = bumped(0.0, 0.0);
         let n = first.samples.len();
-        // Cut short a third of the way in: the bound is what the run
-        // reaches there.
+        // Cut short where its error first nears its whole run's largest.
         let whole = simulate(&first, &model, &Options::default(), &mut |_, _| {}).unwrap();
         assert!(whole.report.max_error_m > 0.0);
         let opts = Options {
