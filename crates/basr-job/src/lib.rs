@@ -526,14 +526,19 @@ macro_rules! samples_struct {
             }
 
             /// The first row at which `self` and `other` differ in any
-            /// column, bit for bit (the shorter's length when one is the
-            /// start of the other): the rows a re-timed station shares with
-            /// its last timing.
+            /// column but the clock `t_s`, bit for bit (the shorter's
+            /// length when one is the start of the other): the rows a
+            /// re-timed station shares with its last timing. The clock is
+            /// left out because a run reads row i at i × the control
+            /// period, never `t_s`, and a station's clock moves whenever a
+            /// station before it is re-timed: compared, every later
+            /// station's run started again from its first row.
             pub fn first_difference(&self, other: &Samples) -> usize {
                 let n = self.len().min(other.len());
                 (0..n)
                     .find(|&i| {
-                        false $(|| !SameBits::same(self.$name[i], other.$name[i]))*
+                        false $(|| (stringify!($name) != "t_s"
+                            && !SameBits::same(self.$name[i], other.$name[i])))*
                             || self.kind_joints.get(i).map(|q| q.map(f64::to_bits))
                                 != other.kind_joints.get(i).map(|q| q.map(f64::to_bits))
                             || self.kind_encoders.get(i) != other.kind_encoders.get(i)

@@ -567,6 +567,34 @@ mod tests {
         assert_eq!(resumed3.report, whole3.report);
     }
 
+    /// A run reads row i at i × the control period, never the row's clock:
+    /// the same rows with their clock moved (as a station's are when a
+    /// station before it is re-timed) compare equal to the end
+    /// (`Samples::first_difference`), and a run resumed from the first
+    /// run's last checkpoint reports what a whole run of them does.
+    #[test]
+    fn a_station_whose_clock_moved_resumes_from_its_last_checkpoint() {
+        let model = SimModel::basr();
+        let opts = Options::default();
+        let (first, _) = bumped(0.3, 0.004);
+        let mut moved = first.clone();
+        for t in &mut moved.samples.t_s {
+            *t += 137.25;
+        }
+        let n = first.samples.len();
+        assert_eq!(moved.samples.first_difference(&first.samples), n);
+        // a change in any other column is still found
+        let mut other = moved.clone();
+        other.samples.x_m[n / 2] += 1e-9;
+        assert_eq!(other.samples.first_difference(&first.samples), n / 2);
+        let whole = simulate(&moved, &model, &opts, &mut |_, _| {}).unwrap();
+        let (_, kept) = simulate_resumable(&first, &model, &opts, None).unwrap();
+        let last = kept.marks.last().expect("checkpoints").tick;
+        assert!(last > 0);
+        let (resumed, _) = simulate_resumable(&moved, &model, &opts, Some((kept, n))).unwrap();
+        assert_eq!(resumed.report, whole.report);
+    }
+
     /// A run's rows kept only as far as `rows_that_matter` find the same
     /// resume as the whole rows: for a change before that count and one
     /// past it, on a run cut short early (as compile's failed runs are).
