@@ -106,24 +106,57 @@ pub fn joint_paths(
     robot: &AnyRobot,
     joins: &Joins,
 ) -> Result<JointPaths, CompileError> {
+    use rayon::prelude::*;
     let stow = stow_joints(robot);
-    let mut out = JointPaths::default();
-    for (si, (station, tour)) in plan.stations.iter().zip(&tours.stations).enumerate() {
-        // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
-        let mut ways: Vec<[Option<Candidates>; 2]> = Vec::with_capacity(tour.len());
-        for v in tour {
+    // Stations are independent, and so is each pass's solution: both are
+    // solved in parallel; the results, and the first error, keep their
+    // order whatever the core count.
+    let stations: Vec<Result<Vec<Run>, CompileError>> = plan
+        .stations
+        .par_iter()
+        .zip(&tours.stations)
+        .enumerate()
+        .map(|(si, (station, tour))| {
+            station_runs(
+                strokes, passes, plan, robot, joins, &stow, si, station, tour,
+            )
+        })
+        .collect();
+    Ok(JointPaths {
+        stations: stations.into_iter().collect::<Result<_, _>>()?,
+    })
+}
+
+/// [`joint_paths`] of station `si`: its passes solved both ways round, its
+/// order and branches chosen.
+#[allow(clippy::too_many_arguments)]
+fn station_runs(
+    strokes: &PlacedStrokes,
+    passes: &Passes,
+    plan: &StationPlan,
+    robot: &AnyRobot,
+    joins: &Joins,
+    stow: &Q,
+    si: usize,
+    station: &Station,
+    tour: &[super::order::Visit],
+) -> Result<Vec<Run>, CompileError> {
+    use rayon::prelude::*;
+    let law = basr_robot::paint_law::paint_law(robot);
+    let at = Stop {
+        index: si,
+        station,
+        road: &plan.road,
+        tilt: robot.tilt_limit(),
+        heights: [law.min_height_m, law.max_height_m],
+    };
+    // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
+    let ways: Vec<Result<[Option<Candidates>; 2], CompileError>> = tour
+        .par_iter()
+        .enumerate()
+        .map(|(k, v)| {
             let pass = &passes.passes[v.item];
-            let id = 2 * ways.len();
-            let at = Stop {
-                index: si,
-                station,
-                road: &plan.road,
-                tilt: robot.tilt_limit(),
-                heights: {
-                    let law = basr_robot::paint_law::paint_law(robot);
-                    [law.min_height_m, law.max_height_m]
-                },
-            };
+            let id = 2 * k;
             let fwd = candidates(robot, &at, &pass.knots, false, pass.stroke, joins)
                 .map(|c| Candidates { id, ..c });
             let rev = candidates(robot, &at, &pass.knots, true, pass.stroke, joins)
@@ -131,7 +164,7 @@ pub fn joint_paths(
             match (fwd, rev) {
                 (Err((k, e)), Err(_)) => {
                     let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
-                    return Err(CompileError::Unreachable(format!(
+                    Err(CompileError::Unreachable(format!(
                         "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
                          m: {e}; use a smaller --letter-height or check the robot description",
                         pass.stroke,
@@ -139,46 +172,44 @@ pub fn joint_paths(
                         si + 1,
                         tip.x,
                         tip.y
-                    )));
+                    )))
                 }
-                (f, r) => ways.push([f.ok(), r.ok()]),
+                (f, r) => Ok([f.ok(), r.ok()]),
             }
-        }
-        // The tour as (index into ways, reversed), each way one that exists.
-        let mut seq: Vec<(usize, bool)> = tour
-            .iter()
-            .enumerate()
-            .map(|(k, v)| {
-                let rev = if ways[k][v.reversed as usize].is_some() {
-                    v.reversed
-                } else {
-                    !v.reversed
-                };
-                (k, rev)
-            })
-            .collect();
-        let costs = JoinCosts::new(robot, joins);
-        improve(robot, &stow, &ways, &mut seq, &costs);
-        let picked: Vec<&Candidates> = seq
-            .iter()
-            .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
-            .collect();
-        let (_, choice) = best_branches(robot, &stow, &picked, &costs);
-        out.stations.push(
-            picked
-                .into_iter()
-                .zip(choice)
-                .map(|(c, b)| Run {
-                    stroke: c.stroke,
-                    knots: c.knots.clone(),
-                    joints: c.branches[b].1.clone(),
-                    paint_first: c.paint_first,
-                    paint_last: c.paint_last,
-                })
-                .collect(),
-        );
-    }
-    Ok(out)
+        })
+        .collect();
+    let ways: Vec<[Option<Candidates>; 2]> = ways.into_iter().collect::<Result<_, _>>()?;
+    // The tour as (index into ways, reversed), each way one that exists.
+    let mut seq: Vec<(usize, bool)> = tour
+        .iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let rev = if ways[k][v.reversed as usize].is_some() {
+                v.reversed
+            } else {
+                !v.reversed
+            };
+            (k, rev)
+        })
+        .collect();
+    let costs = JoinCosts::new(robot, joins);
+    improve(robot, stow, &ways, &mut seq, &costs);
+    let picked: Vec<&Candidates> = seq
+        .iter()
+        .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+        .collect();
+    let (_, choice) = best_branches(robot, stow, &picked, &costs);
+    Ok(picked
+        .into_iter()
+        .zip(choice)
+        .map(|(c, b)| Run {
+            stroke: c.stroke,
+            knots: c.knots.clone(),
+            joints: c.branches[b].1.clone(),
+            paint_first: c.paint_first,
+            paint_last: c.paint_last,
+        })
+        .collect())
 }
 
 /// Most improvement sweeps over a station's order (each strictly lowers the
