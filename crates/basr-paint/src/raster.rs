@@ -209,7 +209,8 @@ struct Canvas {
     vol: Vec<f64>,
     x0: f64,
     y0: f64,
-    h: f64,
+    /// 1 / the cell size (1/m).
+    inv_h: f64,
     /// Splats that fell outside the window (rare: a fan turning or tilting
     /// past the bounds of its end poses).
     spill: Vec<([f64; 2], f64)>,
@@ -219,14 +220,35 @@ impl Canvas {
     /// Add mass `m` at `p` to the four nearest cell centres; when they are
     /// not all in the window, keep it in `spill` for the global grid.
     fn splat(&mut self, p: [f64; 2], m: f64) {
-        let fx = (p[0] - self.x0) / self.h - 0.5;
-        let fy = (p[1] - self.y0) / self.h - 0.5;
-        let (fi, fj) = (floor(fx), floor(fy));
-        let (tx, ty) = (fx - fi, fy - fj);
-        let i = fi as i64 - self.i0;
-        let j = fj as i64 - self.j0;
+        let f = self.cells(p);
+        self.splat_cells(f, m, || p);
+    }
+
+    /// `p` in cells from the grid's first cell centre.
+    #[inline]
+    fn cells(&self, p: [f64; 2]) -> [f64; 2] {
+        [
+            (p[0] - self.x0) * self.inv_h - 0.5,
+            (p[1] - self.y0) * self.inv_h - 0.5,
+        ]
+    }
+
+    /// [`Canvas::splat`] of the point `[fx, fy]` cells from the grid's
+    /// first cell centre; `p()` is that point on the road, for `spill`.
+    #[inline]
+    fn splat_cells(&mut self, [fx, fy]: [f64; 2], m: f64, p: impl FnOnce() -> [f64; 2]) {
+        // Left of or below the grid's first cell centre (or not a number):
+        // off every window. From there on truncation is the floor.
+        if !(fx >= 0.0 && fy >= 0.0) {
+            self.spill.push((p(), m));
+            return;
+        }
+        let (fi, fj) = (fx as i64, fy as i64);
+        let (tx, ty) = (fx - fi as f64, fy - fj as f64);
+        let i = fi - self.i0;
+        let j = fj - self.j0;
         if i < 0 || j < 0 || i + 1 >= self.nx as i64 || j + 1 >= self.ny as i64 {
-            self.spill.push((p, m));
+            self.spill.push((p(), m));
             return;
         }
         let (i, j) = (i as usize, j as usize);
@@ -240,10 +262,10 @@ impl Canvas {
 }
 
 /// `x.floor()`, bit for bit (signed zeros and infinities included; NaN
-/// stays NaN),
-/// without the call into libm that `f64::floor` makes on x86-64 without
-/// SSE4.1 (the default target): splat's two floors per deposit were 5 % of
-/// compile STOP's time.
+/// stays NaN), without the call into libm that `f64::floor` makes on
+/// x86-64 without SSE4.1 (the default target): `Grid::sample` reads the
+/// film at every edge point. (A splat needs no floor: it lands only at or
+/// past the first cell centre, where truncation is the floor.)
 #[inline]
 fn floor(x: f64) -> f64 {
     // 2^52: from there on every f64 is an integer (NaN is returned too)
@@ -437,7 +459,7 @@ pub fn deposit_intervals(
         vol: std::mem::take(&mut grid.data),
         x0: grid.x0,
         y0: grid.y0,
-        h: cell_m,
+        inv_h: 1.0 / cell_m,
         spill: Vec::new(),
     };
     for c in &chunks {
@@ -497,7 +519,7 @@ fn deposit_chunk(
         vol: vec![0.0; ((gi1 - gi0) * (gj1 - gj0)) as usize],
         x0: grid.x0,
         y0: grid.y0,
-        h,
+        inv_h: 1.0 / h,
         spill: Vec::new(),
     };
     for &i in chunk {
@@ -532,6 +554,9 @@ fn lay_line(
     let pieces = ((w / piece_m).ceil() as usize).max(1);
     let step = w / pieces as f64;
     let n = [-fp.u[1], fp.u[0]];
+    // the sheet's normal in cells per metre: a depth node d off the line
+    // lies d·nh cells from it
+    let nh = [n[0] * canvas.inv_h, n[1] * canvas.inv_h];
     let mut c_lo = model.cdf(fp.theta_at(fp.r_minus));
     for k in 0..pieces {
         let r_hi = fp.r_minus + (k + 1) as f64 * step;
@@ -542,8 +567,13 @@ fn lay_line(
             continue;
         }
         let p = fp.at(r_hi - 0.5 * step);
+        let f = canvas.cells(p);
         for &(d, wd) in depth {
-            canvas.splat([p[0] + d * n[0], p[1] + d * n[1]], vol * share * wd);
+            canvas.splat_cells(
+                [f[0] + d * nh[0], f[1] + d * nh[1]],
+                vol * share * wd,
+                || [p[0] + d * n[0], p[1] + d * n[1]],
+            );
         }
     }
 }
@@ -592,6 +622,76 @@ mod tests {
             }
         });
         proptest::proptest!(|(x in -1e6f64..1e6)| same(x));
+    }
+
+    /// A splat lays its mass on the four cell centres around its point,
+    /// bilinearly (the reference with `f64::floor`), or keeps all of it in
+    /// `spill` when they are not all in the window: left of, below, right
+    /// of or above it, on a cell line, and anywhere.
+    #[test]
+    fn a_splat_lays_its_mass_bilinearly_or_spills_it_whole() {
+        let window = || Canvas {
+            i0: 3,
+            j0: 2,
+            nx: 6,
+            ny: 5,
+            vol: vec![0.0; 30],
+            x0: -0.1,
+            y0: 0.2,
+            inv_h: 1.0 / 0.005,
+            spill: Vec::new(),
+        };
+        let check = |p: [f64; 2]| {
+            let mut c = window();
+            c.splat(p, 2.0);
+            let fx = (p[0] - c.x0) * c.inv_h - 0.5;
+            let fy = (p[1] - c.y0) * c.inv_h - 0.5;
+            let (i, j) = (fx.floor() - c.i0 as f64, fy.floor() - c.j0 as f64);
+            let inside = i >= 0.0 && j >= 0.0 && i + 1.0 < c.nx as f64 && j + 1.0 < c.ny as f64;
+            let laid: f64 = c.vol.iter().sum();
+            if !inside {
+                assert_eq!(c.spill, vec![(p, 2.0)], "{p:?}");
+                assert_eq!(laid, 0.0);
+                return;
+            }
+            assert!(c.spill.is_empty(), "{p:?}");
+            assert!((laid - 2.0).abs() < 1e-12, "{p:?}: {laid}");
+            let (tx, ty) = (fx - fx.floor(), fy - fy.floor());
+            let k = j as usize * c.nx + i as usize;
+            let want = [
+                (k, 2.0 * (1.0 - ty) * (1.0 - tx)),
+                (k + 1, 2.0 * (1.0 - ty) * tx),
+                (k + c.nx, 2.0 * ty * (1.0 - tx)),
+                (k + c.nx + 1, 2.0 * ty * tx),
+            ];
+            for (cell, v) in want {
+                assert!((c.vol[cell] - v).abs() < 1e-12, "{p:?} cell {cell}");
+            }
+        };
+        let h = 0.005;
+        // the window's first cell centre, its cell lines, and just outside
+        let (x, y) = (-0.1 + 3.5 * h, 0.2 + 2.5 * h);
+        for p in [
+            [x, y],
+            [x - 1e-9, y],
+            [x, y - 1e-9],
+            [x + 4.0 * h, y + 3.0 * h],
+            [x + 5.0 * h, y],
+            [x, y + 4.0 * h],
+            [x + 1.5 * h, y + 2.25 * h],
+            [-0.1 - h, y],
+            [f64::NAN, y],
+        ] {
+            if p[0].is_nan() {
+                let mut c = window();
+                c.splat(p, 2.0);
+                assert_eq!(c.spill.len(), 1);
+                assert_eq!(c.vol.iter().sum::<f64>(), 0.0);
+                continue;
+            }
+            check(p);
+        }
+        proptest::proptest!(|(dx in -0.02f64..0.06, dy in -0.02f64..0.05)| check([x + dx, y + dy]));
     }
 
     #[test]
