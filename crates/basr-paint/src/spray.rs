@@ -376,10 +376,9 @@ pub struct Footprint {
     pub foot: [f64; 2],
     /// Fan direction on the road (cos ψ, sin ψ).
     pub u: [f64; 2],
-    /// Road distance along `u` from the foot to the −ψ end, the axis ray and
-    /// the +ψ end: `z·tan(β − α/2)`, `z·tan β`, `z·tan(β + α/2)`.
+    /// Road distance along `u` from the foot to the −ψ end and the +ψ end:
+    /// `z·tan(β − α/2)`, `z·tan(β + α/2)` (the axis ray's: `r_axis`).
     pub r_minus: f64,
-    pub r_axis: f64,
     pub r_plus: f64,
     pub z_m: f64,
     pub tilt_rad: f64,
@@ -401,7 +400,13 @@ impl Footprint {
     /// Where the nozzle axis hits the road: the seed's tile-dividing point
     /// (001 §2.5, fig. 2.12: the line halving the spray angle).
     pub fn divider(&self) -> [f64; 2] {
-        self.at(self.r_axis)
+        self.at(self.r_axis())
+    }
+    /// Road distance along `u` from the foot to the axis ray, `z·tan β`
+    /// (made when asked: the film lays millions of footprints and never
+    /// reads it).
+    pub fn r_axis(&self) -> f64 {
+        self.z_m * self.tilt_rad.tan()
     }
     /// Length of the painted line (m).
     pub fn width(&self) -> f64 {
@@ -524,7 +529,6 @@ impl SprayModel {
             foot: [pose.x_m, pose.y_m],
             u: [pose.yaw_rad.cos(), pose.yaw_rad.sin()],
             r_minus: z * (b - a).tan(),
-            r_axis: z * b.tan(),
             r_plus: z * (b + a).tan(),
             z_m: z,
             tilt_rad: b,
@@ -605,7 +609,7 @@ mod tests {
             .unwrap();
         assert!(fp.r_plus > -fp.r_minus, "{fp:?}");
         // Half the paint on each side of the axis ray whatever the profile.
-        let s = m.share_between(&fp, fp.r_minus, fp.r_axis);
+        let s = m.share_between(&fp, fp.r_minus, fp.r_axis());
         assert!(close(s, 0.5, 1e-12));
     }
 

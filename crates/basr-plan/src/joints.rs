@@ -56,16 +56,57 @@ struct Candidates {
 struct JoinCosts {
     limits: super::timing::JointLimits<5>,
     joins: Joins,
-    /// (from id, its branch, to id, its branch) → s.
-    known: std::cell::RefCell<std::collections::HashMap<(usize, usize, usize, usize), f64>>,
+    /// Candidates' ids (0..ids) and branches (0..branches) of the station.
+    ids: usize,
+    branches: usize,
+    known: std::cell::RefCell<Known>,
 }
 
+/// Join durations found so far, keyed by (from id, its branch, to id, its
+/// branch): a table indexed by the key, NaN until found, where it is
+/// small enough (the station's order search makes hundreds of thousands
+/// of look-ups on a station of STOP, and spent most of its time hashing
+/// them), else a map holding only what was found.
+enum Known {
+    Table(Vec<f64>),
+    Map(std::collections::HashMap<usize, f64>),
+}
+
+/// Largest table of join durations (entries): 8 MB, a station of about
+/// 128 passes with four branches each; a larger station keeps a map.
+const JOIN_TABLE_MAX: usize = 1 << 20;
+
 impl JoinCosts {
-    fn new(robot: &AnyRobot, joins: &Joins) -> Self {
+    /// The costs between the candidates of `ways`.
+    fn new(robot: &AnyRobot, joins: &Joins, ways: &[[Option<Candidates>; 2]]) -> Self {
+        Self::with_table_max(robot, joins, ways, JOIN_TABLE_MAX)
+    }
+
+    /// [`JoinCosts::new`] with a table of at most `table_max` entries.
+    fn with_table_max(
+        robot: &AnyRobot,
+        joins: &Joins,
+        ways: &[[Option<Candidates>; 2]],
+        table_max: usize,
+    ) -> Self {
+        let ids = 2 * ways.len();
+        let branches = ways
+            .iter()
+            .flatten()
+            .flatten()
+            .map(|c| c.branches.len())
+            .max()
+            .unwrap_or(0);
+        let side = ids * branches;
         JoinCosts {
             limits: super::trajectory::timing_limits(robot, 1.0, joins.jerk_per_acc),
             joins: *joins,
-            known: Default::default(),
+            ids,
+            branches,
+            known: std::cell::RefCell::new(match side.checked_mul(side) {
+                Some(n) if n <= table_max => Known::Table(vec![f64::NAN; n]),
+                _ => Known::Map(Default::default()),
+            }),
         }
     }
 
@@ -73,8 +114,16 @@ impl JoinCosts {
     /// join's duration, or the rest-to-rest joint travel between their
     /// leads where none is found.
     fn join(&self, robot: &AnyRobot, a: &Candidates, ba: usize, b: &Candidates, bb: usize) -> f64 {
-        let key = (a.id, ba, b.id, bb);
-        if let Some(&t) = self.known.borrow().get(&key) {
+        debug_assert!(
+            a.id < self.ids && b.id < self.ids && ba < self.branches && bb < self.branches
+        );
+        let side = self.ids * self.branches;
+        let key = (a.id * self.branches + ba) * side + b.id * self.branches + bb;
+        let found = match &*self.known.borrow() {
+            Known::Table(t) => Some(t[key]).filter(|t| !t.is_nan()),
+            Known::Map(m) => m.get(&key).copied(),
+        };
+        if let Some(t) = found {
             return t;
         }
         let (ja, jb) = (&a.branches[ba].1, &b.branches[bb].1);
@@ -85,7 +134,12 @@ impl JoinCosts {
             &self.joins,
         )
         .unwrap_or_else(|| travel(robot, &ja[ja.len() - 1], &jb[0]));
-        self.known.borrow_mut().insert(key, t);
+        match &mut *self.known.borrow_mut() {
+            Known::Table(table) => table[key] = t,
+            Known::Map(m) => {
+                m.insert(key, t);
+            }
+        }
         t
     }
 }
@@ -192,7 +246,7 @@ fn station_runs(
             (k, rev)
         })
         .collect();
-    let costs = JoinCosts::new(robot, joins);
+    let costs = JoinCosts::new(robot, joins, &ways);
     improve(robot, stow, &ways, &mut seq, &costs);
     let picked: Vec<&Candidates> = seq
         .iter()
@@ -580,6 +634,64 @@ mod tests {
             swept_width_m: 0.2,
             speed_mps: 0.2,
         }
+    }
+
+    /// The station's order search chooses the same order, directions and
+    /// branches whether its join durations are kept in a table or, for a
+    /// station too large for one, a map.
+    #[test]
+    fn join_costs_in_a_table_or_a_map_choose_alike() {
+        let robot = AnyRobot::Basr(Robot::basr());
+        let law = basr_robot::paint_law::paint_law(&robot);
+        let joins = crate::tuning::Tuning::DEFAULT.joins;
+        let station = Station {
+            x_m: 0.0,
+            y_m: 4.6,
+            heading_rad: -FRAC_PI_2,
+        };
+        let road = Road::default();
+        let at = Stop {
+            index: 0,
+            station: &station,
+            road: &road,
+            tilt: robot.tilt_limit(),
+            heights: [law.min_height_m, law.max_height_m],
+        };
+        let ways: Vec<[Option<Candidates>; 2]> = [(-0.6, 1.2), (0.4, 0.9), (-0.2, 2.0), (0.7, 1.6)]
+            .iter()
+            .enumerate()
+            .map(|(k, &(x, y))| {
+                let knots: Vec<Knot> = (0..6)
+                    .map(|i| knot(x + 0.04 * i as f64, y + 0.05 * i as f64, 0.15, 0.2, 0.0))
+                    .collect();
+                let way = |rev: bool, id: usize| {
+                    candidates(&robot, &at, &knots, rev, k, &joins)
+                        .ok()
+                        .map(|c| Candidates { id, ..c })
+                };
+                [way(false, 2 * k), way(true, 2 * k + 1)]
+            })
+            .collect();
+        assert!(ways.iter().all(|w| w[0].is_some() && w[1].is_some()));
+        let stow = stow_joints(&robot);
+        let chosen = |table_max: usize| {
+            let costs = JoinCosts::with_table_max(&robot, &joins, &ways, table_max);
+            assert_eq!(
+                matches!(&*costs.known.borrow(), Known::Table(_)),
+                table_max > 0
+            );
+            let mut seq: Vec<(usize, bool)> = (0..ways.len()).map(|k| (k, false)).collect();
+            improve(&robot, &stow, &ways, &mut seq, &costs);
+            let picked: Vec<&Candidates> = seq
+                .iter()
+                .filter_map(|&(k, r)| ways[k][r as usize].as_ref())
+                .collect();
+            let (cost, branches) = best_branches(&robot, &stow, &picked, &costs);
+            (seq, cost.to_bits(), branches)
+        };
+        let table = chosen(JOIN_TABLE_MAX);
+        assert_eq!(table, chosen(0));
+        assert!(f64::from_bits(table.1).is_finite());
     }
 
     /// A knot placed on a fitted plane reads back, as the film sees it
