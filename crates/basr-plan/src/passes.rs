@@ -126,129 +126,47 @@ pub fn passes(
     let tilt_follow = rate::tilt_follow(robot, rates);
     let height_follow = rate::height_follow(robot, rates);
     let smoothing = rates.tilt_smoothing;
+    // Each stroke's passes are its own: planned in parallel, gathered in
+    // the strokes' order (the first error, and the sums, as one by one).
+    let per_stroke: Vec<Result<StrokePasses, CompileError>> = {
+        use rayon::prelude::*;
+        rungs
+            .rungs
+            .par_iter()
+            .enumerate()
+            .map(|(sid, stroke_rungs)| {
+                stroke_passes(
+                    strokes,
+                    sid,
+                    stroke_rungs,
+                    robot,
+                    law,
+                    method,
+                    tuning,
+                    Limits {
+                        max_tilt,
+                        max_tilt_rate,
+                        max_turn,
+                        tilt_follow,
+                        height_follow,
+                        smoothing,
+                    },
+                )
+            })
+            .collect()
+    };
     let mut out = Passes::default();
     let mut painted_m2 = 0.0;
     let mut outside = vec![];
-    for (sid, stroke_rungs) in rungs.rungs.iter().enumerate() {
-        let owner = strokes.owner(sid);
-        let what =
-            |e: knots::PlanError| CompileError::Knots(format!("stroke {sid} ({owner}): {e}"));
-        let split = split_passes(stroke_rungs, law.max_width_m(), 0.0).map_err(what)?;
-        let mut clamped = 0usize;
-        let mut rung_count = 0usize;
-        let mut worst = 1.0f64;
-        let mut outside_m2 = 0.0;
-        // knots::KnotPlan keeps U in percent; the job keeps fractions.
-        let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
-        let mut u_tilted = u_untilted;
-        for pass in &split {
-            let mut kp =
-                knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate, smoothing)
-                    .map_err(what)?;
-            tilt_for_turned_fan(
-                pass,
-                &mut kp,
-                &law,
-                method,
-                [max_tilt, max_tilt_rate],
-                max_turn,
-                smoothing,
-            )
-            .map_err(what)?;
-            u_untilted = [
-                u_untilted[0].min(kp.u_before.0 / 100.0),
-                u_untilted[1].max(kp.u_before.1 / 100.0),
-            ];
-            u_tilted = [
-                u_tilted[0].min(kp.u_after.0 / 100.0),
-                u_tilted[1].max(kp.u_after.1 / 100.0),
-            ];
-            // A turned fan sweeps other road: re-pace, and check the turn
-            // again at the new speeds.
-            // The tilt, likewise, within what its joint follows.
-            for _ in 0..TURN_TRIES {
-                let turned = super::turn::limit_turn_rate(&mut kp.knots, max_turn);
-                let tilted = tilt_follow
-                    .is_some_and(|[v, a]| rate::limit_tilt_rate(&mut kp.knots, &law, v, a));
-                if !(turned || tilted) {
-                    break;
-                }
-                knots::pace(pass, &mut kp.knots, law.k_m2ps);
-            }
-            let raised = lift_for_tilt(robot, &law, &mut kp.knots);
-            // The height, too, within what the vertical joint follows.
-            let lifted =
-                height_follow.is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
-            if !raised.is_empty() || lifted {
-                // Wider footprints sweep more road: re-pace the pass.
-                knots::pace(pass, &mut kp.knots, law.k_m2ps);
-            }
-            // A fan longer than its rung turned to cover it, then paced
-            // for the road it sweeps turned.
-            if super::narrow::turn_narrow(pass, &mut kp.knots, max_turn, law.k_m2ps, &tuning.narrow)
-            {
-                knots::pace(pass, &mut kp.knots, law.k_m2ps);
-            }
-            // Clamped knots that still paint beside the stroke.
-            let wide = |r: usize| {
-                kp.knots
-                    .get(r)
-                    .is_some_and(|k| k.covered_width_m() > k.width_m * (1.0 + 1e-6))
-            };
-            clamped += kp
-                .clamped
-                .iter()
-                .filter(|c| !raised.contains(&c.rung) && wide(c.rung))
-                .count()
-                + raised.iter().filter(|&&r| wide(r)).count();
-            rung_count += kp.knots.len();
-            let (outside, painted) = outside_area(&kp.knots);
-            outside_m2 += outside;
-            painted_m2 += painted;
-            for k in &kp.knots {
-                if k.width_m > 0.0 {
-                    worst = worst.max(k.covered_width_m() / k.width_m);
-                }
-            }
-            out.passes.push(Pass {
-                stroke: sid,
-                knots: kp.knots,
-            });
+    for stroke in per_stroke {
+        let stroke = stroke?;
+        for p in &stroke.painted_m2 {
+            painted_m2 += p;
         }
-        if u_untilted[0].is_finite() && u_tilted[0].is_finite() {
-            out.balance.push(StrokeBalance {
-                stroke: sid,
-                char: owner.label.clone(),
-                line: owner.line,
-                u_untilted,
-                u_tilted,
-            });
-        }
-        if split.len() > 1 {
-            out.notes.push(Note::Passes {
-                stroke: sid,
-                owner: owner.clone(),
-                passes: split.len(),
-                max_width_m: law.max_width_m(),
-            });
-        }
-        if clamped > 0 {
-            out.notes.push(Note::HeightClamped {
-                stroke: sid,
-                owner: owner.clone(),
-                clamped,
-                rungs: rung_count,
-                min_height_m: law.min_height_m,
-                worst_ratio: worst,
-                outside_share: 0.0,
-                job_outside_share: 0.0,
-                one_sweep_scale: (split.len() > 1).then(|| {
-                    let widest = stroke_rungs.iter().map(Rung::width).fold(0.0, f64::max);
-                    law.max_width_m() / widest
-                }),
-            });
-            outside.push(outside_m2);
-        }
+        out.passes.extend(stroke.passes);
+        out.balance.extend(stroke.balance);
+        out.notes.extend(stroke.notes);
+        outside.extend(stroke.outside_m2);
     }
     // Shares of the whole job's paint, known once every pass is.
     let job: f64 = outside.iter().sum();
@@ -272,6 +190,177 @@ pub fn passes(
         *j = share(job);
     }
     Ok(out)
+}
+
+/// The limits a stroke's passes are planned within (`passes`).
+#[derive(Clone, Copy)]
+struct Limits {
+    max_tilt: f64,
+    max_tilt_rate: f64,
+    max_turn: f64,
+    tilt_follow: Option<[f64; 2]>,
+    height_follow: Option<[f64; 2]>,
+    smoothing: usize,
+}
+
+/// One stroke's share of [`passes`].
+struct StrokePasses {
+    passes: Vec<Pass>,
+    /// Each pass's painted area (m²), in order.
+    painted_m2: Vec<f64>,
+    balance: Option<StrokeBalance>,
+    notes: Vec<Note>,
+    /// The area its clamped knots paint outside it (m²), when it has any.
+    outside_m2: Option<f64>,
+}
+
+/// [`passes`] of stroke `sid`.
+#[allow(clippy::too_many_arguments)]
+fn stroke_passes(
+    strokes: &PlacedStrokes,
+    sid: usize,
+    stroke_rungs: &[Rung],
+    robot: &AnyRobot,
+    law: PaintLaw,
+    method: TiltMethod,
+    tuning: &Tuning,
+    limits: Limits,
+) -> Result<StrokePasses, CompileError> {
+    let Limits {
+        max_tilt,
+        max_tilt_rate,
+        max_turn,
+        tilt_follow,
+        height_follow,
+        smoothing,
+    } = limits;
+    let mut passes = Vec::new();
+    let mut painted_m2 = Vec::new();
+    let mut balance = None;
+    let mut notes = Vec::new();
+    let mut kept_outside = None;
+    let owner = strokes.owner(sid);
+    let what = |e: knots::PlanError| CompileError::Knots(format!("stroke {sid} ({owner}): {e}"));
+    let split = split_passes(stroke_rungs, law.max_width_m(), 0.0).map_err(what)?;
+    let mut clamped = 0usize;
+    let mut rung_count = 0usize;
+    let mut worst = 1.0f64;
+    let mut outside_m2 = 0.0;
+    // knots::KnotPlan keeps U in percent; the job keeps fractions.
+    let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
+    let mut u_tilted = u_untilted;
+    for pass in &split {
+        let mut kp = knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate, smoothing)
+            .map_err(what)?;
+        tilt_for_turned_fan(
+            pass,
+            &mut kp,
+            &law,
+            method,
+            [max_tilt, max_tilt_rate],
+            max_turn,
+            smoothing,
+        )
+        .map_err(what)?;
+        u_untilted = [
+            u_untilted[0].min(kp.u_before.0 / 100.0),
+            u_untilted[1].max(kp.u_before.1 / 100.0),
+        ];
+        u_tilted = [
+            u_tilted[0].min(kp.u_after.0 / 100.0),
+            u_tilted[1].max(kp.u_after.1 / 100.0),
+        ];
+        // A turned fan sweeps other road: re-pace, and check the turn
+        // again at the new speeds.
+        // The tilt, likewise, within what its joint follows.
+        for _ in 0..TURN_TRIES {
+            let turned = super::turn::limit_turn_rate(&mut kp.knots, max_turn);
+            let tilted =
+                tilt_follow.is_some_and(|[v, a]| rate::limit_tilt_rate(&mut kp.knots, &law, v, a));
+            if !(turned || tilted) {
+                break;
+            }
+            knots::pace(pass, &mut kp.knots, law.k_m2ps);
+        }
+        let raised = lift_for_tilt(robot, &law, &mut kp.knots);
+        // The height, too, within what the vertical joint follows.
+        let lifted = height_follow.is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
+        if !raised.is_empty() || lifted {
+            // Wider footprints sweep more road: re-pace the pass.
+            knots::pace(pass, &mut kp.knots, law.k_m2ps);
+        }
+        // A fan longer than its rung turned to cover it, then paced
+        // for the road it sweeps turned.
+        if super::narrow::turn_narrow(pass, &mut kp.knots, max_turn, law.k_m2ps, &tuning.narrow) {
+            knots::pace(pass, &mut kp.knots, law.k_m2ps);
+        }
+        // Clamped knots that still paint beside the stroke.
+        let wide = |r: usize| {
+            kp.knots
+                .get(r)
+                .is_some_and(|k| k.covered_width_m() > k.width_m * (1.0 + 1e-6))
+        };
+        clamped += kp
+            .clamped
+            .iter()
+            .filter(|c| !raised.contains(&c.rung) && wide(c.rung))
+            .count()
+            + raised.iter().filter(|&&r| wide(r)).count();
+        rung_count += kp.knots.len();
+        let (outside, painted) = outside_area(&kp.knots);
+        outside_m2 += outside;
+        painted_m2.push(painted);
+        for k in &kp.knots {
+            if k.width_m > 0.0 {
+                worst = worst.max(k.covered_width_m() / k.width_m);
+            }
+        }
+        passes.push(Pass {
+            stroke: sid,
+            knots: kp.knots,
+        });
+    }
+    if u_untilted[0].is_finite() && u_tilted[0].is_finite() {
+        balance = Some(StrokeBalance {
+            stroke: sid,
+            char: owner.label.clone(),
+            line: owner.line,
+            u_untilted,
+            u_tilted,
+        });
+    }
+    if split.len() > 1 {
+        notes.push(Note::Passes {
+            stroke: sid,
+            owner: owner.clone(),
+            passes: split.len(),
+            max_width_m: law.max_width_m(),
+        });
+    }
+    if clamped > 0 {
+        notes.push(Note::HeightClamped {
+            stroke: sid,
+            owner: owner.clone(),
+            clamped,
+            rungs: rung_count,
+            min_height_m: law.min_height_m,
+            worst_ratio: worst,
+            outside_share: 0.0,
+            job_outside_share: 0.0,
+            one_sweep_scale: (split.len() > 1).then(|| {
+                let widest = stroke_rungs.iter().map(Rung::width).fold(0.0, f64::max);
+                law.max_width_m() / widest
+            }),
+        });
+        kept_outside = Some(outside_m2);
+    }
+    Ok(StrokePasses {
+        passes,
+        painted_m2,
+        balance,
+        notes,
+        outside_m2: kept_outside,
+    })
 }
 
 /// Where the turn limit holds the fan off its rungs (`turn`), choose the

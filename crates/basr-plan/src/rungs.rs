@@ -44,10 +44,12 @@ pub struct StrokeRungs {
 /// the height or the tilt to change faster than their joints follow
 /// (the budget's `tuning::Pairing::max_follow`).
 pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget>) -> StrokeRungs {
+    use rayon::prelude::*;
     StrokeRungs {
+        // each stroke's rungs are its own: found in parallel, in order
         rungs: strokes
             .strokes
-            .iter()
+            .par_iter()
             .map(|ps| {
                 let st = &ps.stroke;
                 let len = st.left.length().max(st.right.length());
