@@ -196,14 +196,7 @@ fn station_runs(
     tour: &[super::order::Visit],
 ) -> Result<Vec<Run>, CompileError> {
     use rayon::prelude::*;
-    let law = basr_robot::paint_law::paint_law(robot);
-    let at = Stop {
-        index: si,
-        station,
-        road: &plan.road,
-        tilt: robot.tilt_limit(),
-        heights: [law.min_height_m, law.max_height_m],
-    };
+    let at = Stop::new(si, station, &plan.road, robot);
     // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
     let ways: Vec<Result<[Option<Candidates>; 2], CompileError>> = tour
         .par_iter()
@@ -473,6 +466,20 @@ struct Stop<'a> {
     heights: [f64; 2],
 }
 
+impl<'a> Stop<'a> {
+    /// Station `index` (`station`, over `road`) as `robot` paints from it.
+    fn new(index: usize, station: &'a Station, road: &'a basr_job::Road, robot: &AnyRobot) -> Self {
+        let law = basr_robot::paint_law::paint_law(robot);
+        Stop {
+            index,
+            station,
+            road,
+            tilt: robot.tilt_limit(),
+            heights: [law.min_height_m, law.max_height_m],
+        }
+    }
+}
+
 /// The nozzle pose of a knot in a station's base frame: the knot's fan
 /// (planned on a flat road) placed on the road's surface, so it keeps its
 /// height over the surface and its lean against it (docs/site.md).
@@ -642,7 +649,6 @@ mod tests {
     #[test]
     fn join_costs_in_a_table_or_a_map_choose_alike() {
         let robot = AnyRobot::Basr(Robot::basr());
-        let law = basr_robot::paint_law::paint_law(&robot);
         let joins = crate::tuning::Tuning::DEFAULT.joins;
         let station = Station {
             x_m: 0.0,
@@ -650,13 +656,7 @@ mod tests {
             heading_rad: -FRAC_PI_2,
         };
         let road = Road::default();
-        let at = Stop {
-            index: 0,
-            station: &station,
-            road: &road,
-            tilt: robot.tilt_limit(),
-            heights: [law.min_height_m, law.max_height_m],
-        };
+        let at = Stop::new(0, &station, &road, &robot);
         let ways: Vec<[Option<Candidates>; 2]> = [(-0.6, 1.2), (0.4, 0.9), (-0.2, 2.0), (0.7, 1.6)]
             .iter()
             .enumerate()
@@ -716,13 +716,7 @@ mod tests {
             }],
             ..Road::default()
         };
-        let at = Stop {
-            index: 0,
-            station: &station,
-            road: &road,
-            tilt: robot.tilt_limit(),
-            heights: [law.min_height_m, law.max_height_m],
-        };
+        let at = Stop::new(0, &station, &road, &robot);
         for k in [
             knot(0.5, 1.0, 0.15, 0.3, 0.1),
             knot(-0.8, 2.0, 0.2, -1.2, -0.05),

@@ -117,15 +117,17 @@ pub fn passes(
 ) -> Result<Passes, CompileError> {
     let rates = &tuning.rates;
     let law = paint_law(robot);
-    let max_tilt = max_tilt_rad(robot, rates);
-    let max_tilt_rate = robot
-        .tilt_limit()
-        .map_or(f64::INFINITY, |tl| tl.max_vel * rates.tilt_spread_share);
-    let max_turn = max_turn_rps(robot, rates);
-    // The tilt and the height within what their joints follow (`rate`).
-    let tilt_follow = rate::tilt_follow(robot, rates);
-    let height_follow = rate::height_follow(robot, rates);
-    let smoothing = rates.tilt_smoothing;
+    let limits = Limits {
+        max_tilt: max_tilt_rad(robot, rates),
+        max_tilt_rate: robot
+            .tilt_limit()
+            .map_or(f64::INFINITY, |tl| tl.max_vel * rates.tilt_spread_share),
+        max_turn: max_turn_rps(robot, rates),
+        // The tilt and the height within what their joints follow (`rate`).
+        tilt_follow: rate::tilt_follow(robot, rates),
+        height_follow: rate::height_follow(robot, rates),
+        smoothing: rates.tilt_smoothing,
+    };
     // Each stroke's passes are its own: planned in parallel, gathered in
     // the strokes' order (the first error, and the sums, as one by one).
     let per_stroke: Vec<Result<StrokePasses, CompileError>> = {
@@ -143,14 +145,7 @@ pub fn passes(
                     law,
                     method,
                     tuning,
-                    Limits {
-                        max_tilt,
-                        max_tilt_rate,
-                        max_turn,
-                        tilt_follow,
-                        height_follow,
-                        smoothing,
-                    },
+                    limits,
                 )
             })
             .collect()
@@ -226,14 +221,6 @@ fn stroke_passes(
     tuning: &Tuning,
     limits: Limits,
 ) -> Result<StrokePasses, CompileError> {
-    let Limits {
-        max_tilt,
-        max_tilt_rate,
-        max_turn,
-        tilt_follow,
-        height_follow,
-        smoothing,
-    } = limits;
     let mut passes = Vec::new();
     let mut painted_m2 = Vec::new();
     let mut balance = None;
@@ -250,16 +237,23 @@ fn stroke_passes(
     let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
     let mut u_tilted = u_untilted;
     for pass in &split {
-        let mut kp = knots::knots_within(pass, &law, method, max_tilt, max_tilt_rate, smoothing)
-            .map_err(what)?;
+        let mut kp = knots::knots_within(
+            pass,
+            &law,
+            method,
+            limits.max_tilt,
+            limits.max_tilt_rate,
+            limits.smoothing,
+        )
+        .map_err(what)?;
         tilt_for_turned_fan(
             pass,
             &mut kp,
             &law,
             method,
-            [max_tilt, max_tilt_rate],
-            max_turn,
-            smoothing,
+            [limits.max_tilt, limits.max_tilt_rate],
+            limits.max_turn,
+            limits.smoothing,
         )
         .map_err(what)?;
         u_untilted = [
@@ -274,9 +268,10 @@ fn stroke_passes(
         // again at the new speeds.
         // The tilt, likewise, within what its joint follows.
         for _ in 0..TURN_TRIES {
-            let turned = super::turn::limit_turn_rate(&mut kp.knots, max_turn);
-            let tilted =
-                tilt_follow.is_some_and(|[v, a]| rate::limit_tilt_rate(&mut kp.knots, &law, v, a));
+            let turned = super::turn::limit_turn_rate(&mut kp.knots, limits.max_turn);
+            let tilted = limits
+                .tilt_follow
+                .is_some_and(|[v, a]| rate::limit_tilt_rate(&mut kp.knots, &law, v, a));
             if !(turned || tilted) {
                 break;
             }
@@ -284,14 +279,22 @@ fn stroke_passes(
         }
         let raised = lift_for_tilt(robot, &law, &mut kp.knots);
         // The height, too, within what the vertical joint follows.
-        let lifted = height_follow.is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
+        let lifted = limits
+            .height_follow
+            .is_some_and(|f| rate::limit_height_rate(&mut kp.knots, &law, f));
         if !raised.is_empty() || lifted {
             // Wider footprints sweep more road: re-pace the pass.
             knots::pace(pass, &mut kp.knots, law.k_m2ps);
         }
         // A fan longer than its rung turned to cover it, then paced
         // for the road it sweeps turned.
-        if super::narrow::turn_narrow(pass, &mut kp.knots, max_turn, law.k_m2ps, &tuning.narrow) {
+        if super::narrow::turn_narrow(
+            pass,
+            &mut kp.knots,
+            limits.max_turn,
+            law.k_m2ps,
+            &tuning.narrow,
+        ) {
             knots::pace(pass, &mut kp.knots, law.k_m2ps);
         }
         // Clamped knots that still paint beside the stroke.
