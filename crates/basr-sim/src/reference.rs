@@ -48,7 +48,8 @@ pub(super) fn curve(v: &[f64], dt: f64, t: f64) -> [f64; 3] {
         return [v[0], 0.0, 0.0];
     }
     let sidx = (t / dt).max(0.0);
-    let i = (sidx.floor() as usize).min(n - 2);
+    // truncation is the floor of a number ≥ 0 (without libm's call)
+    let i = (sidx as usize).min(n - 2);
     let u = (sidx - i as f64).clamp(0.0, 1.0);
     let p0 = v[i.saturating_sub(1)];
     let p1 = v[i];
