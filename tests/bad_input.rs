@@ -158,6 +158,26 @@ fn empty_marking_file_is_refused() {
     );
 }
 
+/// `--letter-height` sizes words: given for a symbol, or a scene of
+/// symbols without a word, it would do nothing (but print feet). Refused,
+/// saying what sizes a symbol.
+#[test]
+fn a_letter_height_for_a_marking_without_letters_is_refused() {
+    let mut s = Scratch::new();
+    s.refuses(
+        &["compile", "--symbol", "bike", "--letter-height", "6ft"],
+        &["--letter-height", "the symbol bike has none", "scale = 1.5"],
+    );
+    s.input(
+        "bikes.toml",
+        b"[[item]]\nsymbol = \"bike\"\nat_m = [0.0, 0.0]\nscale = 0.75\n",
+    );
+    s.refuses(
+        &["compile", "--marking", "bikes.toml", "--letter-height", "2"],
+        &["bikes.toml", "no word", "leave --letter-height out"],
+    );
+}
+
 #[test]
 fn malformed_marking_toml_gives_line_and_column() {
     let mut s = Scratch::new();

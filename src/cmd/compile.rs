@@ -111,8 +111,10 @@ pub struct Args {
     /// Nozzle tilt method.
     #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
     pub tilt: TiltArg,
-    /// Letter height, 0.3–10 m; metres unless a unit is written (8ft,
-    /// 96in, 2440mm) [default: 2.44, or the marking file's].
+    /// Letter height of the words, 0.3–10 m; metres unless a unit is
+    /// written (8ft, 96in, 2440mm) [default: 2.44, or the marking file's].
+    /// A symbol has no letters: with --symbol, or a scene without a word,
+    /// it is refused (a scene item's `scale` sizes a symbol).
     #[arg(allow_hyphen_values = true, long, value_name = "LENGTH", value_parser = basr::units::metres)]
     pub letter_height: Option<Length>,
     /// Lane width, at most 30 m; metres unless a unit is written (12ft)
@@ -441,6 +443,40 @@ fn file_name(p: &Path) -> String {
     )
 }
 
+/// `--letter-height` sizes the letters of words: a symbol, or a scene of
+/// symbols and shapes without a word, has none, and the option would do
+/// nothing but switch the printout to feet. Refused, saying what sizes
+/// those instead. (A scene that does not parse is left to compile, which
+/// names its error.)
+fn refuse_height_without_letters(args: &Args, req: &CompileRequest) -> anyhow::Result<()> {
+    if args.letter_height.is_none() {
+        return Ok(());
+    }
+    let what = match &req.source {
+        Source::Symbol(name) => format!("the symbol {name}"),
+        Source::Marking { text, origin } if basr::layout::is_scene(text) => {
+            match basr::layout::Scene::from_toml(text, origin, &req.overrides) {
+                Ok(scene)
+                    if !scene
+                        .items
+                        .iter()
+                        .any(|i| matches!(i.kind, basr::layout::ItemKind::Word { .. })) =>
+                {
+                    format!("{origin} (a scene of symbols and shapes, no word)")
+                }
+                _ => return Ok(()),
+            }
+        }
+        _ => return Ok(()),
+    };
+    anyhow::bail!(
+        "--letter-height sizes the letters of words, and {what} has none: a symbol \
+         keeps its standard size (a scene's `scale = 1.5` in its [[item]] scales it, \
+         `--low-speed` makes it 25 % smaller) and a shape takes `height_m` or `width_m` \
+         in its [[item]]; leave --letter-height out"
+    )
+}
+
 pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // Before any work: a folder or a wrong name fails now, not after planning.
     if let Some(p) = &args.output {
@@ -542,6 +578,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         gun_lag_s: args.gun_lag_s,
         ..CompileRequest::message("")
     };
+    refuse_height_without_letters(&args, &req)?;
     anyhow::ensure!(
         args.shape.is_some()
             || (args.shape_size.shape_height_m.is_none()
