@@ -197,12 +197,6 @@ fn compile_for_tip(
         let skeleton = skeleton(&mut job);
         let last: Vec<(usize, Option<LastRun>)> =
             stale.iter().map(|&si| (si, runs[si].take())).collect();
-        // A station verified alone leaves cores idle while its description
-        // runs: it runs beside the plant set then. Stations verified
-        // together keep the cores busy already, and a description that
-        // fails where the whole path is re-timed would leave the set's runs
-        // beside it for nothing (200 letters: 34 s to 39 s).
-        let beside = stale.len() < rayon::current_num_threads();
         let fresh: Vec<Result<Checked, CompileError>> = last
             .into_par_iter()
             .map(|(si, last)| {
@@ -214,7 +208,6 @@ fn compile_for_tip(
                     req.period_s,
                     last,
                     req.retime_on_spread,
-                    beside,
                 )
             })
             .collect();
@@ -295,6 +288,39 @@ fn compile_for_tip(
                 // the set): the station is kept as it is and
                 // `summary.verified` says how far that plant strays.
                 None => {
+                    let mut last = runs[si].take();
+                    // A description its group ended where a plant failed
+                    // first: the station is kept as it is, so its run goes
+                    // on to its end, and a failure of its own is re-timed
+                    // for as any.
+                    if let Some(l) = last.take() {
+                        let l = if l.description_stopped {
+                            let (whole, l) = description_to_its_end(
+                                &job,
+                                &skeleton,
+                                rows[si].clone(),
+                                req.period_s,
+                                l,
+                            )?;
+                            nominal_m[si] = whole.max_error_m;
+                            if !whole.ok {
+                                let range = rows[si].clone();
+                                let s = &job.samples;
+                                let retime = &req.tuning.retime;
+                                if let Some(p) =
+                                    slower(&paces[si], &whole, &paths, s, range, retime)?
+                                {
+                                    paces[si] = p;
+                                }
+                                runs[si] = Some(l);
+                                continue;
+                            }
+                            l
+                        } else {
+                            l
+                        };
+                        last = Some(l);
+                    }
                     if let Some((_, v)) = verdicts[si].as_mut() {
                         kept_over[si] = Some(format!(
                             "{}; not re-timed for it: only a slower path for the whole station would \
@@ -311,7 +337,7 @@ fn compile_for_tip(
                     // The set ran in step, its other plants ended at the
                     // first one's failure: run them to the end, so that
                     // `summary.verified` has every plant's whole run.
-                    if let Some(last) = runs[si].take().filter(|_| req.retime_on_spread) {
+                    if let Some(last) = last.filter(|_| req.retime_on_spread) {
                         let rows = rows[si].clone();
                         if let Some(e) = whole_set(&job, &skeleton, rows, req.period_s, last)? {
                             on_spread[si] = Some(e);
@@ -586,6 +612,9 @@ struct LastRun {
     samples: crate::job::Samples,
     checkpoints: crate::sim::Checkpoints,
     plants: Option<(crate::job::Samples, Vec<crate::sim::Checkpoints>)>,
+    /// The description's run was ended by its group before its end or its
+    /// own failure (a plant failed first).
+    description_stopped: bool,
 }
 
 /// The first rows of `samples` that decide where a run resumes from any of
@@ -611,13 +640,12 @@ fn rows_that_matter<'a>(
 /// in job time. With the station's `last` run, the run resumes at its last
 /// checkpoint before the first row that changed since (a re-timed join or
 /// move leaves the rows before it as they were); the verdict is a whole
-/// run's either way. A station that passes is then run on the plant set
-/// (`verify::on_spread`), whose failure fails it where that plant first
-/// strayed. Returns the verdict and this nominal run, for the next.
-/// `in_step`: the set's plants end soon after the first of them fails
-/// (`verify::on_spread`), where compile re-times for the set; with
-/// `beside`, the set then runs beside the description (`verify_together`):
-/// the same verdict, sooner on idle cores.
+/// run's either way. `in_step` (compile re-times for the plant set): the
+/// robot description and the set's plants run together in step, and the
+/// station fails where the first of them failed (`verify::together`);
+/// else (an imported shape, whose plant failures are recorded and not
+/// re-timed, or an electric kind, which has no set) the description runs
+/// alone and, once it passes, each plant to its end (`verify::on_spread`).
 fn verify_station(
     job: &Job,
     skeleton: &Job,
@@ -625,17 +653,16 @@ fn verify_station(
     period_s: f64,
     last: Option<LastRun>,
     in_step: bool,
-    beside: bool,
 ) -> Result<Checked, CompileError> {
     let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
-    let (resume, mut plants) = match last {
+    let (resume, plants) = match last {
         Some(l) => (
             Some((l.checkpoints, alone.samples.first_difference(&l.samples))),
             l.plants,
         ),
         None => (None, None),
     };
-    if let (true, Some(robot)) = (in_step && beside, alone.robot.basr()) {
+    if let (true, Some(robot)) = (in_step, alone.robot.basr()) {
         let set_resume = plants.map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
         let together = verify::together(&alone, robot, t0_s, resume, set_resume)?;
         return Ok(checked_together(alone, together));
@@ -643,11 +670,12 @@ fn verify_station(
     let (mut verdict, kept) = verify::simulated_resuming(&alone, t0_s, resume)?;
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
+    let mut plants = plants;
     if verdict.ok {
         let resume = plants
             .take()
             .map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
-        if let Some(set) = verify::on_spread(&alone, t0_s, resume, in_step)? {
+        if let Some(set) = verify::on_spread(&alone, t0_s, resume, false)? {
             on_spread = Some(set.errors);
             if !set.verdict.ok {
                 verdict = set.verdict;
@@ -659,6 +687,7 @@ fn verify_station(
         samples: rows_that_matter(&alone.samples, [&checkpoints]),
         checkpoints,
         plants,
+        description_stopped: false,
     });
     Ok(Checked {
         verdict,
@@ -669,28 +698,23 @@ fn verify_station(
 }
 
 /// [`verify_station`]'s result from the station `alone` run on the robot
-/// description and the plant set at once (`verify::together`): the same
-/// verdict as the description's run first and the set's after it passed;
-/// the set's runs are kept whenever they ran (a round the description
-/// failed included), so the next round resumes them where the rows first
-/// changed.
+/// description and the plant set in step (`verify::together`). The
+/// station fails where the first of them failed: re-timing there changes
+/// every row after it, the others' later failures included (on a tie,
+/// the description's). Both runs are kept for the next round to resume
+/// from; a description the group ended early (a plant failed first) is
+/// run on to its end only if the station is kept as it is
+/// (`whole_description`).
 fn checked_together(alone: Job, t: verify::Together) -> Checked {
-    let mut verdict = t.verdict;
-    let nominal_m = verdict.max_error_m;
-    let mut on_spread = None;
-    let kept_set = match t.set {
-        Ok(set) if verdict.ok => {
-            on_spread = Some(set.errors);
-            if set.verdict.ok {
-                None
-            } else {
-                verdict = set.verdict;
-                Some(set.kept)
-            }
-        }
-        // the description failed: the set's runs wait for the next round
-        Ok(set) => Some(set.kept),
-        Err(kept) => Some(kept),
+    let described = t.verdict;
+    let nominal_m = described.max_error_m;
+    let set = t.set;
+    let (verdict, on_spread, kept_set) = if set_failed_first(&described, &set.verdict) {
+        (set.verdict, Some(set.errors), Some(set.kept))
+    } else if !described.ok {
+        (described, None, Some(set.kept))
+    } else {
+        (described, Some(set.errors), None)
     };
     let plants = kept_set
         .filter(|cps| !cps.is_empty())
@@ -701,6 +725,7 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
             samples: rows_that_matter(&alone.samples, [&t.kept]),
             checkpoints: t.kept,
             plants,
+            description_stopped: t.stopped,
         }),
         on_spread,
         nominal_m,
@@ -719,6 +744,44 @@ fn station_alone(
     let mut alone = skeleton.clone();
     alone.samples = job.samples.rows(rows);
     (alone, t0_s)
+}
+
+/// Whether the plant set's verdict is the station's: a plant failed, and
+/// before the description did, if it did (on a tie, the description's).
+fn set_failed_first(described: &verify::Verdict, set: &verify::Verdict) -> bool {
+    !set.ok && (described.ok || set.worst_t_s < described.worst_t_s)
+}
+
+/// The robot description's run of station `rows` of `job` that its group
+/// ended early (`last`, a plant failed first), resumed at its last
+/// checkpoint and run to its end or its own failure: its verdict, and
+/// `last` with that run's checkpoints for the next round.
+fn description_to_its_end(
+    job: &Job,
+    skeleton: &Job,
+    rows: std::ops::Range<usize>,
+    period_s: f64,
+    last: LastRun,
+) -> Result<(verify::Verdict, LastRun), CompileError> {
+    let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
+    // nothing changed: every checkpoint is usable
+    let unchanged = alone.samples.len();
+    let (verdict, kept) =
+        verify::simulated_resuming(&alone, t0_s, Some((last.checkpoints, unchanged)))?;
+    let Some(checkpoints) = kept else {
+        return Err(CompileError::Verify(
+            "a run of the robot description kept no checkpoints: this is a planner bug".into(),
+        ));
+    };
+    Ok((
+        verdict,
+        LastRun {
+            samples: rows_that_matter(&alone.samples, [&checkpoints]),
+            checkpoints,
+            plants: last.plants,
+            description_stopped: false,
+        },
+    ))
 }
 
 /// Each plant's largest error over the whole station (`rows` of `job`),
@@ -854,6 +917,27 @@ fn paint_start(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The station fails where the first of its runs failed: a plant
+    /// before the description, the description before a plant or on a
+    /// tie, and whichever failed when the other passed.
+    #[test]
+    fn the_first_failure_is_the_station_s() {
+        let v = |ok: bool, t: f64| verify::Verdict {
+            max_error_m: if ok { 3e-3 } else { 5e-3 },
+            ok,
+            why: String::new(),
+            worst: (0, 1),
+            worst_t_s: t,
+            on_spread: false,
+        };
+        assert!(set_failed_first(&v(false, 84.3), &v(false, 19.7)));
+        assert!(!set_failed_first(&v(false, 19.7), &v(false, 84.3)));
+        assert!(!set_failed_first(&v(false, 19.7), &v(false, 19.7)));
+        assert!(set_failed_first(&v(true, 120.0), &v(false, 19.7)));
+        assert!(!set_failed_first(&v(false, 19.7), &v(true, 120.0)));
+        assert!(!set_failed_first(&v(true, 120.0), &v(true, 120.0)));
+    }
 
     #[test]
     fn the_verified_set_is_each_plants_worst_over_the_stations() {

@@ -260,24 +260,26 @@ fn judged_set(
     })
 }
 
-/// The robot description's verdict and the plant set's, the runs made
-/// together (`sim::plants::run_beside_description_in_step`).
+/// The robot description's verdict and the plant set's, the seven runs
+/// made together in step (`sim::plants::run_all_in_step`).
 pub struct Together {
-    /// The description's verdict and its run, for the next to resume from.
+    /// The description's verdict, as far as its run went, and its run, for
+    /// the next to resume from.
     pub verdict: Verdict,
     pub kept: sim::Checkpoints,
-    /// The set's verdict as [`on_spread`] in step gives it, when the
-    /// description's run was not cut short by its own failure; else `Err`
-    /// of the plants' runs as far as the group let them go, for the next
-    /// round to resume from.
-    pub set: Result<OnSpread, Vec<sim::Checkpoints>>,
+    /// The group ended the description's run before its end or its own
+    /// failure: a plant failed first, and `verdict` is its run's so far.
+    pub stopped: bool,
+    /// The set's verdict, errors and runs, as [`on_spread`] in step gives
+    /// them (each plant's as far as the group let it go).
+    pub set: OnSpread,
 }
 
-/// [`simulated_resuming`] and [`on_spread`] in step, run together for a
-/// job of BASR's kind (`robot`, the job's; the electric kinds have no
-/// plant set) (`resume`: the description's last run and the first row
-/// that changed; `set_resume`: the set's): the same verdicts, on two
-/// cores that the description's run no longer leaves one of idle.
+/// [`simulated_resuming`] and [`on_spread`] in step, the seven runs
+/// together for a job of BASR's kind (`robot`, the job's; the electric
+/// kinds have no plant set) (`resume`: the description's last run and the
+/// first row that changed; `set_resume`: the set's): the first failure of
+/// any of them ends the others at the next checkpoint.
 pub fn together(
     job: &Job,
     robot: &crate::robot::Robot,
@@ -288,19 +290,19 @@ pub fn together(
     let (model, opts) = verifying(robot)?;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
-    let ((outcome, kept), plants) = sim::plants::run_beside_description_in_step(
-        job, &model, &opts, resume, &factors, set_resume,
-    )
-    .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let runs = sim::plants::run_all_in_step(job, &model, &opts, resume, &factors, set_resume)
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let (outcome, kept) = runs.description;
     let verdict = judged(&outcome.report, t0_s, &opts);
-    let set = match plants {
-        Ok(runs) => match judged_set(runs, t0_s, &opts, &set) {
-            Some(s) => Ok(s),
-            None => Err(Vec::new()),
-        },
-        Err(kept) => Err(kept),
-    };
-    Ok(Together { verdict, kept, set })
+    let set = judged_set(runs.plants, t0_s, &opts, &set).ok_or_else(|| {
+        CompileError::Verify("the plant set ran no plant: this is a planner bug".into())
+    })?;
+    Ok(Together {
+        verdict,
+        kept,
+        stopped: runs.description_stopped,
+        set,
+    })
 }
 
 /// The verdict on a simulated job: its painting error within

@@ -54,43 +54,20 @@ impl Group {
             stopped: false,
             failed_at: None,
             left: false,
-            leader: false,
         }
     }
 
-    /// Run `index`'s gate as the group's leader: the others wait for it at
-    /// each boundary and its failure ends them, but it waits for none and
-    /// their failures do not end it (compile's run of the robot
-    /// description beside the plant set: its verdict is wanted whole, the
-    /// set's only when it passes).
-    pub(super) fn leader_gate(&self, index: usize) -> Gate<'_> {
-        // Not `Gate { leader: true, ..self.gate(index) }`: the temporary
-        // gate that spells would be dropped, and a dropped gate leaves the
-        // group, so the others would not wait for the leader.
-        let mut g = self.gate(index);
-        g.leader = true;
-        g
-    }
-
-    /// Every run's gate, run `leader`'s the leader's, made together before
-    /// any run starts: a spawn that fails drops the gates not yet handed
-    /// over, so no run waits for one that never started.
-    pub(super) fn gates(&self, leader: Option<usize>) -> Vec<Gate<'_>> {
+    /// Every run's gate, made together before any run starts: a spawn that
+    /// fails drops the gates not yet handed over, so no run waits for one
+    /// that never started.
+    pub(super) fn gates(&self) -> Vec<Gate<'_>> {
         let n = self
             .state
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
             .at
             .len();
-        (0..n)
-            .map(|i| {
-                if leader == Some(i) {
-                    self.leader_gate(i)
-                } else {
-                    self.gate(i)
-                }
-            })
-            .collect()
+        (0..n).map(|i| self.gate(i)).collect()
     }
 
     fn update(&self, f: impl FnOnce(&mut State)) {
@@ -110,8 +87,6 @@ pub(super) struct Gate<'a> {
     /// Where this run failed (its first painting error over the bound).
     failed_at: Option<f64>,
     left: bool,
-    /// The others' failures do not end this run (`Group::leader_gate`).
-    leader: bool,
 }
 
 impl Gate<'_> {
@@ -123,12 +98,6 @@ impl Gate<'_> {
         let mut s = g.state.lock().unwrap_or_else(PoisonError::into_inner);
         s.at[self.index] = t_s;
         g.moved.notify_all();
-        // The leader runs on: the others wait for it at each boundary, so
-        // they still know of its failures before it, and no core waits for
-        // the slowest of the others while the leader has work.
-        if self.leader {
-            return true;
-        }
         while s.at.iter().any(|&a| a < t_s) {
             s = g.moved.wait(s).unwrap_or_else(PoisonError::into_inner);
         }
@@ -196,45 +165,18 @@ mod tests {
         ];
         for (runs, want) in cases {
             for _ in 0..20 {
-                assert_eq!(ended(runs, None), want.to_vec(), "{runs:?}");
+                assert_eq!(ended(runs), want.to_vec(), "{runs:?}");
             }
         }
     }
 
-    /// The leader (run 0) ends the others at the boundary after its
-    /// failure, and runs on past theirs to its own end or failure.
+    /// A run's gate is in its group from when it is made until it
+    /// leaves: the others wait for it until it reaches a boundary or
+    /// leaves.
     #[test]
-    fn the_leader_ends_the_others_and_is_not_ended_by_them() {
-        type Case = (&'static [(f64, Option<f64>)], &'static [f64]);
-        let cases: [Case; 3] = [
-            // the leader fails first: the others end at 4
-            (
-                &[(10.0, Some(3.5)), (10.0, None), (10.0, Some(6.2))],
-                &[3.5, 4.0, 4.0],
-            ),
-            // a plant fails first: the others end at 3, the leader runs on
-            (
-                &[(10.0, None), (10.0, Some(2.5)), (10.0, None)],
-                &[10.0, 2.5, 3.0],
-            ),
-            (
-                &[(10.0, Some(7.5)), (10.0, Some(2.5)), (10.0, None)],
-                &[7.5, 2.5, 3.0],
-            ),
-        ];
-        for (runs, want) in cases {
-            for _ in 0..20 {
-                assert_eq!(ended(runs, Some(0)), want.to_vec(), "{runs:?}");
-            }
-        }
-    }
-
-    /// Making the leader's gate leaves it in the group: the others wait for
-    /// it until it reaches a boundary or leaves.
-    #[test]
-    fn a_leader_gate_is_in_its_group_until_it_leaves() {
+    fn a_gate_is_in_its_group_until_it_leaves() {
         let group = Group::new(2);
-        let mut gates = group.gates(Some(0));
+        let mut gates = group.gates();
         let at = |g: &Group| g.state.lock().unwrap().at.clone();
         assert_eq!(at(&group), vec![f64::NEG_INFINITY; 2]);
         gates[0].leave();
@@ -242,11 +184,10 @@ mod tests {
         assert_eq!(at(&group)[1], f64::NEG_INFINITY);
     }
 
-    /// Where each run of `runs` (end, failure) ends, in step on threads,
-    /// run `leader` with the leader's gate.
-    fn ended(runs: &[(f64, Option<f64>)], leader: Option<usize>) -> Vec<f64> {
+    /// Where each run of `runs` (end, failure) ends, in step on threads.
+    fn ended(runs: &[(f64, Option<f64>)]) -> Vec<f64> {
         let group = Group::new(runs.len());
-        let gates = group.gates(leader);
+        let gates = group.gates();
         std::thread::scope(|sc| {
             let handles: Vec<_> = runs
                 .iter()
