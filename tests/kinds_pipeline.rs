@@ -399,3 +399,35 @@ fn check_finds_what_is_wrong_with_an_electric_kinds_setpoints() {
     let p = damaged(&|j| j.samples.kind_encoders[k][4] += 1);
     assert!(p.contains(&format!("row {k}: encoder counts")), "{p}");
 }
+
+/// An electric kind's station verified alone reports its worst error at a
+/// time within the station's own rows: its servo plant reads the rows'
+/// own job times (the verification once added the station's start to them
+/// again, placing a later station's worst error past its end).
+#[test]
+fn an_electric_station_verified_alone_reports_job_time() {
+    use basr::pipeline::compile::{compile_job, CompileRequest};
+    let job = compile_job(&CompileRequest {
+        robot: Some(robot("robots/telescopic.toml")),
+        ..CompileRequest::message("SCHOOL XING")
+    })
+    .expect("compiles");
+    let s = &job.samples;
+    let first = s
+        .station
+        .iter()
+        .position(|&st| st == 1)
+        .expect("a second station");
+    let last = s.station.iter().rposition(|&st| st == 1).unwrap();
+    let mut alone = job.clone();
+    alone.samples = s.rows(first..last + 1);
+    let t0 = first as f64 * job.control_period_s;
+    let v = basr::pipeline::verify::simulated(&alone, t0).expect("simulates");
+    assert!(
+        (s.t_s[first] - 1e-9..=s.t_s[last] + 1e-9).contains(&v.worst_t_s),
+        "worst at {} s, the station's rows run {}–{} s",
+        v.worst_t_s,
+        s.t_s[first],
+        s.t_s[last]
+    );
+}

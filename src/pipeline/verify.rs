@@ -75,7 +75,7 @@ pub fn simulated_resuming(
     resume: Option<(sim::Checkpoints, usize)>,
 ) -> Result<(Verdict, Option<sim::Checkpoints>), CompileError> {
     let Some(robot) = job.robot.basr() else {
-        return verify_servo(job, t0_s).map(|v| (v, None));
+        return verify_servo(job).map(|v| (v, None));
     };
     let (model, opts) = verifying(robot)?;
     let (outcome, kept) = sim::simulate_resumable(job, &model, &opts, resume)
@@ -348,12 +348,14 @@ fn judge(
 
 /// An electric kind's job through its servo plant (`sim::servo_job`),
 /// judged as BASR's: within `VERIFY_SHARE` of the default tolerance, no
-/// joint out of its range.
-fn verify_servo(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
+/// joint out of its range. The servo plant reports the rows' own times
+/// (`t_s`), which a station's rows keep from the whole job: its times are
+/// job times already (adding the station's start, as BASR's runs from 0
+/// need, put the worst error a station's start too late).
+fn verify_servo(job: &Job) -> Result<Verdict, CompileError> {
     let tolerance = sim::Options::default().tolerance_m;
-    let mut r = sim::servo_job::simulate_job(job, tolerance)
+    let r = sim::servo_job::simulate_job(job, tolerance)
         .map_err(|e| CompileError::Verify(e.to_string()))?;
-    r.worst.t_s += t0_s;
     Ok(judge(
         r.max_error_m,
         &r.worst,

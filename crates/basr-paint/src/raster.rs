@@ -692,6 +692,22 @@ mod tests {
             check(p);
         }
         proptest::proptest!(|(dx in -0.02f64..0.06, dy in -0.02f64..0.05)| check([x + dx, y + dy]));
+        // A window at the grid's first cell (as the whole grid's is): a
+        // point less than a cell before its first centre spills whole
+        // (truncation there is not the floor).
+        let mut c = Canvas {
+            i0: 0,
+            j0: 0,
+            ..window()
+        };
+        for p in [
+            [-0.1 + 0.2 * h, 0.2 + 2.0 * h],
+            [-0.1 + 2.0 * h, 0.2 + 0.3 * h],
+        ] {
+            c.splat(p, 2.0);
+        }
+        assert_eq!(c.spill.len(), 2);
+        assert_eq!(c.vol.iter().sum::<f64>(), 0.0);
     }
 
     #[test]

@@ -110,15 +110,19 @@ impl JoinCosts {
         }
     }
 
+    /// The index of (from id, its branch, to id, its branch) in the table:
+    /// one of its `(ids · branches)²` entries, each once.
+    fn key(&self, a: usize, ba: usize, b: usize, bb: usize) -> usize {
+        debug_assert!(a < self.ids && b < self.ids && ba < self.branches && bb < self.branches);
+        let side = self.ids * self.branches;
+        (a * self.branches + ba) * side + b * self.branches + bb
+    }
+
     /// The join from pass a (branch ba) into pass b (branch bb): the flown
     /// join's duration, or the rest-to-rest joint travel between their
     /// leads where none is found.
     fn join(&self, robot: &AnyRobot, a: &Candidates, ba: usize, b: &Candidates, bb: usize) -> f64 {
-        debug_assert!(
-            a.id < self.ids && b.id < self.ids && ba < self.branches && bb < self.branches
-        );
-        let side = self.ids * self.branches;
-        let key = (a.id * self.branches + ba) * side + b.id * self.branches + bb;
+        let key = self.key(a.id, ba, b.id, bb);
         let found = match &*self.known.borrow() {
             Known::Table(t) => Some(t[key]).filter(|t| !t.is_nan()),
             Known::Map(m) => m.get(&key).copied(),
@@ -692,6 +696,21 @@ mod tests {
         let table = chosen(JOIN_TABLE_MAX);
         assert_eq!(table, chosen(0));
         assert!(f64::from_bits(table.1).is_finite());
+        // every (id, branch, id, branch) has its own entry of the table
+        let costs = JoinCosts::new(&robot, &joins, &ways);
+        let (n, b) = (costs.ids, costs.branches);
+        assert!(n == 8 && b >= 1, "{n} ids, {b} branches");
+        let mut keys: Vec<usize> = (0..n * b * n * b)
+            .map(|k| {
+                let (a, rest) = (k / (b * n * b), k % (b * n * b));
+                let (ba, rest) = (rest / (n * b), rest % (n * b));
+                costs.key(a, ba, rest / b, rest % b)
+            })
+            .collect();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), n * b * n * b);
+        assert!(keys.iter().all(|&k| k < n * b * n * b));
     }
 
     /// A knot placed on a fitted plane reads back, as the film sees it
