@@ -294,31 +294,32 @@ fn compile_for_tip(
                     // on to its end, and a failure of its own is re-timed
                     // for as any.
                     if let Some(l) = last.take() {
-                        let l = if l.description_stopped {
-                            let (whole, l) = description_to_its_end(
-                                &job,
-                                &skeleton,
-                                rows[si].clone(),
-                                req.period_s,
-                                l,
-                            )?;
-                            nominal_m[si] = whole.max_error_m;
-                            if !whole.ok {
+                        let (own, l) = match &l.described {
+                            Described::Whole => (None, l),
+                            Described::FailedLater(v) => (Some(v.clone()), l),
+                            Described::Stopped => {
                                 let range = rows[si].clone();
-                                let s = &job.samples;
-                                let retime = &req.tuning.retime;
-                                if let Some(p) =
-                                    slower(&paces[si], &whole, &paths, s, range, retime)?
-                                {
-                                    paces[si] = p;
-                                }
-                                runs[si] = Some(l);
-                                continue;
+                                let (whole, l) = description_to_its_end(
+                                    &job,
+                                    &skeleton,
+                                    range,
+                                    req.period_s,
+                                    l,
+                                )?;
+                                nominal_m[si] = whole.max_error_m;
+                                (Some(whole), l)
                             }
-                            l
-                        } else {
-                            l
                         };
+                        if let Some(own) = own.filter(|v| !v.ok) {
+                            let range = rows[si].clone();
+                            let s = &job.samples;
+                            let retime = &req.tuning.retime;
+                            if let Some(p) = slower(&paces[si], &own, &paths, s, range, retime)? {
+                                paces[si] = p;
+                            }
+                            runs[si] = Some(l);
+                            continue;
+                        }
                         last = Some(l);
                     }
                     if let Some((_, v)) = verdicts[si].as_mut() {
@@ -612,9 +613,19 @@ struct LastRun {
     samples: crate::job::Samples,
     checkpoints: crate::sim::Checkpoints,
     plants: Option<(crate::job::Samples, Vec<crate::sim::Checkpoints>)>,
-    /// The description's run was ended by its group before its end or its
-    /// own failure (a plant failed first).
-    description_stopped: bool,
+    /// How far the description's run went.
+    described: Described,
+}
+
+/// How far a station's run on the robot description went in its round.
+enum Described {
+    /// To its end, or to its own failure where that was the station's.
+    Whole,
+    /// Ended by its group before its end or its own failure: a plant of
+    /// the set failed first.
+    Stopped,
+    /// To its own failure, after a plant's (its verdict).
+    FailedLater(verify::Verdict),
 }
 
 /// The first rows of `samples` that decide where a run resumes from any of
@@ -687,7 +698,7 @@ fn verify_station(
         samples: rows_that_matter(&alone.samples, [&checkpoints]),
         checkpoints,
         plants,
-        description_stopped: false,
+        described: Described::Whole,
     });
     Ok(Checked {
         verdict,
@@ -702,14 +713,23 @@ fn verify_station(
 /// station fails where the first of them failed: re-timing there changes
 /// every row after it, the others' later failures included (on a tie,
 /// the description's). Both runs are kept for the next round to resume
-/// from; a description the group ended early (a plant failed first) is
-/// run on to its end only if the station is kept as it is
-/// (`whole_description`).
+/// from, with how far the description's went: where the station is kept
+/// as it is (a plant's failure not re-timed for), a description the group
+/// ended early is run on to its end, and one that failed after the plant
+/// is re-timed for.
 fn checked_together(alone: Job, t: verify::Together) -> Checked {
     let described = t.verdict;
     let nominal_m = described.max_error_m;
     let set = t.set;
+    let mut how = if t.stopped {
+        Described::Stopped
+    } else {
+        Described::Whole
+    };
     let (verdict, on_spread, kept_set) = if set_failed_first(&described, &set.verdict) {
+        if !described.ok {
+            how = Described::FailedLater(described);
+        }
         (set.verdict, Some(set.errors), Some(set.kept))
     } else if !described.ok {
         (described, None, Some(set.kept))
@@ -725,7 +745,7 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
             samples: rows_that_matter(&alone.samples, [&t.kept]),
             checkpoints: t.kept,
             plants,
-            description_stopped: t.stopped,
+            described: how,
         }),
         on_spread,
         nominal_m,
@@ -779,7 +799,7 @@ fn description_to_its_end(
             samples: rows_that_matter(&alone.samples, [&checkpoints]),
             checkpoints,
             plants: last.plants,
-            description_stopped: false,
+            described: Described::Whole,
         },
     ))
 }
