@@ -289,15 +289,14 @@ fn compile_for_tip(
                 // `summary.verified` says how far that plant strays.
                 None => {
                     let mut last = runs[si].take();
-                    // A description its group ended where a plant failed
+                    // A description left unfinished where a plant strayed
                     // first: the station is kept as it is, so its run goes
                     // on to its end, and a failure of its own is re-timed
                     // for as any.
                     if let Some(l) = last.take() {
                         let (own, l) = match &l.described {
                             Described::Whole => (None, l),
-                            Described::FailedLater(v) => (Some(v.clone()), l),
-                            Described::Stopped => {
+                            Described::Unfinished => {
                                 let range = rows[si].clone();
                                 let (whole, l) = description_to_its_end(
                                     &job,
@@ -621,11 +620,11 @@ struct LastRun {
 enum Described {
     /// To its end, or to its own failure where that was the station's.
     Whole,
-    /// Ended by its group before its end or its own failure: a plant of
-    /// the set failed first.
-    Stopped,
-    /// To its own failure, after a plant's (its verdict).
-    FailedLater(verify::Verdict),
+    /// A plant strayed over the bound first: the description ended
+    /// wherever it learnt of it (before or after its own failure, or at its
+    /// end), which depends on the threads' timing, so its verdict is not
+    /// used until it is run on to its end.
+    Unfinished,
 }
 
 /// The first rows of `samples` that decide where a run resumes from any of
@@ -686,7 +685,7 @@ fn verify_station(
         let resume = plants
             .take()
             .map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
-        if let Some(set) = verify::on_spread(&alone, t0_s, resume, false)? {
+        if let Some(set) = verify::on_spread(&alone, t0_s, resume)? {
             on_spread = Some(set.errors);
             if !set.verdict.ok {
                 verdict = set.verdict;
@@ -710,26 +709,30 @@ fn verify_station(
 
 /// [`verify_station`]'s result from the station `alone` run on the robot
 /// description and the plant set in step (`verify::together`). The
-/// station fails where the first of them failed: re-timing there changes
-/// every row after it, the others' later failures included (on a tie,
-/// the description's). Both runs are kept for the next round to resume
-/// from, with how far the description's went: where the station is kept
-/// as it is (a plant's failure not re-timed for), a description the group
-/// ended early is run on to its end, and one that failed after the plant
-/// is re-timed for.
+/// station fails where the first of the seven runs first strayed over the
+/// bound (on a tie, the description): re-timing there changes every row
+/// after it. Only what does not depend on the threads' timing decides:
+/// the plants' runs, and the description's where no plant strayed before
+/// it did (the description leads, and where a plant strayed first it ends
+/// wherever it learnt of it). Where no run strayed, every run is whole and
+/// the first failure of a limit decides. Both runs are kept for the next
+/// round to resume from; where a plant strayed first, the description's
+/// run is marked unfinished, and run on to its end if the station is kept
+/// as it is (a plant's failure not re-timed for).
 fn checked_together(alone: Job, t: verify::Together) -> Checked {
     let described = t.verdict;
     let nominal_m = described.max_error_m;
     let set = t.set;
-    let mut how = if t.stopped {
-        Described::Stopped
-    } else {
-        Described::Whole
-    };
-    let (verdict, on_spread, kept_set) = if set_failed_first(&described, &set.verdict) {
-        if !described.ok {
-            how = Described::FailedLater(described);
-        }
+    let description_first = t
+        .cut_at_s
+        .is_some_and(|d| set.first_cut_s.is_none_or(|p| d <= p));
+    let mut how = Described::Whole;
+    let (verdict, on_spread, kept_set) = if description_first {
+        (described, None, Some(set.kept))
+    } else if set.first_cut_s.is_some() {
+        how = Described::Unfinished;
+        (set.verdict, Some(set.errors), Some(set.kept))
+    } else if set_failed_first(&described, &set.verdict) {
         (set.verdict, Some(set.errors), Some(set.kept))
     } else if !described.ok {
         (described, None, Some(set.kept))
@@ -766,7 +769,8 @@ fn station_alone(
     (alone, t0_s)
 }
 
-/// Whether the plant set's verdict is the station's: a plant failed, and
+/// Where no run strayed over the bound (every run whole), whether the
+/// plant set's verdict is the station's: a plant failed (a limit), and
 /// before the description did, if it did (on a tie, the description's).
 fn set_failed_first(described: &verify::Verdict, set: &verify::Verdict) -> bool {
     !set.ok && (described.ok || set.worst_t_s < described.worst_t_s)
@@ -820,7 +824,7 @@ fn whole_set(
     };
     let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
     let first = alone.samples.first_difference(&samples);
-    Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)), false)?.map(|s| s.errors))
+    Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)))?.map(|s| s.errors))
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm

@@ -4,12 +4,14 @@
 //! `VERIFY_SHARE` of the tolerance while painting, or that breaks a limit
 //! of the plant, is re-timed slower by the caller or refused.
 //!
-//! A job that passes on the robot description is then run on a fixed set
-//! of plants drawn around it ([`spread`]): the arm on the truck is not the
-//! description. A plant that strays over `spread::SHARE` of the tolerance
-//! fails the station, and the caller re-times where the first of them
-//! failed, or keeps the station and records the failure where only a
-//! slower whole path would help.
+//! A job is also run on a fixed set of plants drawn around the robot
+//! description ([`spread`]): the arm on the truck is not the description.
+//! A plant that strays over `spread::SHARE` of the tolerance fails the
+//! station. Compile runs the description and the set together in step
+//! ([`together`]) and re-times where the first of them failed, or keeps
+//! the station and records a plant's failure where only a slower whole
+//! path would help; an imported shape's description runs first and the
+//! set after it passed ([`on_spread`]), its failures recorded.
 
 use crate::job::Job;
 use crate::sim::{self, SimModel};
@@ -60,7 +62,8 @@ pub fn content(job: &Job) -> Result<(), CompileError> {
 
 /// Simulate `job` (the content checks already made) and judge it; its
 /// times are reported `t0_s` later (a station's rows simulated alone
-/// report job time).
+/// report job time; an electric kind's servo plant reads the rows' own
+/// times, job times already, and takes no offset).
 pub fn simulated(job: &Job, t0_s: f64) -> Result<Verdict, CompileError> {
     simulated_resuming(job, t0_s, None).map(|(v, _)| v)
 }
@@ -183,6 +186,9 @@ pub mod spread {
 /// What the plant set made of a station.
 pub struct OnSpread {
     pub verdict: Verdict,
+    /// Job time of the first painting error over the bound of any plant
+    /// (s), the earliest of the runs cut short there; `None` when none was.
+    pub first_cut_s: Option<f64>,
     /// Each plant's largest painting error (m, in [`spread::plants`]'
     /// order).
     pub errors: Vec<f64>,
@@ -195,16 +201,13 @@ pub struct OnSpread {
 /// set's runs of the job as it was and the first row that changed);
 /// `None` for the electric kinds, whose servo plant has no drawn numbers.
 /// A plant that strays more than `spread::SHARE` of the tolerance fails
-/// the job at that plant's first failure. `in_step`: the plants run
-/// together and end soon after the first failure
-/// (`sim::plants::run_each_in_step`: the same verdict; a passing plant's
-/// error is then its largest up to there), for a caller that re-times
-/// where the set fails; else each runs to its end or its own failure.
+/// the job at that plant's first failure; each runs to its end or its own
+/// failure (compile's re-timing runs them in step with the description
+/// instead: [`together`]).
 pub fn on_spread(
     job: &Job,
     t0_s: f64,
     resume: Option<(Vec<sim::Checkpoints>, usize)>,
-    in_step: bool,
 ) -> Result<Option<OnSpread>, CompileError> {
     let Some(robot) = job.robot.basr() else {
         return Ok(None);
@@ -212,12 +215,8 @@ pub fn on_spread(
     let (model, opts) = verifying(robot)?;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
-    let runs = if in_step {
-        sim::plants::run_each_in_step(job, &model, &opts, &factors, resume)
-    } else {
-        sim::plants::run_each(job, &model, &opts, &factors, resume)
-    };
-    let runs = runs.map_err(|e| CompileError::Verify(e.to_string()))?;
+    let runs = sim::plants::run_each(job, &model, &opts, &factors, resume)
+        .map_err(|e| CompileError::Verify(e.to_string()))?;
     Ok(judged_set(runs, t0_s, &opts, &set))
 }
 
@@ -247,6 +246,11 @@ fn judged_set(
                 .enumerate()
                 .max_by(|a, b| a.1.max_error_m.total_cmp(&b.1.max_error_m))
         });
+    let first_cut_s = reports
+        .iter()
+        .filter_map(|r| r.cut_short_at_s)
+        .min_by(f64::total_cmp)
+        .map(|t| t + t0_s);
     let (k, r) = pick?;
     let mut v = judged(r, t0_s, opts);
     v.on_spread = true;
@@ -255,6 +259,7 @@ fn judged_set(
     }
     Some(OnSpread {
         verdict: v,
+        first_cut_s,
         errors,
         kept,
     })
@@ -267,9 +272,9 @@ pub struct Together {
     /// the next to resume from.
     pub verdict: Verdict,
     pub kept: sim::Checkpoints,
-    /// The group ended the description's run before its end or its own
-    /// failure: a plant failed first, and `verdict` is its run's so far.
-    pub stopped: bool,
+    /// Job time of its first painting error over the bound (s), where its
+    /// run was cut short there.
+    pub cut_at_s: Option<f64>,
     /// The set's verdict, errors and runs, as [`on_spread`] in step gives
     /// them (each plant's as far as the group let it go).
     pub set: OnSpread,
@@ -278,8 +283,10 @@ pub struct Together {
 /// [`simulated_resuming`] and [`on_spread`] in step, the seven runs
 /// together for a job of BASR's kind (`robot`, the job's; the electric
 /// kinds have no plant set) (`resume`: the description's last run and the
-/// first row that changed; `set_resume`: the set's): the first failure of
-/// any of them ends the others at the next checkpoint.
+/// first row that changed; `set_resume`: the set's): the first painting
+/// error over the bound of any of them ends the plants at the next
+/// checkpoint, and the description (which leads: it waits for none) once
+/// it knows (`sim::plants::run_all_in_step`).
 pub fn together(
     job: &Job,
     robot: &crate::robot::Robot,
@@ -293,6 +300,7 @@ pub fn together(
     let runs = sim::plants::run_all_in_step(job, &model, &opts, resume, &factors, set_resume)
         .map_err(|e| CompileError::Verify(e.to_string()))?;
     let (outcome, kept) = runs.description;
+    let cut_at_s = outcome.report.cut_short_at_s.map(|t| t + t0_s);
     let verdict = judged(&outcome.report, t0_s, &opts);
     let set = judged_set(runs.plants, t0_s, &opts, &set).ok_or_else(|| {
         CompileError::Verify("the plant set ran no plant: this is a planner bug".into())
@@ -300,7 +308,7 @@ pub fn together(
     Ok(Together {
         verdict,
         kept,
-        stopped: runs.description_stopped,
+        cut_at_s,
         set,
     })
 }

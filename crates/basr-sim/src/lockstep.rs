@@ -13,7 +13,10 @@
 //! failing at b or later has reached b first, and no run passes b before
 //! every run has reached it: the failures known at boundary b are exactly
 //! those before b whatever the threads' timing, so which runs end where is
-//! the same on every machine, and so is every report.
+//! the same on every machine, and so is every report. A group's leader
+//! (`Group::leader_gate`) is the exception: it waits for none, so where it
+//! ends after another run's failure depends on the timing (the others'
+//! ends and reports do not: they still wait for it).
 
 use std::sync::{Condvar, Mutex, PoisonError};
 
@@ -121,8 +124,9 @@ pub(super) struct Gate<'a> {
 
 impl Gate<'_> {
     /// At boundary `t_s` (before its tick): wait until every run of the
-    /// group has reached it or ended; false (the run ends here) when one
-    /// failed before it.
+    /// group has reached it or ended (the leader waits for none); false
+    /// (the run ends here) when one failed before it (for the leader: one
+    /// it knows of).
     pub(super) fn go_on(&mut self, t_s: f64) -> bool {
         let g = self.group;
         let mut s = g.state.lock().unwrap_or_else(PoisonError::into_inner);

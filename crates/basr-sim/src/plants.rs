@@ -316,16 +316,16 @@ pub fn run_each_in_step(
 /// seven in step: the first failure of any of them (the description's
 /// included) ends the others at the next checkpoint, except that the
 /// description leads (`lockstep::Group::leader_gate`): it waits for none,
-/// and ends once it knows of an earlier failure (so where a plant failed
-/// first, how far it went depends on the threads' timing; nothing compile
-/// keeps of it does).
+/// and ends once it knows of an earlier failure, so where a plant failed
+/// first, how far it went depends on the threads' timing (a caller uses
+/// its report only where no plant was cut short before it, or runs it on
+/// to its end). The plants' reports do not depend on it.
 /// Compile re-times a station where it failed first, which changes every
 /// row after it: a run that went on past that failure (the description
 /// past a plant's, or a plant past the description's) simulated rows the
 /// next round replaces. Every run's report is the one a run alone gives up
-/// to where it ended; where the description was not cut short by its own
-/// failure, a plant the group ended with a limit broken is run on to its
-/// end, as [`run_each_in_step`] does.
+/// to where it ended; a plant the group ended with a limit broken is run
+/// on to its end, as [`run_each_in_step`] does.
 pub fn run_all_in_step(
     job: &Job,
     nominal: &SimModel,
@@ -339,13 +339,9 @@ pub fn run_all_in_step(
     let mut runs = in_step(job, nominal, opts, Some(described), &models, resumes);
     let (description, description_stopped) = runs.remove(0);
     let description = description?;
-    let plants = if description.0.report.cut_short_at_s.is_some() {
-        runs.into_iter()
-            .map(|(run, _)| run.map(|(o, k)| (o.report, k)))
-            .collect::<Result<_, _>>()?
-    } else {
-        whole_where_broken(job, nominal, opts, &models, runs)?
-    };
+    // whatever the description did: where it ended depends on the threads'
+    // timing, and the plants' reports must not
+    let plants = whole_where_broken(job, nominal, opts, &models, runs)?;
     Ok(AllInStep {
         description,
         description_stopped,
