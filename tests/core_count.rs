@@ -1,11 +1,9 @@
 //! A job's bytes do not depend on the machine's core count: the planner's
 //! parallel work (each stroke's passes, each station's joint paths, each
 //! station's verification, the film's bands and letters) is gathered in
-//! its input's order, and every station's description and plant set run
-//! in step the same way however many stations a round verifies. (Where
-//! the description, which leads its group, ended after a plant's failure
-//! depends on the threads' timing, not on their number: compile uses
-//! nothing of it, `src/pipeline/compile.rs` `checked_together`.) Compiled through the binary
+//! its input's order, and a station verified alone runs its description
+//! beside the plant set only when the round has fewer stations than the
+//! pool has threads, with the same verdicts. Compiled through the binary
 //! with one, two and three worker threads (`RAYON_NUM_THREADS`): a word on
 //! one stop, two lines on two stops, and a scene of several stops.
 

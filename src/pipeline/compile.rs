@@ -197,6 +197,12 @@ fn compile_for_tip(
         let skeleton = skeleton(&mut job);
         let last: Vec<(usize, Option<LastRun>)> =
             stale.iter().map(|&si| (si, runs[si].take())).collect();
+        // A station verified alone leaves cores idle while its description
+        // runs: it runs beside the plant set then. Stations verified
+        // together keep the cores busy already, and a description that
+        // fails where the whole path is re-timed would leave the set's runs
+        // beside it for nothing (200 letters: 34 s to 39 s).
+        let beside = stale.len() < rayon::current_num_threads();
         let fresh: Vec<Result<Checked, CompileError>> = last
             .into_par_iter()
             .map(|(si, last)| {
@@ -208,6 +214,7 @@ fn compile_for_tip(
                     req.period_s,
                     last,
                     req.retime_on_spread,
+                    beside,
                 )
             })
             .collect();
@@ -288,39 +295,6 @@ fn compile_for_tip(
                 // the set): the station is kept as it is and
                 // `summary.verified` says how far that plant strays.
                 None => {
-                    let mut last = runs[si].take();
-                    // A description left unfinished where a plant strayed
-                    // first: the station is kept as it is, so its run goes
-                    // on to its end, and a failure of its own is re-timed
-                    // for as any.
-                    if let Some(l) = last.take() {
-                        let (own, l) = match &l.described {
-                            Described::Whole => (None, l),
-                            Described::Unfinished => {
-                                let range = rows[si].clone();
-                                let (whole, l) = description_to_its_end(
-                                    &job,
-                                    &skeleton,
-                                    range,
-                                    req.period_s,
-                                    l,
-                                )?;
-                                nominal_m[si] = whole.max_error_m;
-                                (Some(whole), l)
-                            }
-                        };
-                        if let Some(own) = own.filter(|v| !v.ok) {
-                            let range = rows[si].clone();
-                            let s = &job.samples;
-                            let retime = &req.tuning.retime;
-                            if let Some(p) = slower(&paces[si], &own, &paths, s, range, retime)? {
-                                paces[si] = p;
-                            }
-                            runs[si] = Some(l);
-                            continue;
-                        }
-                        last = Some(l);
-                    }
                     if let Some((_, v)) = verdicts[si].as_mut() {
                         kept_over[si] = Some(format!(
                             "{}; not re-timed for it: only a slower path for the whole station would \
@@ -337,7 +311,7 @@ fn compile_for_tip(
                     // The set ran in step, its other plants ended at the
                     // first one's failure: run them to the end, so that
                     // `summary.verified` has every plant's whole run.
-                    if let Some(last) = last.filter(|_| req.retime_on_spread) {
+                    if let Some(last) = runs[si].take().filter(|_| req.retime_on_spread) {
                         let rows = rows[si].clone();
                         if let Some(e) = whole_set(&job, &skeleton, rows, req.period_s, last)? {
                             on_spread[si] = Some(e);
@@ -612,19 +586,6 @@ struct LastRun {
     samples: crate::job::Samples,
     checkpoints: crate::sim::Checkpoints,
     plants: Option<(crate::job::Samples, Vec<crate::sim::Checkpoints>)>,
-    /// How far the description's run went.
-    described: Described,
-}
-
-/// How far a station's run on the robot description went in its round.
-enum Described {
-    /// To its end, or to its own failure where that was the station's.
-    Whole,
-    /// A plant strayed over the bound first: the description ended
-    /// wherever it learnt of it (before or after its own failure, or at its
-    /// end), which depends on the threads' timing, so its verdict is not
-    /// used until it is run on to its end.
-    Unfinished,
 }
 
 /// The first rows of `samples` that decide where a run resumes from any of
@@ -650,12 +611,13 @@ fn rows_that_matter<'a>(
 /// in job time. With the station's `last` run, the run resumes at its last
 /// checkpoint before the first row that changed since (a re-timed join or
 /// move leaves the rows before it as they were); the verdict is a whole
-/// run's either way. `in_step` (compile re-times for the plant set): the
-/// robot description and the set's plants run together in step, and the
-/// station fails where the first of them failed (`verify::together`);
-/// else (an imported shape, whose plant failures are recorded and not
-/// re-timed, or an electric kind, which has no set) the description runs
-/// alone and, once it passes, each plant to its end (`verify::on_spread`).
+/// run's either way. A station that passes is then run on the plant set
+/// (`verify::on_spread`), whose failure fails it where that plant first
+/// strayed. Returns the verdict and this nominal run, for the next.
+/// `in_step`: the set's plants end soon after the first of them fails
+/// (`verify::on_spread`), where compile re-times for the set; with
+/// `beside`, the set then runs beside the description (`verify_together`):
+/// the same verdict, sooner on idle cores.
 fn verify_station(
     job: &Job,
     skeleton: &Job,
@@ -663,16 +625,17 @@ fn verify_station(
     period_s: f64,
     last: Option<LastRun>,
     in_step: bool,
+    beside: bool,
 ) -> Result<Checked, CompileError> {
     let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
-    let (resume, plants) = match last {
+    let (resume, mut plants) = match last {
         Some(l) => (
             Some((l.checkpoints, alone.samples.first_difference(&l.samples))),
             l.plants,
         ),
         None => (None, None),
     };
-    if let (true, Some(robot)) = (in_step, alone.robot.basr()) {
+    if let (true, Some(robot)) = (in_step && beside, alone.robot.basr()) {
         let set_resume = plants.map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
         let together = verify::together(&alone, robot, t0_s, resume, set_resume)?;
         return Ok(checked_together(alone, together));
@@ -680,12 +643,11 @@ fn verify_station(
     let (mut verdict, kept) = verify::simulated_resuming(&alone, t0_s, resume)?;
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
-    let mut plants = plants;
     if verdict.ok {
         let resume = plants
             .take()
             .map(|(rows, cps)| (cps, alone.samples.first_difference(&rows)));
-        if let Some(set) = verify::on_spread(&alone, t0_s, resume)? {
+        if let Some(set) = verify::on_spread(&alone, t0_s, resume, in_step)? {
             on_spread = Some(set.errors);
             if !set.verdict.ok {
                 verdict = set.verdict;
@@ -697,7 +659,6 @@ fn verify_station(
         samples: rows_that_matter(&alone.samples, [&checkpoints]),
         checkpoints,
         plants,
-        described: Described::Whole,
     });
     Ok(Checked {
         verdict,
@@ -708,36 +669,28 @@ fn verify_station(
 }
 
 /// [`verify_station`]'s result from the station `alone` run on the robot
-/// description and the plant set in step (`verify::together`). The
-/// station fails where the first of the seven runs first strayed over the
-/// bound (on a tie, the description): re-timing there changes every row
-/// after it. Only what does not depend on the threads' timing decides:
-/// the plants' runs, and the description's where no plant strayed before
-/// it did (the description leads, and where a plant strayed first it ends
-/// wherever it learnt of it). Where no run strayed, every run is whole and
-/// the first failure of a limit decides. Both runs are kept for the next
-/// round to resume from; where a plant strayed first, the description's
-/// run is marked unfinished, and run on to its end if the station is kept
-/// as it is (a plant's failure not re-timed for).
+/// description and the plant set at once (`verify::together`): the same
+/// verdict as the description's run first and the set's after it passed;
+/// the set's runs are kept whenever they ran (a round the description
+/// failed included), so the next round resumes them where the rows first
+/// changed.
 fn checked_together(alone: Job, t: verify::Together) -> Checked {
-    let described = t.verdict;
-    let nominal_m = described.max_error_m;
-    let set = t.set;
-    let description_first = t
-        .cut_at_s
-        .is_some_and(|d| set.first_cut_s.is_none_or(|p| d <= p));
-    let mut how = Described::Whole;
-    let (verdict, on_spread, kept_set) = if description_first {
-        (described, None, Some(set.kept))
-    } else if set.first_cut_s.is_some() {
-        how = Described::Unfinished;
-        (set.verdict, Some(set.errors), Some(set.kept))
-    } else if set_failed_first(&described, &set.verdict) {
-        (set.verdict, Some(set.errors), Some(set.kept))
-    } else if !described.ok {
-        (described, None, Some(set.kept))
-    } else {
-        (described, Some(set.errors), None)
+    let mut verdict = t.verdict;
+    let nominal_m = verdict.max_error_m;
+    let mut on_spread = None;
+    let kept_set = match t.set {
+        Ok(set) if verdict.ok => {
+            on_spread = Some(set.errors);
+            if set.verdict.ok {
+                None
+            } else {
+                verdict = set.verdict;
+                Some(set.kept)
+            }
+        }
+        // the description failed: the set's runs wait for the next round
+        Ok(set) => Some(set.kept),
+        Err(kept) => Some(kept),
     };
     let plants = kept_set
         .filter(|cps| !cps.is_empty())
@@ -748,7 +701,6 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
             samples: rows_that_matter(&alone.samples, [&t.kept]),
             checkpoints: t.kept,
             plants,
-            described: how,
         }),
         on_spread,
         nominal_m,
@@ -769,45 +721,6 @@ fn station_alone(
     (alone, t0_s)
 }
 
-/// Where no run strayed over the bound (every run whole), whether the
-/// plant set's verdict is the station's: a plant failed (a limit), and
-/// before the description did, if it did (on a tie, the description's).
-fn set_failed_first(described: &verify::Verdict, set: &verify::Verdict) -> bool {
-    !set.ok && (described.ok || set.worst_t_s < described.worst_t_s)
-}
-
-/// The robot description's run of station `rows` of `job` that its group
-/// ended early (`last`, a plant failed first), resumed at its last
-/// checkpoint and run to its end or its own failure: its verdict, and
-/// `last` with that run's checkpoints for the next round.
-fn description_to_its_end(
-    job: &Job,
-    skeleton: &Job,
-    rows: std::ops::Range<usize>,
-    period_s: f64,
-    last: LastRun,
-) -> Result<(verify::Verdict, LastRun), CompileError> {
-    let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
-    // nothing changed: every checkpoint is usable
-    let unchanged = alone.samples.len();
-    let (verdict, kept) =
-        verify::simulated_resuming(&alone, t0_s, Some((last.checkpoints, unchanged)))?;
-    let Some(checkpoints) = kept else {
-        return Err(CompileError::Verify(
-            "a run of the robot description kept no checkpoints: this is a planner bug".into(),
-        ));
-    };
-    Ok((
-        verdict,
-        LastRun {
-            samples: rows_that_matter(&alone.samples, [&checkpoints]),
-            checkpoints,
-            plants: last.plants,
-            described: Described::Whole,
-        },
-    ))
-}
-
 /// Each plant's largest error over the whole station (`rows` of `job`),
 /// from `last`, the set's runs in step that ended at its first failure:
 /// each resumes at its last checkpoint and runs to its end or to its own
@@ -824,7 +737,7 @@ fn whole_set(
     };
     let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
     let first = alone.samples.first_difference(&samples);
-    Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)))?.map(|s| s.errors))
+    Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)), false)?.map(|s| s.errors))
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm
@@ -941,27 +854,6 @@ fn paint_start(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The station fails where the first of its runs failed: a plant
-    /// before the description, the description before a plant or on a
-    /// tie, and whichever failed when the other passed.
-    #[test]
-    fn the_first_failure_is_the_station_s() {
-        let v = |ok: bool, t: f64| verify::Verdict {
-            max_error_m: if ok { 3e-3 } else { 5e-3 },
-            ok,
-            why: String::new(),
-            worst: (0, 1),
-            worst_t_s: t,
-            on_spread: false,
-        };
-        assert!(set_failed_first(&v(false, 84.3), &v(false, 19.7)));
-        assert!(!set_failed_first(&v(false, 19.7), &v(false, 84.3)));
-        assert!(!set_failed_first(&v(false, 19.7), &v(false, 19.7)));
-        assert!(set_failed_first(&v(true, 120.0), &v(false, 19.7)));
-        assert!(!set_failed_first(&v(false, 19.7), &v(true, 120.0)));
-        assert!(!set_failed_first(&v(true, 120.0), &v(true, 120.0)));
-    }
 
     #[test]
     fn the_verified_set_is_each_plants_worst_over_the_stations() {

@@ -4,14 +4,12 @@
 //! `VERIFY_SHARE` of the tolerance while painting, or that breaks a limit
 //! of the plant, is re-timed slower by the caller or refused.
 //!
-//! A job is also run on a fixed set of plants drawn around the robot
-//! description ([`spread`]): the arm on the truck is not the description.
-//! A plant that strays over `spread::SHARE` of the tolerance fails the
-//! station. Compile runs the description and the set together in step
-//! ([`together`]) and re-times where the first of them failed, or keeps
-//! the station and records a plant's failure where only a slower whole
-//! path would help; an imported shape's description runs first and the
-//! set after it passed ([`on_spread`]), its failures recorded.
+//! A job that passes on the robot description is then run on a fixed set
+//! of plants drawn around it ([`spread`]): the arm on the truck is not the
+//! description. A plant that strays over `spread::SHARE` of the tolerance
+//! fails the station, and the caller re-times where the first of them
+//! failed, or keeps the station and records the failure where only a
+//! slower whole path would help.
 
 use crate::job::Job;
 use crate::sim::{self, SimModel};
@@ -186,9 +184,6 @@ pub mod spread {
 /// What the plant set made of a station.
 pub struct OnSpread {
     pub verdict: Verdict,
-    /// Job time of the first painting error over the bound of any plant
-    /// (s), the earliest of the runs cut short there; `None` when none was.
-    pub first_cut_s: Option<f64>,
     /// Each plant's largest painting error (m, in [`spread::plants`]'
     /// order).
     pub errors: Vec<f64>,
@@ -201,13 +196,16 @@ pub struct OnSpread {
 /// set's runs of the job as it was and the first row that changed);
 /// `None` for the electric kinds, whose servo plant has no drawn numbers.
 /// A plant that strays more than `spread::SHARE` of the tolerance fails
-/// the job at that plant's first failure; each runs to its end or its own
-/// failure (compile's re-timing runs them in step with the description
-/// instead: [`together`]).
+/// the job at that plant's first failure. `in_step`: the plants run
+/// together and end soon after the first failure
+/// (`sim::plants::run_each_in_step`: the same verdict; a passing plant's
+/// error is then its largest up to there), for a caller that re-times
+/// where the set fails; else each runs to its end or its own failure.
 pub fn on_spread(
     job: &Job,
     t0_s: f64,
     resume: Option<(Vec<sim::Checkpoints>, usize)>,
+    in_step: bool,
 ) -> Result<Option<OnSpread>, CompileError> {
     let Some(robot) = job.robot.basr() else {
         return Ok(None);
@@ -215,8 +213,12 @@ pub fn on_spread(
     let (model, opts) = verifying(robot)?;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
-    let runs = sim::plants::run_each(job, &model, &opts, &factors, resume)
-        .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let runs = if in_step {
+        sim::plants::run_each_in_step(job, &model, &opts, &factors, resume)
+    } else {
+        sim::plants::run_each(job, &model, &opts, &factors, resume)
+    };
+    let runs = runs.map_err(|e| CompileError::Verify(e.to_string()))?;
     Ok(judged_set(runs, t0_s, &opts, &set))
 }
 
@@ -246,11 +248,6 @@ fn judged_set(
                 .enumerate()
                 .max_by(|a, b| a.1.max_error_m.total_cmp(&b.1.max_error_m))
         });
-    let first_cut_s = reports
-        .iter()
-        .filter_map(|r| r.cut_short_at_s)
-        .min_by(f64::total_cmp)
-        .map(|t| t + t0_s);
     let (k, r) = pick?;
     let mut v = judged(r, t0_s, opts);
     v.on_spread = true;
@@ -259,34 +256,29 @@ fn judged_set(
     }
     Some(OnSpread {
         verdict: v,
-        first_cut_s,
         errors,
         kept,
     })
 }
 
-/// The robot description's verdict and the plant set's, the seven runs
-/// made together in step (`sim::plants::run_all_in_step`).
+/// The robot description's verdict and the plant set's, the runs made
+/// together (`sim::plants::run_beside_description_in_step`).
 pub struct Together {
-    /// The description's verdict, as far as its run went, and its run, for
-    /// the next to resume from.
+    /// The description's verdict and its run, for the next to resume from.
     pub verdict: Verdict,
     pub kept: sim::Checkpoints,
-    /// Job time of its first painting error over the bound (s), where its
-    /// run was cut short there.
-    pub cut_at_s: Option<f64>,
-    /// The set's verdict, errors and runs, as [`on_spread`] in step gives
-    /// them (each plant's as far as the group let it go).
-    pub set: OnSpread,
+    /// The set's verdict as [`on_spread`] in step gives it, when the
+    /// description's run was not cut short by its own failure; else `Err`
+    /// of the plants' runs as far as the group let them go, for the next
+    /// round to resume from.
+    pub set: Result<OnSpread, Vec<sim::Checkpoints>>,
 }
 
-/// [`simulated_resuming`] and [`on_spread`] in step, the seven runs
-/// together for a job of BASR's kind (`robot`, the job's; the electric
-/// kinds have no plant set) (`resume`: the description's last run and the
-/// first row that changed; `set_resume`: the set's): the first painting
-/// error over the bound of any of them ends the plants at the next
-/// checkpoint, and the description (which leads: it waits for none) once
-/// it knows (`sim::plants::run_all_in_step`).
+/// [`simulated_resuming`] and [`on_spread`] in step, run together for a
+/// job of BASR's kind (`robot`, the job's; the electric kinds have no
+/// plant set) (`resume`: the description's last run and the first row
+/// that changed; `set_resume`: the set's): the same verdicts, on two
+/// cores that the description's run no longer leaves one of idle.
 pub fn together(
     job: &Job,
     robot: &crate::robot::Robot,
@@ -297,20 +289,19 @@ pub fn together(
     let (model, opts) = verifying(robot)?;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
-    let runs = sim::plants::run_all_in_step(job, &model, &opts, resume, &factors, set_resume)
-        .map_err(|e| CompileError::Verify(e.to_string()))?;
-    let (outcome, kept) = runs.description;
-    let cut_at_s = outcome.report.cut_short_at_s.map(|t| t + t0_s);
+    let ((outcome, kept), plants) = sim::plants::run_beside_description_in_step(
+        job, &model, &opts, resume, &factors, set_resume,
+    )
+    .map_err(|e| CompileError::Verify(e.to_string()))?;
     let verdict = judged(&outcome.report, t0_s, &opts);
-    let set = judged_set(runs.plants, t0_s, &opts, &set).ok_or_else(|| {
-        CompileError::Verify("the plant set ran no plant: this is a planner bug".into())
-    })?;
-    Ok(Together {
-        verdict,
-        kept,
-        cut_at_s,
-        set,
-    })
+    let set = match plants {
+        Ok(runs) => match judged_set(runs, t0_s, &opts, &set) {
+            Some(s) => Ok(s),
+            None => Err(Vec::new()),
+        },
+        Err(kept) => Err(kept),
+    };
+    Ok(Together { verdict, kept, set })
 }
 
 /// The verdict on a simulated job: its painting error within

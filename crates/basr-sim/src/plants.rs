@@ -312,80 +312,74 @@ pub fn run_each_in_step(
 }
 
 /// The robot description's own run of `job` (resumed from `described`,
-/// as `simulate_resumable` resumes) and [`run_each_in_step`]'s plants, all
-/// seven in step: the first failure of any of them (the description's
-/// included) ends the others at the next checkpoint, except that the
-/// description leads (`lockstep::Group::leader_gate`): it waits for none,
-/// and ends once it knows of an earlier failure, so where a plant failed
-/// first, how far it went depends on the threads' timing (a caller uses
-/// its report only where no plant was cut short before it, or runs it on
-/// to its end). The plants' reports do not depend on it.
-/// Compile re-times a station where it failed first, which changes every
-/// row after it: a run that went on past that failure (the description
-/// past a plant's, or a plant past the description's) simulated rows the
-/// next round replaces. Every run's report is the one a run alone gives up
-/// to where it ended; a plant the group ended with a limit broken is run
-/// on to its end, as [`run_each_in_step`] does.
-pub fn run_all_in_step(
+/// as `simulate_resumable` resumes) beside [`run_each_in_step`]'s plants,
+/// all in step: the description's run leads (`lockstep::Group::
+/// leader_gate`): a plant's failure does not end it, and its own failure
+/// (over `opts.stop_over_m`) ends the plants at the next checkpoint.
+/// Compile verifies a station on the description first and on the set
+/// only once it passes; run together, the two cores the set shares are
+/// never idle while the description runs alone. Returns the description's
+/// run and, when it was not cut short, the plants' reports as
+/// [`run_each_in_step`] gives them; when it was, `Err` of the plants'
+/// checkpoints as far as they ran (their reports say nothing: the station
+/// is re-timed for the description first), for the next round to resume
+/// from.
+pub fn run_beside_description_in_step(
     job: &Job,
     nominal: &SimModel,
     opts: &Options,
     described: Option<(Checkpoints, usize)>,
     factors: &[Vec<f64>],
     resume: Option<(Vec<Checkpoints>, usize)>,
-) -> Result<AllInStep, SimError> {
+) -> Result<Beside, SimError> {
     let resumes = resumes_of(factors, resume)?;
     let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
     let mut runs = in_step(job, nominal, opts, Some(described), &models, resumes);
-    let (description, description_stopped) = runs.remove(0);
+    let (description, _) = runs.remove(0);
     let description = description?;
-    // whatever the description did: where it ended depends on the threads'
-    // timing, and the plants' reports must not
+    if description.0.report.cut_short_at_s.is_some() {
+        let kept = runs
+            .into_iter()
+            .map(|(run, _)| run.map(|(_, k)| k))
+            .collect::<Result<_, _>>()?;
+        return Ok((description, Err(kept)));
+    }
     let plants = whole_where_broken(job, nominal, opts, &models, runs)?;
-    Ok(AllInStep {
-        description,
-        description_stopped,
-        plants,
-    })
-}
-
-/// [`run_all_in_step`]'s runs.
-pub struct AllInStep {
-    /// The robot description's run and its checkpoints.
-    pub description: (super::Outcome, Checkpoints),
-    /// The group ended the description's run at a checkpoint, before its
-    /// end and its own failure (a plant failed before it).
-    pub description_stopped: bool,
-    /// Each plant's report and checkpoints, in `factors`' order.
-    pub plants: Vec<(super::Report, Checkpoints)>,
+    Ok((description, Ok(plants)))
 }
 
 /// A run of a group in step, and whether the group ended it.
 type StepRun = (Result<(super::Outcome, Checkpoints), SimError>, bool);
 
+/// The description's run beside the plants': the plants' reports, or
+/// their checkpoints as far as they ran when the description failed.
+type Beside = (
+    (super::Outcome, Checkpoints),
+    Result<Vec<(super::Report, Checkpoints)>, Vec<Checkpoints>>,
+);
+
 /// Runs of `job` in step on their own threads: the description's (driven
-/// by the controller built for `nominal`, resumed from `description`'s
-/// checkpoints) first when `description` is given, then one per plant of
-/// `models` (resumed from `resumes`); each run and whether the group ended
-/// it. One thread per run: they wait for each other, which a pool of fewer
-/// threads could not.
+/// by the controller built for `nominal`, resumed from `leader`'s
+/// checkpoints) first and leading when `leader` is given, then one per
+/// plant of `models` (resumed from `resumes`); each run and whether the
+/// group ended it. One thread per run: they wait for each other, which a
+/// pool of fewer threads could not.
 fn in_step(
     job: &Job,
     nominal: &SimModel,
     opts: &Options,
-    description: Option<Option<(Checkpoints, usize)>>,
+    leader: Option<Option<(Checkpoints, usize)>>,
     models: &[SimModel],
     resumes: Vec<Option<(Checkpoints, usize)>>,
 ) -> Vec<StepRun> {
-    let led = description.is_some();
+    let led = leader.is_some();
     let mut runs: Vec<(&SimModel, Option<(Checkpoints, usize)>)> = Vec::new();
-    if let Some(resume) = description {
+    if let Some(resume) = leader {
         runs.push((nominal, resume));
     }
     runs.extend(models.iter().zip(resumes));
     let group = super::lockstep::Group::new(runs.len());
-    // Every gate before any thread (`Group::gates`); the description's
-    // leads (`Group::leader_gate`).
+    // Every gate before any thread (`Group::gates`).
     let gates = group.gates(led.then_some(0));
     std::thread::scope(|sc| {
         let handles: Vec<_> = runs
@@ -635,14 +629,12 @@ mod tests {
         }
     }
 
-    /// The description runs in step as the set's group's leader: a plant
-    /// failing first ends it once it knows, and run on from its
-    /// checkpoints it reports as its whole run alone; the plants then
-    /// report as in step without it. Failing first, it reports
-    /// as alone and ends the plants, each of which that failed reports as
-    /// alone too.
+    /// The description's run beside the set is its run alone, whatever the
+    /// plants do; when it passes, the plants report as in step without it;
+    /// when it fails, the plants end soon after and their checkpoints are
+    /// returned for the next round.
     #[test]
-    fn the_description_is_one_of_the_group() {
+    fn the_description_beside_the_set_is_its_run_alone() {
         let (job, nominal, factors, whole) = set_up();
         let mut errors: Vec<f64> = whole.iter().map(|(r, _)| r.max_error_m).collect();
         errors.sort_by(f64::total_cmp);
@@ -653,65 +645,38 @@ mod tests {
                 .report
         };
         let described = lone(&Options::default()).max_error_m;
-        // plants fail, the description passes: the group ends it early
+        // plants fail, the description passes
         let opts = Options {
             stop_over_m: Some(0.5 * (errors[2] + errors[3]).max(described * 1.01)),
             ..Options::default()
         };
-        let want = lone(&opts);
-        assert!(want.cut_short_at_s.is_none(), "the description passes");
         for _ in 0..3 {
-            let r = run_all_in_step(&job, &nominal, &opts, None, &factors, None).unwrap();
-            // it leads: ended where it learnt of the plants' failure, or
-            // at its end if it got there first
-            let (d, kept) = r.description;
-            assert!(d.report.cut_short_at_s.is_none());
-            if r.description_stopped {
-                assert!(d.report.max_error_m <= want.max_error_m);
-                let end = job.samples.len();
-                let (whole_d, _) =
-                    crate::simulate_resumable(&job, &nominal, &opts, Some((kept, end))).unwrap();
-                assert_eq!(whole_d.report, want, "run on, it is its whole run");
-            } else {
-                assert_eq!(d.report, want);
-            }
+            let ((d, _), set) =
+                run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None)
+                    .unwrap();
+            assert_eq!(d.report, lone(&opts));
             let step = run_each_in_step(&job, &nominal, &opts, &factors, None).unwrap();
-            let a: Vec<&crate::Report> = r.plants.iter().map(|(r, _)| r).collect();
+            let Ok(set) = set else {
+                panic!("the description passed: the plants report");
+            };
+            let a: Vec<&crate::Report> = set.iter().map(|(r, _)| r).collect();
             let b: Vec<&crate::Report> = step.iter().map(|(r, _)| r).collect();
             assert_eq!(a, b);
         }
-        // the description fails first (two plants drawn close to it that
-        // fail later or not at all, under a bound just below its error):
-        // it reports as alone, and the plants end soon after it; a plant
-        // that failed as well failed as alone
-        let factors: Vec<Vec<f64>> = [0, 3].map(|i| draw(3, i, 0.02)).to_vec();
-        let (opts, want, alone) = (50..100)
-            .rev()
-            .find_map(|pct| {
-                let opts = Options {
-                    stop_over_m: Some(0.01 * pct as f64 * described),
-                    ..Options::default()
-                };
-                let want = lone(&opts);
-                let at = want.cut_short_at_s?;
-                let alone = run_each(&job, &nominal, &opts, &factors, None).unwrap();
-                alone
-                    .iter()
-                    .all(|(p, _)| p.cut_short_at_s.is_none_or(|t| t >= at))
-                    .then_some((opts, want, alone))
-            })
-            .expect("a bound the description fails first");
-        let r = run_all_in_step(&job, &nominal, &opts, None, &factors, None).unwrap();
-        assert!(!r.description_stopped);
-        assert_eq!(r.description.0.report, want);
-        assert_eq!(r.plants.len(), factors.len());
-        for ((p, _), (a, _)) in r.plants.iter().zip(&alone) {
-            if p.cut_short_at_s.is_some() {
-                assert_eq!(p, a, "a plant that failed in step failed so alone");
-            } else {
-                assert!(p.max_error_m <= a.max_error_m);
-            }
-        }
+        // the description fails: the plants end at most a checkpoint later
+        let opts = Options {
+            stop_over_m: Some(0.5 * described),
+            ..Options::default()
+        };
+        let want = lone(&opts);
+        assert!(want.cut_short_at_s.is_some(), "the description fails");
+        let ((d, _), set) =
+            run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None).unwrap();
+        assert_eq!(d.report, want);
+        let Err(kept) = set else {
+            panic!("the set's runs wait for the next round");
+        };
+        assert_eq!(kept.len(), factors.len());
     }
 
     /// Runs in step resumed from checkpoints past the group's first

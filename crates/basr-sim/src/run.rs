@@ -415,8 +415,7 @@ pub(super) fn run_resumable(
             });
         }
         // In step with the other runs of its group (`lockstep`): at each
-        // checkpoint it waits for them (a leader for none), and ends once
-        // one has failed. The
+        // checkpoint it waits for them, and ends once one has failed. The
         // checkpoint a run resumes at is one of them: resumed past a
         // failure of the group (a set kept from a round its description
         // failed), it ends there as a whole run in step would.
