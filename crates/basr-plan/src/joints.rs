@@ -169,24 +169,19 @@ pub fn joint_paths(
     // Stations are independent, and so is each pass's solution: both are
     // solved in parallel; the results, and the first error, keep their
     // order whatever the core count.
-    let stations: Vec<Result<Vec<Run>, CompileError>> = plan
-        .stations
+    let n = plan.stations.len().min(tours.stations.len());
+    let stations: Vec<Result<Vec<Run>, CompileError>> = tours.stations[..n]
         .par_iter()
-        .zip(&tours.stations)
         .enumerate()
-        .map(|(si, (station, tour))| {
-            station_runs(
-                strokes, passes, plan, robot, joins, &stow, si, station, tour,
-            )
-        })
+        .map(|(si, tour)| station_runs(strokes, passes, plan, robot, joins, &stow, si, tour))
         .collect();
     Ok(JointPaths {
         stations: stations.into_iter().collect::<Result<_, _>>()?,
     })
 }
 
-/// [`joint_paths`] of station `si`: its passes solved both ways round, its
-/// order and branches chosen.
+/// [`joint_paths`] of station `si` of `plan` (its `tour`): its passes
+/// solved both ways round, its order and branches chosen.
 #[allow(clippy::too_many_arguments)]
 fn station_runs(
     strokes: &PlacedStrokes,
@@ -196,11 +191,10 @@ fn station_runs(
     joins: &Joins,
     stow: &Q,
     si: usize,
-    station: &Station,
     tour: &[super::order::Visit],
 ) -> Result<Vec<Run>, CompileError> {
     use rayon::prelude::*;
-    let at = Stop::new(si, station, &plan.road, robot);
+    let at = Stop::new(si, &plan.stations[si], &plan.road, robot);
     // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
     let ways: Vec<Result<[Option<Candidates>; 2], CompileError>> = tour
         .par_iter()
