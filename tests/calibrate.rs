@@ -206,7 +206,7 @@ fn a_tip_the_robot_does_not_list_is_refused_naming_the_tips() {
     );
     assert_eq!(run.status.code(), Some(2), "{}", stderr(&run));
     assert!(
-        stderr(&run).contains("seed-63.5, 511, 817"),
+        stderr(&run).contains("seed-63.5, 511, 817, 509"),
         "{}",
         stderr(&run)
     );

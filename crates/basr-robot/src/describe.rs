@@ -639,7 +639,7 @@ mod tests {
     fn spray_tips_are_read_and_checked() {
         let r = parse(super::super::BASR_TOML, "basr.toml").unwrap();
         let names: Vec<&str> = r.paint.tips.iter().map(|t| t.name.as_str()).collect();
-        assert_eq!(names, ["seed-63.5", "511", "817"]);
+        assert_eq!(names, ["seed-63.5", "511", "817", "509"]);
         assert_eq!(r.paint.tips[0].fan_angle_rad(), r.paint.fan_angle_rad);
         for (find, replace, field) in [
             ("name = \"511\"", "name = \"817\"", "paint.tip[2].name"),
