@@ -208,3 +208,46 @@ fn a_saved_simulation_of_another_job_is_refused() {
     assert!(err.contains("does not name the job"), "{err}");
     assert!(!d.join("c.html").exists());
 }
+
+/// A job that calls for another tip than the robot's first says which,
+/// everywhere a crew or an integrator reads it: compile's `--json`, the
+/// preview's header and the sheet's "At a glance" (the bicycle at 0.75 of
+/// its size, whose wheels only the low-flow 509 paints evenly).
+#[test]
+fn a_job_that_calls_for_another_tip_names_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("bike.toml"),
+        "[[item]]\nsymbol = \"bike\"\nat_m = [0.0, 0.0]\nscale = 0.75\n",
+    )
+    .unwrap();
+    let v = common::json_of(basr(
+        d,
+        &[
+            "compile",
+            "--marking",
+            "bike.toml",
+            "--low-speed",
+            "-o",
+            "b.job.json",
+            "--json",
+        ],
+    ));
+    assert_eq!(v["tip"], "509", "{v}");
+    assert_eq!(v["verdict"], "ready", "{v}");
+    let out = basr(d, &["preview", "b.job.json", "-o", "b.svg", "-q"]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let svg = std::fs::read_to_string(d.join("b.svg")).unwrap();
+    assert!(
+        svg.contains("tip 509: fan 45.2°"),
+        "the preview's spray line"
+    );
+    let out = basr(d, &["report", "b.job.json", "-o", "b.html"]);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let html = std::fs::read_to_string(d.join("b.html")).unwrap();
+    assert!(
+        html.contains("spray tip</th><td>mount 509 (45.2° fan"),
+        "the sheet's At a glance"
+    );
+}

@@ -504,6 +504,50 @@ fn fit_keeps_the_jobs_options_and_its_tolerance() {
     refused(d, &off, &[&format!("point \"{name}\" is 13.")]);
 }
 
+/// A job laid out for a road below 25 mph (`--low-speed`: a symbol at
+/// three quarters of its size without a notice) records it, and fit lays
+/// the marking out the same way: no notice the job did not have.
+#[test]
+fn fit_keeps_a_low_speed_layout() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("arrow.toml"),
+        "[[item]]\nsymbol = \"arrow-through\"\nat_m = [0.0, 0.0]\nscale = 0.75\n",
+    )
+    .unwrap();
+    succeeded(basr(
+        d,
+        &[
+            "compile",
+            "--marking",
+            "arrow.toml",
+            "--low-speed",
+            "-o",
+            "j.job.json",
+        ],
+    ));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    assert!(
+        job.layout.options.as_ref().is_some_and(|o| o.low_speed),
+        "the job records --low-speed"
+    );
+    let layout_notes = |j: &Job| {
+        j.summary
+            .warnings
+            .iter()
+            .filter(|w| w.kind == basr::job::WarningKind::Layout)
+            .count()
+    };
+    assert_eq!(layout_notes(&job), 0, "{:?}", job.summary.warnings);
+    let truth = moved(&job, 1, [0.1, -0.1, 1.0], against_the_truck());
+    let text = points_file(&job, 1, &truth, 0.0, 1);
+    succeeded(fit(d, &text, &["--marking", "arrow.toml"]));
+    let fitted = Job::read(&d.join("f.job.json")).unwrap();
+    assert_eq!(fitted.layout.options, job.layout.options);
+    assert_eq!(layout_notes(&fitted), 0, "{:?}", fitted.summary.warnings);
+}
+
 /// A fitted job keeps the job's other stops as the job timed and verified
 /// them (`summary.stops`): they are not simulated again, so a figure put
 /// in the record comes back as it was given, while the fitted stop is

@@ -174,8 +174,8 @@ pub struct Args {
     /// --letter-height/--lane-width are in feet or inches, else metric].
     #[arg(long, value_enum, value_name = "UNITS")]
     pub units: Option<super::UnitsArg>,
-    /// Print the summary as JSON on stdout (every warning, with its
-    /// severity).
+    /// Print the summary as JSON on stdout (the verdict, the spray tip to
+    /// mount, every warning with its severity).
     #[arg(long)]
     pub json: bool,
     /// List every warning (info and notices too), not only the problems.
@@ -708,6 +708,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "samples": job.samples.len(),
             "control_period_s": job.control_period_s,
             "verdict": verdict,
+            // the spray tip to mount (null for a robot that lists none)
+            "tip": job.paint.tip,
             "summary": s,
             "sha256": job.sha256,
             "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),

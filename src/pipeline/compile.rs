@@ -65,8 +65,8 @@ pub fn compile_strokes(
     }
     // Another tip is planned first without the closed loop: one whose
     // plan already has problems (its film, its strokes against its fan)
-    // is no choice, and is not verified (STOP at 6 ft verified all three
-    // tips: 3.4 s of a NOT READY compile). Verification only slows a job
+    // is no choice, and is not verified (STOP at 6 ft once verified all
+    // three tips it had: 3.4 s of a NOT READY compile). Verification only slows a job
     // (gentler accelerations, and slower speeds where a joint's limit
     // binds), and is taken not to take a planned problem away; were it
     // ever to, a tip would be passed over that a verified compile would

@@ -114,6 +114,12 @@ fn summary(out: &mut String, s: &Sheet) {
             s.tip_life_m3.1 * 1e3
         ),
         };
+    // which tip, before how long it lasts: a job may call for another tip
+    // than the one on the gun
+    let tip = match &s.tip {
+        Some(name) => format!("mount {}; {tip}", escape(name)),
+        None => tip,
+    };
     row(out, "spray tip", &tip);
     let film = if s.film_verdict.pass() {
         format!(

@@ -125,6 +125,9 @@ pub struct Sheet {
     pub stops: Vec<Stop>,
     pub time_on_site_s: f64,
     pub paint_m3: f64,
+    /// The tip to mount, in the crew's words (`tip_words`), when the
+    /// robot lists tips.
+    pub tip: Option<String>,
     /// The tip's life left after this job (min, max), m³, with a tally.
     pub tip_left_m3: Option<(f64, f64)>,
     pub tip_life_m3: (f64, f64),
@@ -563,6 +566,7 @@ pub fn build(input: &Input) -> Sheet {
         stops,
         time_on_site_s,
         paint_m3,
+        tip: tip_words(job),
         tip_left_m3,
         tip_life_m3: life,
         film_verdict: input.film_verdict.clone(),

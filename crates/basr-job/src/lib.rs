@@ -409,6 +409,10 @@ pub struct PlanOptions {
     pub gun_lag_s: f64,
     /// Margin kept from the edge of the arm's reach (m).
     pub reach_margin_m: f64,
+    /// Laid out for a road below 25 mph (`--low-speed`): smaller letters
+    /// and symbols without a notice. Absent when not.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub low_speed: bool,
 }
 
 /// One control period's setpoint: a row of the CSV.

@@ -414,7 +414,14 @@ fn page(panels: &[Panel]) -> Page {
         header.push((
             "spray".into(),
             format!(
-                "fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {} mm",
+                "{}fan {:.1}°, profile {}, {:.2} L/min × {:.2}, raster {} mm",
+                // the tip the crew mounts, when the robot lists tips
+                p.job
+                    .paint
+                    .tip
+                    .as_ref()
+                    .map(|t| format!("tip {t}: "))
+                    .unwrap_or_default(),
                 p.job.paint.fan_angle_rad.to_degrees(),
                 p.preview.profile,
                 p.job.paint.flow_m3ps * 60e3,
