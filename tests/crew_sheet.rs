@@ -7,7 +7,7 @@
 use std::process::Command as Process;
 
 mod common;
-use common::{basr, browser};
+use common::{basr, browser, succeeded};
 
 /// Pages of a PDF, counted by its page objects (`/Type /Page`, not
 /// `/Pages`): independent of any PDF tool.
@@ -250,4 +250,42 @@ fn a_job_that_calls_for_another_tip_names_it() {
         html.contains("spray tip</th><td>mount 509 (45.2° fan"),
         "the sheet's At a glance"
     );
+    // A tip tally counts one tip: started by a job of the seed's tip, it
+    // names that tip and refuses the 509's job, writing nothing.
+    succeeded(basr(d, &["compile", "STOP", "-q"]));
+    let out = basr(
+        d,
+        &[
+            "report",
+            "STOP.job.json",
+            "--tip-tally",
+            "t.toml",
+            "--no-sim",
+        ],
+    );
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    let tally = std::fs::read_to_string(d.join("t.toml")).unwrap();
+    assert!(tally.contains("tip = \"seed-63.5\""), "{tally}");
+    let out = basr(
+        d,
+        &[
+            "report",
+            "b.job.json",
+            "--tip-tally",
+            "t.toml",
+            "--no-sim",
+            "-o",
+            "b2.html",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", common::stderr(&out));
+    assert!(
+        common::stderr(&out).contains(
+            "counts the paint through tip seed-63.5, but this job is planned for tip 509"
+        ),
+        "{}",
+        common::stderr(&out)
+    );
+    assert!(!d.join("b2.html").exists());
+    assert_eq!(std::fs::read_to_string(d.join("t.toml")).unwrap(), tally);
 }

@@ -181,12 +181,19 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         (None, true) => None,
         (None, false) => Some(simulate(&job, !global.quiet)?),
     };
+    // A tally counts one tip: a job planned for another is refused here,
+    // before anything is written.
     let tally = match &args.tip_tally {
-        Some(p) if p.exists() => Some(Tally::parse(
-            &basr::io::read_text(p)?,
-            &p.display().to_string(),
-        )?),
-        Some(_) => Some(Tally::default()),
+        Some(p) if p.exists() => {
+            let origin = p.display().to_string();
+            Some(
+                Tally::parse(&basr::io::read_text(p)?, &origin)?
+                    .for_tip(job.paint.tip.as_deref(), &origin)?,
+            )
+        }
+        Some(p) => {
+            Some(Tally::default().for_tip(job.paint.tip.as_deref(), &p.display().to_string())?)
+        }
         None => None,
     };
 

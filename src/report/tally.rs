@@ -2,10 +2,13 @@
 //! gone through the current spray tip, one entry per job, so the job sheet
 //! can say how much of the tip's 113–190 L life (001 §2.4) is left. A job
 //! is counted once however often its sheet is printed; a new tip starts a
-//! new file (delete or rename the old one).
+//! new file (delete or rename the old one). The file names the tip it
+//! counts (the jobs' `paint.tip`, when the robot lists tips), and a job
+//! planned for another tip is not counted in it.
 //!
 //! ```toml
 //! # basr tip tally: paint through the current tip
+//! tip = "511"
 //! [[job]]
 //! sha256 = "3f1c…"
 //! message = "STOP"
@@ -18,6 +21,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Tally {
+    /// The tip whose paint this counts: the first job's tip, when its
+    /// robot lists tips (absent in a tally started before tallies named
+    /// their tip, which takes the next job's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tip: Option<String>,
     #[serde(default, rename = "job")]
     pub jobs: Vec<Entry>,
 }
@@ -40,6 +48,16 @@ pub enum TallyError {
          paint_l (docs/report.md)"
     )]
     NotATally { origin: String, why: String },
+    #[error(
+        "{origin} counts the paint through tip {counts}, but this job is planned for tip \
+         {job_tip}: mount tip {job_tip} for it and keep its own tally (--tip-tally \
+         tip-{job_tip}.toml); one file per tip"
+    )]
+    OtherTip {
+        origin: String,
+        counts: String,
+        job_tip: String,
+    },
     #[error("{origin}: job {job} ({message:?}) has paint_l = {paint_l}: give the litres used, 0 or more")]
     PaintL {
         origin: String,
@@ -67,6 +85,23 @@ impl Tally {
             }
         }
         Ok(t)
+    }
+
+    /// This tally for a job planned for `tip` (`paint.tip`): refused when
+    /// it counts another tip; one that names none takes the job's.
+    pub fn for_tip(mut self, tip: Option<&str>, origin: &str) -> Result<Tally, TallyError> {
+        match (&self.tip, tip) {
+            (Some(counts), Some(job_tip)) if counts != job_tip => Err(TallyError::OtherTip {
+                origin: origin.into(),
+                counts: counts.clone(),
+                job_tip: job_tip.into(),
+            }),
+            (None, Some(job_tip)) => {
+                self.tip = Some(job_tip.into());
+                Ok(self)
+            }
+            _ => Ok(self),
+        }
     }
 
     /// Litres through the tip, the job `sha256` excluded.
@@ -115,6 +150,19 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("not a tip tally"));
+        // a tally names its tip, takes a job of that tip and refuses another's
+        let t = t.for_tip(Some("511"), "t.toml").unwrap();
+        assert!(t.to_toml().contains("tip = \"511\""));
+        let back = Tally::parse(&t.to_toml(), "t.toml").unwrap();
+        assert_eq!(back.tip.as_deref(), Some("511"));
+        assert!(back.clone().for_tip(Some("511"), "t.toml").is_ok());
+        assert!(back.clone().for_tip(None, "t.toml").is_ok());
+        let other = back.for_tip(Some("509"), "t.toml").unwrap_err().to_string();
+        assert!(
+            other.contains("counts the paint through tip 511")
+                && other.contains("planned for tip 509"),
+            "{other}"
+        );
         let neg = "[[job]]\nsha256 = \"a\"\nmessage = \"X\"\npaint_l = -1\n";
         assert!(Tally::parse(neg, "t.toml")
             .unwrap_err()
