@@ -250,6 +250,11 @@ fn a_job_that_calls_for_another_tip_names_it() {
         html.contains("spray tip</th><td>mount 509 (45.2° fan"),
         "the sheet's At a glance"
     );
+    assert!(
+        html.contains("Paint it. First: mount spray tip 509 (45.2° fan")
+            && html.contains("on the gun; then drive with the traffic"),
+        "the sheet's first thing to do"
+    );
     // A tip tally counts one tip: started by a job of the seed's tip, it
     // names that tip and refuses the 509's job, writing nothing.
     succeeded(basr(d, &["compile", "STOP", "-q"]));

@@ -218,7 +218,13 @@ pub fn groups(job: &Job) -> Vec<Group> {
 
 /// The one thing to do first: for NOT READY the worst group's fix, else
 /// the first stop.
-fn first_thing(overall: &str, groups: &[Group], stops: &[Stop], film_fails: bool) -> String {
+fn first_thing(
+    overall: &str,
+    groups: &[Group],
+    stops: &[Stop],
+    film_fails: bool,
+    tip_change: Option<String>,
+) -> String {
     match overall {
         "not ready" => match groups.iter().find(|g| g.severity == "problem") {
             Some(g) => format!(
@@ -236,14 +242,26 @@ fn first_thing(overall: &str, groups: &[Group], stops: &[Stop], film_fails: bool
                      engineer who planned it."
                 .into(),
         },
-        _ => format!(
-            "Paint it. First: {}",
-            stops
+        _ => {
+            let drive = stops
                 .first()
-                .map_or("place the truck as below.".into(), |s| s
-                    .instruction
-                    .clone())
-        ),
+                .map_or("place the truck as below.".into(), |s| {
+                    s.instruction.clone()
+                });
+            // A tip other than the one the crew mounts by default comes
+            // before the drive: it is changed at the depot, not in the lane.
+            match tip_change {
+                Some(t) => {
+                    let mut c = drive.chars();
+                    let drive: String = c
+                        .next()
+                        .map(|f| f.to_lowercase().chain(c).collect())
+                        .unwrap_or_default();
+                    format!("Paint it. First: mount spray tip {t} on the gun; then {drive}")
+                }
+                None => format!("Paint it. First: {drive}"),
+            }
+        }
     }
 }
 
@@ -558,7 +576,27 @@ pub fn build(input: &Input) -> Sheet {
         ),
     ];
     let groups = groups(job);
-    let first = first_thing(overall, &groups, &stops, !input.film_verdict.pass());
+    // The job's tip when it is not the robot's first (the one compile
+    // prefers, and the crew mounts by default).
+    let tip_change = job
+        .paint
+        .tip
+        .as_ref()
+        .filter(|t| {
+            job.robot
+                .paint()
+                .tips
+                .first()
+                .is_some_and(|f| &f.name != *t)
+        })
+        .and_then(|_| tip_words(job));
+    let first = first_thing(
+        overall,
+        &groups,
+        &stops,
+        !input.film_verdict.pass(),
+        tip_change,
+    );
     Sheet {
         title: job.message.replace('\n', " / "),
         facts,
