@@ -18,11 +18,12 @@ use basr::pipeline::compile::{compile_job, CompileRequest, Source, Tilt};
 
 /// What `--compare` carries from the job into the re-planned ones.
 pub const REPLANNED_FROM: &str = "the job's message or symbol (a scene: --marking), robot, \
-     font, letter height, lane width, period, rung spacing, gun lead/lag and reach margin";
+     font, letter height, lane width, low speed (--low-speed), period, rung spacing, gun \
+     lead/lag and reach margin";
 /// What it cannot: jobs written before they recorded their planning options
 /// (`layout.options`) are re-planned with compile's defaults for them.
 pub const NOT_RECORDED: &str = "nothing (a job written before jobs recorded their rung \
-     spacing, gun lead/lag and reach margin: compile's defaults for those)";
+     spacing, gun lead/lag, reach margin and --low-speed: compile's defaults for those)";
 
 /// What `--compare` cannot carry from `job`: nothing for a job that
 /// records how it was timed (`summary.stops`, written since jobs record
@@ -166,6 +167,7 @@ pub fn recover(
         let mut req = CompileRequest::message("");
         req.source = source.clone();
         req.overrides = overrides;
+        req.overrides.low_speed = job.layout.low_speed;
         req.robot_description = Some(robot.clone());
         req.font = font.clone();
         req.period_s = job.control_period_s;

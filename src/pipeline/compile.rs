@@ -184,6 +184,7 @@ fn compile_for_tip(
             balance: passes.balance.clone(),
             notes,
             options: req.recorded_options(),
+            low_speed: req.overrides.low_speed,
         });
         if !req.verify {
             return with_film(req, job, strokes);

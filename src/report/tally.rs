@@ -58,6 +58,21 @@ pub enum TallyError {
         counts: String,
         job_tip: String,
     },
+    #[error(
+        "{origin} counts the paint through tip {counts}, but this job names no tip (its \
+         robot description lists none): keep its own tally; one file per tip"
+    )]
+    NoTip { origin: String, counts: String },
+    #[error(
+        "{origin} holds {jobs} job(s) but names no tip (written before tallies named theirs): \
+         add `tip = \"NAME\"` at its top for the tip it counts, or start a new file for \
+         tip {job_tip}"
+    )]
+    Unnamed {
+        origin: String,
+        jobs: usize,
+        job_tip: String,
+    },
     #[error("{origin}: job {job} ({message:?}) has paint_l = {paint_l}: give the litres used, 0 or more")]
     PaintL {
         origin: String,
@@ -87,13 +102,26 @@ impl Tally {
         Ok(t)
     }
 
-    /// This tally for a job planned for `tip` (`paint.tip`): refused when
-    /// it counts another tip; one that names none takes the job's.
+    /// This tally for a job planned for `tip` (`paint.tip`, `None` when
+    /// its robot lists no tips): refused when it counts another tip, or
+    /// names a tip and the job none. A tally without a tip takes the
+    /// job's when it holds no job yet; one that holds jobs and names no
+    /// tip (written before tallies named theirs) cannot be told to count
+    /// the job's tip, and is refused saying how to name it.
     pub fn for_tip(mut self, tip: Option<&str>, origin: &str) -> Result<Tally, TallyError> {
         match (&self.tip, tip) {
             (Some(counts), Some(job_tip)) if counts != job_tip => Err(TallyError::OtherTip {
                 origin: origin.into(),
                 counts: counts.clone(),
+                job_tip: job_tip.into(),
+            }),
+            (Some(counts), None) => Err(TallyError::NoTip {
+                origin: origin.into(),
+                counts: counts.clone(),
+            }),
+            (None, Some(job_tip)) if !self.jobs.is_empty() => Err(TallyError::Unnamed {
+                origin: origin.into(),
+                jobs: self.jobs.len(),
                 job_tip: job_tip.into(),
             }),
             (None, Some(job_tip)) => {
@@ -150,13 +178,28 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("not a tip tally"));
-        // a tally names its tip, takes a job of that tip and refuses another's
-        let t = t.for_tip(Some("511"), "t.toml").unwrap();
+        // a tally that holds jobs and names no tip is not given one
+        let unnamed = t
+            .clone()
+            .for_tip(Some("511"), "t.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(unnamed.contains("names no tip") && unnamed.contains("tip = \"NAME\""));
+        assert!(t.clone().for_tip(None, "t.toml").is_ok());
+        // a new tally names its tip, takes a job of that tip and refuses
+        // another's, and a job that names none
+        let t = Tally::default().for_tip(Some("511"), "t.toml").unwrap();
+        let t = t.with_job("aa", "STOP", 0.82e-3);
         assert!(t.to_toml().contains("tip = \"511\""));
         let back = Tally::parse(&t.to_toml(), "t.toml").unwrap();
         assert_eq!(back.tip.as_deref(), Some("511"));
         assert!(back.clone().for_tip(Some("511"), "t.toml").is_ok());
-        assert!(back.clone().for_tip(None, "t.toml").is_ok());
+        assert!(back
+            .clone()
+            .for_tip(None, "t.toml")
+            .unwrap_err()
+            .to_string()
+            .contains("this job names no tip"));
         let other = back.for_tip(Some("509"), "t.toml").unwrap_err().to_string();
         assert!(
             other.contains("counts the paint through tip 511")

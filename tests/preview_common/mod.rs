@@ -186,6 +186,7 @@ pub fn job_with(message: &str, tilt_method: &str, rungs: &[Rung], glyph: PlacedG
             tilt_method: tilt_method.into(),
             glyphs: vec![glyph],
             options: None,
+            low_speed: false,
         },
         stations: vec![STATION],
         road: Default::default(),

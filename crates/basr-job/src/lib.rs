@@ -395,6 +395,12 @@ pub struct Layout {
     /// when compile ran with its defaults (and in jobs written before).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub options: Option<PlanOptions>,
+    /// Laid out for a road below 25 mph (`--low-speed`: letters and
+    /// symbols smaller without a notice), so that `basr fit` and `preview
+    /// --compare` lay it out the same; absent when not. Here rather than
+    /// in `options`, whose unknown fields an older basr refuses.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub low_speed: bool,
 }
 
 /// The planning options a job was compiled with (docs/job.md).
@@ -409,10 +415,6 @@ pub struct PlanOptions {
     pub gun_lag_s: f64,
     /// Margin kept from the edge of the arm's reach (m).
     pub reach_margin_m: f64,
-    /// Laid out for a road below 25 mph (`--low-speed`): smaller letters
-    /// and symbols without a notice. Absent when not.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub low_speed: bool,
 }
 
 /// One control period's setpoint: a row of the CSV.
@@ -921,6 +923,7 @@ mod tests {
                 tilt_method: "quadrilateral".into(),
                 glyphs: vec![],
                 options: None,
+                low_speed: false,
             },
             stations: vec![Station {
                 x_m: 0.0,

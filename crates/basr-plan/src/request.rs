@@ -160,13 +160,11 @@ impl CompileRequest {
             gun_lead_s: self.gun_lead_s,
             gun_lag_s: self.gun_lag_s,
             reach_margin_m: self.reach_margin_m,
-            low_speed: self.overrides.low_speed,
         };
         let same = o.rung_spacing_m == d.rung_spacing_m
             && o.gun_lead_s == d.gun_lead_s
             && o.gun_lag_s == d.gun_lag_s
-            && o.reach_margin_m == d.reach_margin_m
-            && !o.low_speed;
+            && o.reach_margin_m == d.reach_margin_m;
         (!same).then_some(o)
     }
 
@@ -178,7 +176,6 @@ impl CompileRequest {
         self.gun_lead_s = o.map_or(d.gun_lead_s, |o| o.gun_lead_s);
         self.gun_lag_s = o.map_or(d.gun_lag_s, |o| o.gun_lag_s);
         self.reach_margin_m = o.map_or(d.reach_margin_m, |o| o.reach_margin_m);
-        self.overrides.low_speed = o.is_some_and(|o| o.low_speed);
         self
     }
 }

@@ -25,6 +25,8 @@ pub struct Planned<'a> {
     pub notes: Vec<Note>,
     /// Options other than compile's defaults (`layout.options`).
     pub options: Option<job::PlanOptions>,
+    /// Laid out for a low-speed road (`layout.low_speed`).
+    pub low_speed: bool,
 }
 
 /// The job document, its totals computed and its hashes filled.
@@ -94,6 +96,7 @@ pub fn assemble(p: Planned<'_>) -> Job {
             tilt_method: p.tilt.name().into(),
             glyphs: p.strokes.outlines(),
             options: p.options,
+            low_speed: p.low_speed,
         },
         stations: p.stations.stations,
         road: p.stations.road,

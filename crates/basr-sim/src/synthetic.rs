@@ -271,6 +271,7 @@ fn sealed(
                     .collect(),
             }],
             options: None,
+            low_speed: false,
         },
         stations: vec![station],
         road: Default::default(),
