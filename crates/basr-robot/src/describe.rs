@@ -641,6 +641,12 @@ mod tests {
         let names: Vec<&str> = r.paint.tips.iter().map(|t| t.name.as_str()).collect();
         assert_eq!(names, ["seed-63.5", "511", "817", "509"]);
         assert_eq!(r.paint.tips[0].fan_angle_rad(), r.paint.fan_angle_rad);
+        // mounting the tip [paint] already describes is consistent
+        let seed = with(
+            "profile = \"uniform\"\n",
+            "profile = \"uniform\"\nmounted = \"seed-63.5\"\n",
+        );
+        assert!(check_source(&seed, "seed.toml").is_empty());
         for (find, replace, field) in [
             ("name = \"511\"", "name = \"817\"", "paint.tip[2].name"),
             (
@@ -652,6 +658,13 @@ mod tests {
                 "fan_angle_deg = 63.5",
                 "fan_angle_deg = 1.108",
                 "paint.tip[0].fan_angle_deg",
+            ),
+            // [paint] is the seed's tip: mounting the 509 over it would
+            // name one tip to the crew and plan with another's fan
+            (
+                "profile = \"uniform\"\n",
+                "profile = \"uniform\"\nmounted = \"509\"\n",
+                "paint.mounted",
             ),
         ] {
             let p = check_source(&with(find, replace), "bad.toml");

@@ -279,11 +279,40 @@ impl Paint {
             }
         }
         if let Some(m) = &self.mounted {
-            if !self.tips.is_empty() && self.tip(m).is_none() {
-                out.push((
+            match self.tip(m) {
+                None if !self.tips.is_empty() => out.push((
                     "paint.mounted".into(),
                     format!("names tip {m:?}, which no [[paint.tip]] lists"),
-                ));
+                )),
+                // The job plans with [paint]'s figures and names the
+                // mounted tip to the crew: they must be that tip's, or the
+                // crew mounts one tip for a job planned for another's fan.
+                Some(t) => {
+                    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+                    let uniform =
+                        |p: &Option<String>| p.clone().unwrap_or_else(|| "uniform".into());
+                    if !near(self.fan_angle_rad, t.fan_angle_rad())
+                        || !near(self.flow_m3ps, t.flow_m3ps)
+                        || uniform(&self.profile) != uniform(&t.profile)
+                    {
+                        out.push((
+                            "paint.mounted".into(),
+                            format!(
+                                "names tip {m:?}, but [paint]'s fan ({:.2}°, {} m³/s, profile {}) is \
+                                 not that tip's ({:.2}°, {} m³/s, profile {}): give [paint] the \
+                                 tip's figures, or remove `mounted` to let compile choose among \
+                                 the tips",
+                                self.fan_angle_rad.to_degrees(),
+                                basr_io::show_num(self.flow_m3ps),
+                                uniform(&self.profile),
+                                t.fan_angle_deg,
+                                basr_io::show_num(t.flow_m3ps),
+                                uniform(&t.profile)
+                            ),
+                        ));
+                    }
+                }
+                None => {}
             }
         }
         out
