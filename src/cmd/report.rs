@@ -184,15 +184,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     // A tally counts one tip: a job planned for another is refused here,
     // before anything is written.
     let tally = match &args.tip_tally {
-        Some(p) if p.exists() => {
-            let origin = p.display().to_string();
-            Some(
-                Tally::parse(&basr::io::read_text(p)?, &origin)?
-                    .for_tip(job.paint.tip.as_deref(), &origin)?,
-            )
-        }
         Some(p) => {
-            Some(Tally::default().for_tip(job.paint.tip.as_deref(), &p.display().to_string())?)
+            let origin = p.display().to_string();
+            let read = if p.exists() {
+                Tally::parse(&basr::io::read_text(p)?, &origin)?
+            } else {
+                Tally::default()
+            };
+            Some(read.for_tip(job.paint.tip.as_deref(), &origin)?)
         }
         None => None,
     };

@@ -576,20 +576,13 @@ pub fn build(input: &Input) -> Sheet {
         ),
     ];
     let groups = groups(job);
+    let tip = tip_words(job);
     // The job's tip when it is not the robot's first (the one compile
     // prefers, and the crew mounts by default).
-    let tip_change = job
-        .paint
-        .tip
-        .as_ref()
-        .filter(|t| {
-            job.robot
-                .paint()
-                .tips
-                .first()
-                .is_some_and(|f| &f.name != *t)
-        })
-        .and_then(|_| tip_words(job));
+    let first_tip = job.robot.paint().tips.first().map(|t| t.name.as_str());
+    let tip_change = tip
+        .clone()
+        .filter(|_| first_tip.is_some_and(|f| job.paint.tip.as_deref() != Some(f)));
     let first = first_thing(
         overall,
         &groups,
@@ -604,7 +597,7 @@ pub fn build(input: &Input) -> Sheet {
         stops,
         time_on_site_s,
         paint_m3,
-        tip: tip_words(job),
+        tip,
         tip_left_m3,
         tip_life_m3: life,
         film_verdict: input.film_verdict.clone(),

@@ -289,11 +289,10 @@ impl Paint {
                 // crew mounts one tip for a job planned for another's fan.
                 Some(t) => {
                     let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-                    let uniform =
-                        |p: &Option<String>| p.clone().unwrap_or_else(|| "uniform".into());
-                    if !near(self.fan_angle_rad, t.fan_angle_rad())
-                        || !near(self.flow_m3ps, t.flow_m3ps)
-                        || uniform(&self.profile) != uniform(&t.profile)
+                    let tip = self.with_tip(t);
+                    if !near(self.fan_angle_rad, tip.fan_angle_rad)
+                        || !near(self.flow_m3ps, tip.flow_m3ps)
+                        || self.profile_text() != tip.profile_text()
                     {
                         out.push((
                             "paint.mounted".into(),
@@ -304,10 +303,10 @@ impl Paint {
                                  the tips",
                                 self.fan_angle_rad.to_degrees(),
                                 basr_io::show_num(self.flow_m3ps),
-                                uniform(&self.profile),
-                                t.fan_angle_deg,
-                                basr_io::show_num(t.flow_m3ps),
-                                uniform(&t.profile)
+                                self.profile_text(),
+                                tip.fan_angle_rad.to_degrees(),
+                                basr_io::show_num(tip.flow_m3ps),
+                                tip.profile_text()
                             ),
                         ));
                     }
