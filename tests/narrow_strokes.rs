@@ -9,9 +9,52 @@ mod common;
 use basr::job::Job;
 use common::{basr, stderr};
 
-/// Compile `what` at `height` (exit 0 or 1: both write the job) and read
-/// the job back.
+/// The default robot with the seed's 63.5° tip alone (a crew that carries
+/// no other): the one whose fan is wider than a 7 ft letter's stroke. With
+/// its other tips the narrower 511 paints an I at 7 ft untouched.
+fn seed_tip_robot(dir: &std::path::Path) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("robots/basr.toml"),
+    )
+    .unwrap();
+    // Drop every `[[paint.tip]]` table but the seed's (a table runs to the
+    // next table's header; comments before that header go with it).
+    let mut out = String::new();
+    let mut block: Option<String> = None;
+    let flush = |block: &mut Option<String>, out: &mut String| {
+        if let Some(b) = block.take() {
+            if b.contains("name = \"seed-63.5\"") {
+                out.push_str(&b);
+            }
+        }
+    };
+    for line in text.lines() {
+        if line.starts_with('[') {
+            flush(&mut block, &mut out);
+            if line == "[[paint.tip]]" {
+                block = Some(String::new());
+            }
+        }
+        match block.as_mut() {
+            Some(b) => b.push_str(line),
+            None => out.push_str(line),
+        }
+        match block.as_mut() {
+            Some(b) => b.push('\n'),
+            None => out.push('\n'),
+        }
+    }
+    flush(&mut block, &mut out);
+    assert_eq!(out.matches("[[paint.tip]]").count(), 1, "{out}");
+    let path = dir.join("seed-tip.toml");
+    std::fs::write(&path, out).unwrap();
+    path
+}
+
+/// Compile `what` at `height` with the seed's tip alone (exit 0 or 1:
+/// both write the job) and read the job back.
 fn job(dir: &std::path::Path, what: &str, height: &str) -> Job {
+    let robot = seed_tip_robot(dir);
     let out = basr(
         dir,
         &[
@@ -19,6 +62,8 @@ fn job(dir: &std::path::Path, what: &str, height: &str) -> Job {
             what,
             "--letter-height",
             height,
+            "--robot",
+            robot.to_str().unwrap(),
             "-o",
             "j.job.json",
             "-q",

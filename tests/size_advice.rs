@@ -60,8 +60,9 @@ fn a_not_ready_size_names_the_nearest_that_paint_and_they_do() {
 }
 
 /// STOP at 4.5 ft under 25 mph (`--low-speed`, MUTCD's smallest word
-/// letters) is NOT READY and nothing within 2 ft paints: the search goes
-/// on up to the default 8 ft and names the nearest that does.
+/// letters) is NOT READY: the search names the nearest larger size that
+/// paints (within the default 8 ft), and that size does paint while a
+/// quarter foot less does not.
 #[test]
 fn low_speed_letters_are_told_the_nearest_larger_size() {
     let dir = tempfile::tempdir().unwrap();
@@ -83,10 +84,33 @@ fn low_speed_letters_are_told_the_nearest_larger_size() {
     let larger = v["sizes"]["nearest_ready_larger_m"]
         .as_f64()
         .unwrap_or_else(|| panic!("a larger size is named: {}", v["sizes"]));
-    // more than 2 ft (8 quarter feet) above 4.5 ft, at most 8 ft
     assert!(
-        larger > (4.5 + 2.0) * 0.3048 && larger <= 8.0 * 0.3048 + 1e-9,
+        larger > 4.5 * 0.3048 && larger <= 8.0 * 0.3048 + 1e-9,
         "{larger}"
+    );
+    let at = |h: f64, out: &str| {
+        basr(
+            dir.path(),
+            &[
+                "compile",
+                "STOP",
+                "--letter-height",
+                &format!("{h}m"),
+                "--low-speed",
+                "--no-size-search",
+                "-q",
+                "-o",
+                out,
+            ],
+        )
+        .status
+        .code()
+    };
+    assert_eq!(at(larger, "b.job.json"), Some(0), "{larger} m paints");
+    assert_eq!(
+        at(larger - 0.0762, "c.job.json"),
+        Some(1),
+        "the nearest: a quarter foot less is NOT READY"
     );
 }
 

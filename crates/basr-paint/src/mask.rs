@@ -4,10 +4,13 @@
 //! cell row) and the lattice points inside, by which `metrics` judges the
 //! cells the outline cuts (docs/preview.md, "Coverage at the outline").
 
+use rayon::prelude::*;
+
 use super::raster::{Bounds, Grid};
 
-/// Sub-rows per cell row when rasterising outlines.
-pub(super) const SUB_ROWS: usize = 8;
+/// Sub-rows per cell row when rasterising outlines: the lattice of
+/// `raster::Letters`, whose points are the sub-rows' centres.
+pub(super) const SUB_ROWS: usize = super::raster::LATTICE;
 /// A cell is "wholly inside" above this fraction.
 pub(super) const INSIDE: f64 = 0.999;
 
@@ -200,6 +203,60 @@ pub fn coverage_mask(grid: &Grid, glyph: &GlyphOutline) -> Vec<MaskCell> {
         }
     }
     out
+}
+
+/// The masks of the glyphs `ids` of `glyphs` on `grid`, in `ids`' order.
+pub fn glyph_masks(grid: &Grid, glyphs: &[GlyphOutline], ids: &[usize]) -> Vec<Vec<MaskCell>> {
+    ids.par_iter()
+        .map(|&gi| coverage_mask(grid, &glyphs[gi]))
+        .collect()
+}
+
+/// The lattice points of every cell of `grid` that lie inside the glyphs
+/// whose `masks` these are (`raster::Letters`): the union of their masks'.
+pub fn inside_lattice(grid: &Grid, masks: &[Vec<MaskCell>]) -> Vec<u64> {
+    let mut bits = vec![0u64; grid.nx * grid.ny];
+    for m in masks.iter().flatten() {
+        bits[m.k] |= m.inside;
+    }
+    bits
+}
+
+/// The masks of some glyphs on the grid a film is laid on, made once for
+/// both the deposit's judging where the paint lands (`lattice`, the
+/// `raster::Letters` of the film) and the metrics (`take`).
+pub struct Masks<'a> {
+    glyphs: &'a [GlyphOutline],
+    ids: &'a [usize],
+    made: std::sync::OnceLock<Vec<Vec<MaskCell>>>,
+}
+
+impl<'a> Masks<'a> {
+    /// The glyphs `ids` of `glyphs`.
+    pub fn of(glyphs: &'a [GlyphOutline], ids: &'a [usize]) -> Masks<'a> {
+        Masks {
+            glyphs,
+            ids,
+            made: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// Their lattice on `grid` (the film's), keeping the masks.
+    pub fn lattice(&self, grid: &Grid) -> Vec<u64> {
+        let masks = glyph_masks(grid, self.glyphs, self.ids);
+        let bits = inside_lattice(grid, &masks);
+        let _ = self.made.set(masks);
+        bits
+    }
+
+    /// The masks made for the film laid on `grid` (made now if the film
+    /// was laid without them).
+    pub fn take(self, grid: &Grid) -> Vec<Vec<MaskCell>> {
+        let (glyphs, ids) = (self.glyphs, self.ids);
+        self.made
+            .into_inner()
+            .unwrap_or_else(|| glyph_masks(grid, glyphs, ids))
+    }
 }
 
 /// Share of the area of `cells` whose film reaches `level`: a cell wholly

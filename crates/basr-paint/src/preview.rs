@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use super::bands;
 pub use super::drawing::{panel_frames, render_svg, Panel};
+use super::mask;
 use super::metrics::{self, GlyphOutline, Metrics};
 use super::raster::{self, Bounds, Film, Grid, Progress};
 use super::spray::{Depth, Pose, Profile, SprayModel};
@@ -256,15 +257,28 @@ pub fn preview_tiled(
         profile: opts.profile.name(),
     };
     let Some((intervals, bands)) = banded else {
+        let all: Vec<usize> = (0..outlines.len()).collect();
+        let masks = mask::Masks::of(outlines, &all);
+        let lattice = |g: &Grid| masks.lattice(g);
         let film = raster::deposit_with_progress(
             &poses,
             &model,
             flow_eff_m3ps,
             cell_m,
             letters,
+            Some(&lattice),
             progress,
         )?;
-        let metrics = metrics::measure(&film, outlines, paint.film_m, &model, tiles, stroke_of)?;
+        let masks = masks.take(&film.grid);
+        let metrics = metrics::measure(
+            &film,
+            masks,
+            outlines,
+            paint.film_m,
+            &model,
+            tiles,
+            stroke_of,
+        )?;
         let bounds = film.grid.bounds();
         return Ok(preview(Some(film), bounds, metrics, poses, Vec::new()));
     };
@@ -277,17 +291,23 @@ pub fn preview_tiled(
     let per_band: Vec<(metrics::Part, f64, Bounds)> = bands
         .par_iter()
         .map(|band| {
+            let masks = mask::Masks::of(outlines, &band.glyphs);
+            let lattice = |g: &Grid| masks.lattice(g);
             let film = raster::deposit_intervals(
                 &poses,
                 &band.intervals,
                 &model,
                 flow_eff_m3ps,
-                cell_m,
-                band.extent,
+                raster::Sheet {
+                    cell_m,
+                    extent: band.extent,
+                    letters: Some(&lattice),
+                },
                 &|_, _| {},
             )?;
+            let masks = masks.take(&film.grid);
             let part =
-                metrics::measure_part(&film.grid, outlines, &band.glyphs, paint.film_m, &strokes);
+                metrics::measure_part(&film, masks, outlines, &band.glyphs, paint.film_m, &strokes);
             let n = done.fetch_add(band.intervals.len(), std::sync::atomic::Ordering::Relaxed);
             progress(n + band.intervals.len(), intervals.len());
             Ok((part, film.gun_on_s, film.grid.bounds()))
@@ -339,8 +359,11 @@ impl Preview {
             &hits,
             &self.model,
             self.flow_eff_m3ps,
-            cell_m,
-            b,
+            raster::Sheet {
+                cell_m,
+                extent: b,
+                letters: None,
+            },
             &|_, _| {},
         )?;
         Ok(std::borrow::Cow::Owned(film.grid))

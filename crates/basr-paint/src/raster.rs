@@ -11,6 +11,14 @@
 //! of that line, and spread across the sheet by the depth nodes; every
 //! piece is splatted bilinearly, so the raster holds exactly the volume
 //! laid (up to rounding).
+//!
+//! Where the letters are given (a [`Letters`] lattice), each piece is also
+//! judged where it lands, before the bilinear splat spreads it over four
+//! cells: a piece whose point lies outside the letters (at the nearest of
+//! each cell's `LATTICE` × `LATTICE` lattice points) adds its volume to
+//! [`Film::outside`] in the cell it lands in. Overspray is that volume:
+//! the splat's one-cell spread across an outline the fan paints exactly
+//! is the raster's, not paint on the road outside the letter.
 
 use rayon::prelude::*;
 
@@ -26,6 +34,18 @@ const INTERVALS_PER_CHUNK: usize = 48;
 /// resolution far too fine for the job's extent.
 // assumed: 60 M cells ≈ 480 MB of f64.
 pub const MAX_CELLS: usize = 60_000_000;
+
+/// Lattice points per cell side at which [`Letters`] tells inside from
+/// outside (0.625 mm apart at the default 5 mm cell).
+pub const LATTICE: usize = 8;
+const _: () = assert!(LATTICE * LATTICE <= 64);
+
+/// Which points of each cell of a grid lie inside the letters: one `u64`
+/// per cell (`j * nx + i`), bit `row * LATTICE + col` set when the point
+/// ((col + ½) / LATTICE, (row + ½) / LATTICE) of the cell is inside (all
+/// set: wholly inside; none: outside every letter). Given the grid the
+/// film is laid on (`mask::inside_lattice` builds it).
+pub type Letters<'a> = Option<&'a (dyn Fn(&Grid) -> Vec<u64> + Sync)>;
 
 /// An axis-aligned rectangle in the road frame (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -190,6 +210,10 @@ impl Grid {
 #[derive(Clone, Debug)]
 pub struct Film {
     pub grid: Grid,
+    /// Per cell of `grid`, the film (m: volume over the cell's area) of
+    /// the paint that landed outside the letters in that cell; empty when
+    /// laid without [`Letters`].
+    pub outside: Vec<f64>,
     /// Volume laid: flow × efficiency × gun-on time (m³).
     pub laid_m3: f64,
     /// Total gun-on time (s).
@@ -200,13 +224,17 @@ pub struct Film {
 }
 
 /// Accumulates splats into a window of the global grid.
-struct Canvas {
+struct Canvas<'a> {
     i0: i64,
     j0: i64,
     nx: usize,
     ny: usize,
     /// Volume per cell (m³), not yet divided by the cell area.
     vol: Vec<f64>,
+    /// The letters over the global grid (`Judge`), and the volume per
+    /// window cell that landed outside them.
+    letters: Option<&'a Judge>,
+    out: Vec<f64>,
     x0: f64,
     y0: f64,
     /// 1 / the cell size (1/m).
@@ -216,7 +244,7 @@ struct Canvas {
     spill: Vec<([f64; 2], f64)>,
 }
 
-impl Canvas {
+impl Canvas<'_> {
     /// Add mass `m` at `p` to the four nearest cell centres; when they are
     /// not all in the window, keep it in `spill` for the global grid.
     fn splat(&mut self, p: [f64; 2], m: f64) {
@@ -258,6 +286,59 @@ impl Canvas {
         self.vol[k + 1] += a * tx;
         self.vol[k + self.nx] += b * (1.0 - tx);
         self.vol[k + self.nx + 1] += b * tx;
+        if let Some(judge) = self.letters {
+            // The cell the point lands in: of the splat's four (so in the
+            // window), the one whose centre is nearest.
+            let (di, dj) = (usize::from(tx >= 0.5), usize::from(ty >= 0.5));
+            let global = (fj as usize + dj) * judge.nx + fi as usize + di;
+            let outside = match judge.class[global] {
+                Judge::INSIDE => false,
+                Judge::OUTSIDE => true,
+                _ => {
+                    // its nearest lattice point: the point's place in the
+                    // cell, in eighths
+                    let per = LATTICE as f64;
+                    let col = (((tx + 0.5 - di as f64) * per) as usize).min(LATTICE - 1);
+                    let row = (((ty + 0.5 - dj as f64) * per) as usize).min(LATTICE - 1);
+                    judge.bits[global] >> (row * LATTICE + col) & 1 == 0
+                }
+            };
+            if outside {
+                self.out[k + dj * self.nx + di] += m;
+            }
+        }
+    }
+}
+
+/// The letters a film's paint is judged against, over the global grid:
+/// each cell's lattice points inside (`Letters`) and, so that a piece
+/// landing in a cell wholly inside or wholly outside is judged by one
+/// byte, the cell's class.
+struct Judge {
+    nx: usize,
+    bits: Vec<u64>,
+    class: Vec<u8>,
+}
+
+impl Judge {
+    const OUTSIDE: u8 = 0;
+    const INSIDE: u8 = 1;
+    const EDGE: u8 = 2;
+
+    fn of(grid: &Grid, bits: Vec<u64>) -> Judge {
+        let class = bits
+            .iter()
+            .map(|&b| match b {
+                0 => Judge::OUTSIDE,
+                u64::MAX => Judge::INSIDE,
+                _ => Judge::EDGE,
+            })
+            .collect();
+        Judge {
+            nx: grid.nx,
+            bits,
+            class,
+        }
     }
 }
 
@@ -361,16 +442,18 @@ pub fn deposit(
     cell_m: f64,
     extra: Bounds,
 ) -> Result<Film, PaintError> {
-    deposit_with_progress(poses, model, flow_eff_m3ps, cell_m, extra, &|_, _| {})
+    deposit_with_progress(poses, model, flow_eff_m3ps, cell_m, extra, None, &|_, _| {})
 }
 
-/// [`deposit`], telling `progress` how many painted intervals are done.
+/// [`deposit`], judging where the paint lands against `letters`, and
+/// telling `progress` how many painted intervals are done.
 pub fn deposit_with_progress(
     poses: &[Pose],
     model: &SprayModel,
     flow_eff_m3ps: f64,
     cell_m: f64,
     extra: Bounds,
+    letters: Letters<'_>,
     progress: Progress,
 ) -> Result<Film, PaintError> {
     check_poses(poses, flow_eff_m3ps)?;
@@ -388,8 +471,11 @@ pub fn deposit_with_progress(
         &painted,
         model,
         flow_eff_m3ps,
-        cell_m,
-        extent,
+        Sheet {
+            cell_m,
+            extent,
+            letters,
+        },
         progress,
     )
 }
@@ -421,30 +507,45 @@ pub fn painted_intervals(poses: &[Pose]) -> Vec<usize> {
         .collect()
 }
 
+/// The road a film is laid on: a grid of `cell_m` covering `extent`, and
+/// the letters its paint is judged against (none: no outside film).
+#[derive(Clone, Copy)]
+pub struct Sheet<'a> {
+    pub cell_m: f64,
+    pub extent: Bounds,
+    pub letters: Letters<'a>,
+}
+
 /// The paint of the intervals `painted` of `poses` (checked as
-/// [`deposit_with_progress`] checks them) on a grid of `cell_m` covering
-/// `extent`, aligned to the global lattice of `cell_m`: a band of a long
-/// job (`bands`) gets the values the whole job's grid has there. Paint
-/// landing off the grid is `lost_m3`.
+/// [`deposit_with_progress`] checks them) on `sheet`'s grid, aligned to
+/// the global lattice of its cell: a band of a long job (`bands`) gets
+/// the values the whole job's grid has there. Paint landing off the grid
+/// is `lost_m3`.
 pub fn deposit_intervals(
     poses: &[Pose],
     painted: &[usize],
     model: &SprayModel,
     flow_eff_m3ps: f64,
-    cell_m: f64,
-    extent: Bounds,
+    sheet: Sheet<'_>,
     progress: Progress,
 ) -> Result<Film, PaintError> {
+    let Sheet {
+        cell_m,
+        extent,
+        letters,
+    } = sheet;
     // Two cells of margin keep every bilinear splat on the grid.
     let mut grid = Grid::covering(extent.grow(2.0 * cell_m), cell_m)?;
     let half = cell_m / 2.0;
     let depth = model.depth.nodes(half);
+    let judge = letters.map(|f| Judge::of(&grid, f(&grid)));
+    let letters = judge.as_ref();
 
     let done = std::sync::atomic::AtomicUsize::new(0);
     let chunks: Vec<Canvas> = painted
         .par_chunks(INTERVALS_PER_CHUNK)
         .map(|chunk| {
-            let c = deposit_chunk(poses, chunk, model, flow_eff_m3ps, &grid, &depth);
+            let c = deposit_chunk(poses, chunk, model, flow_eff_m3ps, &grid, &depth, letters);
             let n = done.fetch_add(chunk.len(), std::sync::atomic::Ordering::Relaxed);
             progress(n + chunk.len(), painted.len());
             c
@@ -461,14 +562,26 @@ pub fn deposit_intervals(
         y0: grid.y0,
         inv_h: 1.0 / cell_m,
         spill: Vec::new(),
+        letters,
+        out: if letters.is_some() {
+            vec![0.0; grid.nx * grid.ny]
+        } else {
+            Vec::new()
+        },
+    };
+    let add_window = |dst: &mut [f64], src: &[f64], c: &Canvas| {
+        for jj in 0..c.ny {
+            let row = (c.j0 as usize + jj) * grid.nx + c.i0 as usize;
+            let src = &src[jj * c.nx..(jj + 1) * c.nx];
+            for (d, v) in dst[row..row + c.nx].iter_mut().zip(src) {
+                *d += v;
+            }
+        }
     };
     for c in &chunks {
-        for jj in 0..c.ny {
-            let row = (c.j0 as usize + jj) * whole.nx + c.i0 as usize;
-            let src = &c.vol[jj * c.nx..(jj + 1) * c.nx];
-            for (dst, v) in whole.vol[row..row + c.nx].iter_mut().zip(src) {
-                *dst += v;
-            }
+        add_window(&mut whole.vol, &c.vol, c);
+        if !c.out.is_empty() {
+            add_window(&mut whole.out, &c.out, c);
         }
         for &(p, m) in &c.spill {
             whole.splat(p, m);
@@ -477,12 +590,15 @@ pub fn deposit_intervals(
     let lost_m3: f64 = whole.spill.iter().map(|s| s.1).sum();
     grid.data = whole.vol;
     grid.data.iter_mut().for_each(|v| *v /= area);
+    let mut outside = whole.out;
+    outside.iter_mut().for_each(|v| *v /= area);
     let gun_on_s: f64 = painted
         .iter()
         .map(|&i| poses[i + 1].t_s - poses[i].t_s)
         .sum();
     Ok(Film {
         grid,
+        outside,
         laid_m3: flow_eff_m3ps * gun_on_s,
         gun_on_s,
         lost_m3,
@@ -490,14 +606,15 @@ pub fn deposit_intervals(
 }
 
 /// Deposit a run of painted intervals into a canvas over their own extent.
-fn deposit_chunk(
+fn deposit_chunk<'a>(
     poses: &[Pose],
     chunk: &[usize],
     model: &SprayModel,
     flow_eff_m3ps: f64,
     grid: &Grid,
     depth: &[(f64, f64)],
-) -> Result<Canvas, PaintError> {
+    letters: Option<&'a Judge>,
+) -> Result<Canvas<'a>, PaintError> {
     let h = grid.cell_m;
     let half = h / 2.0;
     let reach = depth_reach(model);
@@ -521,6 +638,12 @@ fn deposit_chunk(
         y0: grid.y0,
         inv_h: 1.0 / h,
         spill: Vec::new(),
+        letters,
+        out: if letters.is_some() {
+            vec![0.0; ((gi1 - gi0) * (gj1 - gj0)) as usize]
+        } else {
+            Vec::new()
+        },
     };
     for &i in chunk {
         let (a, bpose) = (&poses[i], &poses[i + 1]);
@@ -640,6 +763,8 @@ mod tests {
             y0: 0.2,
             inv_h: 1.0 / 0.005,
             spill: Vec::new(),
+            letters: None,
+            out: Vec::new(),
         };
         let check = |p: [f64; 2]| {
             let mut c = window();
