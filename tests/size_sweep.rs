@@ -30,23 +30,13 @@ type Row = (
 );
 
 const TABLE: [Row; 7] = [
-    (
-        6.0 * 0.3048,
-        "6ft",
-        "B C D G J O P Q R S U 0 2 3 5 6 9",
-        &[],
-    ),
-    (7.0 * 0.3048, "7ft", "B D P R 3 5 6 9", &[]),
+    (6.0 * 0.3048, "6ft", "B C D G J P Q R S 3 5", &[]),
+    (7.0 * 0.3048, "7ft", "B 3", &[]),
     (8.0 * 0.3048, "8ft", "", &[]),
-    (9.0 * 0.3048, "9ft", "B P R 3 5", &[]),
-    (10.0 * 0.3048, "10ft", "B 3 6", &[]),
-    (2.5, "2.5m", "6 9", &[]),
-    (
-        12.0 * 0.3048,
-        "12ft",
-        "B D P R 3 5 9",
-        &[("6", "past its range")],
-    ),
+    (9.0 * 0.3048, "9ft", "B P", &[]),
+    (10.0 * 0.3048, "10ft", "", &[]),
+    (2.5, "2.5m", "", &[]),
+    (12.0 * 0.3048, "12ft", "", &[]),
 ];
 
 const GLYPHS: &str = "A B C D E F G H I J K L M N O P Q R S T U V W X Y Z 0 1 2 3 4 5 6 7 8 9";
@@ -151,14 +141,14 @@ fn height(row: usize) {
 
 /// The words issue 27 names at 6, 8 and 10 ft (SCHOOL and SCHOOL XING at
 /// 10 ft across two lanes, 24 ft, as MUTCD's two-lane SCHOOL): at 6 ft
-/// STOP and SCHOOL are NOT READY and SCHOOL XING paints, at 8 and 10 ft
+/// STOP is NOT READY and SCHOOL and SCHOOL XING paint, at 8 and 10 ft
 /// they all paint.
 #[test]
 fn the_named_words_at_six_eight_and_ten_feet() {
     let ft = 0.3048;
     let mut wrong = vec![];
     for word in ["STOP", "SCHOOL", "SCHOOL XING"] {
-        let at_six = word == "SCHOOL XING";
+        let at_six = word != "STOP";
         for (h, paints) in [(6.0, at_six), (8.0, true), (10.0, true)] {
             let lane = (h == 10.0 && word != "STOP").then_some(24.0 * ft);
             let did = compile_in(word, h * ft, lane);

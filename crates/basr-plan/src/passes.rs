@@ -228,7 +228,8 @@ fn stroke_passes(
     let mut kept_outside = None;
     let owner = strokes.owner(sid);
     let what = |e: knots::PlanError| CompileError::Knots(format!("stroke {sid} ({owner}): {e}"));
-    let split = split_passes(stroke_rungs, law.max_width_m(), 0.0).map_err(what)?;
+    let min_width_m = law.width_at_height(law.min_height_m);
+    let split = split_passes(stroke_rungs, law.max_width_m(), min_width_m, 0.0).map_err(what)?;
     let mut clamped = 0usize;
     let mut rung_count = 0usize;
     let mut worst = 1.0f64;
@@ -236,7 +237,7 @@ fn stroke_passes(
     // knots::KnotPlan keeps U in percent; the job keeps fractions.
     let mut u_untilted = [f64::INFINITY, f64::NEG_INFINITY];
     let mut u_tilted = u_untilted;
-    for pass in &split {
+    for pass in &split.passes {
         let mut kp = knots::knots_within(
             pass,
             &law,
@@ -332,11 +333,11 @@ fn stroke_passes(
             u_tilted,
         });
     }
-    if split.len() > 1 {
+    if split.abreast() > 1 {
         notes.push(Note::Passes {
             stroke: sid,
             owner: owner.clone(),
-            passes: split.len(),
+            passes: split.abreast(),
             max_width_m: law.max_width_m(),
         });
     }
@@ -350,7 +351,7 @@ fn stroke_passes(
             worst_ratio: worst,
             outside_share: 0.0,
             job_outside_share: 0.0,
-            one_sweep_scale: (split.len() > 1).then(|| {
+            one_sweep_scale: (split.abreast() > 1).then(|| {
                 let widest = stroke_rungs.iter().map(Rung::width).fold(0.0, f64::max);
                 law.max_width_m() / widest
             }),
@@ -513,25 +514,43 @@ fn lift_for_tilt(robot: &AnyRobot, law: &PaintLaw, ks: &mut [Knot]) -> Vec<usize
 
 /// Splits a stroke too wide for one pass into parallel passes.
 ///
-/// The rule: the number of passes n is the same along the whole stroke (so
-/// each pass is one continuous stroke with the gun on from end to end), the
-/// smallest with w_max/n + overlap ≤ `max_width_m`. Every rung is cut at the
-/// fractions j/n of its length; pass j gets the piece from j/n to (j+1)/n,
-/// widened by `overlap_m`/2 into each neighbour (never past the stroke's
-/// edges). With `overlap_m` = 0 the pieces tile every rung exactly: the
-/// passes share their boundaries, cover the stroke and paint no area twice.
-/// A positive overlap trades a band of double film for tolerance to arm
-/// error at the seam. Passes come left to right (pass 0 touches the left
-/// edge); a stroke narrow enough for one pass comes back unchanged.
+/// The rule: along a stretch of the stroke the number of side-by-side
+/// passes n is the same, and every rung of the stretch is cut at the
+/// fractions j/n of its length; pass j gets the piece from j/n to
+/// (j+1)/n, widened by `overlap_m`/2 into each neighbour (never past the
+/// stroke's edges). A piece must fit the fan between its narrowest
+/// (`min_width_m`, the fan at the lowest nozzle) and its widest
+/// (`max_width_m`): a rung of width w takes n from ⌈w / (max − overlap)⌉
+/// to ⌊w / min⌋ pieces (at least one). One n for the whole stroke, the
+/// smallest that every rung takes, keeps each pass one continuous stroke
+/// with the gun on from end to end. Where no n suits every rung (a bowl
+/// wider than the fan at its widest that narrows to under twice the
+/// narrowest fan), one n for the whole stroke cut the narrow rungs into
+/// slivers the fan paints wider than they are, beside the stroke: the
+/// stroke is then cut across, at a rung both stretches share, into
+/// stretches each with its own n, as few as can be (taken greedily from
+/// the stroke's start, each stretch as long as one n suits it; the
+/// smallest such n). Each stretch's passes end on the shared rung, as two
+/// strokes of a letter meet: the tiles are painted once.
+///
+/// With `overlap_m` = 0 the pieces tile every rung exactly: the passes
+/// share their boundaries, cover the stroke and paint no area twice. A
+/// positive overlap trades a band of double film for tolerance to arm
+/// error at the seam. Passes come stretch by stretch from the stroke's
+/// start, left to right within a stretch (pass 0 touches the left edge);
+/// a stroke narrow enough for one pass comes back unchanged.
 pub fn split_passes(
     rungs: &[Rung],
     max_width_m: f64,
+    min_width_m: f64,
     overlap_m: f64,
-) -> Result<Vec<Vec<Rung>>, PlanError> {
+) -> Result<Split, PlanError> {
     if !(max_width_m.is_finite()
         && overlap_m.is_finite()
         && overlap_m >= 0.0
-        && max_width_m > overlap_m)
+        && max_width_m > overlap_m
+        && min_width_m.is_finite()
+        && min_width_m >= 0.0)
     {
         return Err(PlanError::BadPassSplit {
             max_width_m,
@@ -548,34 +567,103 @@ pub fn split_passes(
         });
     }
     if widest <= max_width_m {
-        return Ok(vec![rungs.to_vec()]);
+        return Ok(Split {
+            passes: vec![rungs.to_vec()],
+            stretches: vec![(0, rungs.len().saturating_sub(1), 1)],
+        });
     }
-    let n = (widest / (max_width_m - overlap_m)).ceil().max(1.0) as usize;
-    Ok((0..n)
-        .map(|j| {
-            rungs
-                .iter()
-                .map(|r| {
-                    let w = r.width();
-                    let ext = if w > 0.0 { 0.5 * overlap_m / w } else { 0.0 };
-                    let f0 = if j == 0 {
-                        0.0
-                    } else {
-                        j as f64 / n as f64 - ext
-                    };
-                    let f1 = if j + 1 == n {
-                        1.0
-                    } else {
-                        (j + 1) as f64 / n as f64 + ext
-                    };
-                    Rung {
-                        left: r.left.lerp(r.right, f0.max(0.0)),
-                        right: r.left.lerp(r.right, f1.min(1.0)),
-                    }
-                })
-                .collect()
+    // The numbers of pieces rung i takes: lo[i]..=hi[i].
+    let step = max_width_m - overlap_m;
+    let lo: Vec<usize> = rungs
+        .iter()
+        .map(|r| (r.width() / step).ceil().max(1.0) as usize)
+        .collect();
+    let hi: Vec<usize> = rungs
+        .iter()
+        .zip(&lo)
+        .map(|(r, &l)| {
+            let most = if min_width_m > 0.0 {
+                (r.width() / min_width_m).floor() as usize
+            } else {
+                usize::MAX
+            };
+            most.max(l).max(1)
         })
-        .collect())
+        .collect();
+    // Stretches [a, b] (rungs, the ends shared) and their n.
+    let mut stretches: Vec<(usize, usize, usize)> = Vec::new();
+    let mut a = 0usize;
+    while a + 1 < rungs.len() {
+        let (mut l, mut h) = (lo[a], hi[a]);
+        let mut b = a;
+        while b + 1 < rungs.len() && lo[b + 1].max(l) <= hi[b + 1].min(h) {
+            b += 1;
+            l = l.max(lo[b]);
+            h = h.min(hi[b]);
+        }
+        if b == a {
+            // Neighbouring rungs no n suits both (a jump in width): the
+            // tile between them is cut for the wider, as one n for the
+            // whole stroke would cut it.
+            b = a + 1;
+            l = lo[a].max(lo[b]);
+        }
+        stretches.push((a, b, l));
+        a = b;
+    }
+    if rungs.len() < 2 {
+        stretches.push((0, 0, lo[0]));
+    }
+    let mut out = Vec::new();
+    for &(a, b, n) in &stretches {
+        for j in 0..n {
+            out.push(
+                rungs[a..=b]
+                    .iter()
+                    .map(|r| {
+                        let w = r.width();
+                        let ext = if w > 0.0 { 0.5 * overlap_m / w } else { 0.0 };
+                        let f0 = if j == 0 {
+                            0.0
+                        } else {
+                            j as f64 / n as f64 - ext
+                        };
+                        let f1 = if j + 1 == n {
+                            1.0
+                        } else {
+                            (j + 1) as f64 / n as f64 + ext
+                        };
+                        Rung {
+                            left: r.left.lerp(r.right, f0.max(0.0)),
+                            right: r.left.lerp(r.right, f1.min(1.0)),
+                        }
+                    })
+                    .collect(),
+            );
+        }
+    }
+    Ok(Split {
+        passes: out,
+        stretches,
+    })
+}
+
+/// A stroke's passes (`split_passes`) and the stretches of the stroke
+/// they paint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Split {
+    /// Each pass's pieces of its stretch's rungs, stretch by stretch.
+    pub passes: Vec<Vec<Rung>>,
+    /// (first rung, last rung, passes side by side) of each stretch, from
+    /// the stroke's start; neighbouring stretches share their end rung.
+    pub stretches: Vec<(usize, usize, usize)>,
+}
+
+impl Split {
+    /// The most passes side by side anywhere on the stroke.
+    pub fn abreast(&self) -> usize {
+        self.stretches.iter().map(|s| s.2).max().unwrap_or(1)
+    }
 }
 
 #[cfg(test)]
@@ -656,35 +744,65 @@ mod tests {
         #[test]
         fn passes_tile_every_rung(
             widths in proptest::collection::vec(0.01f64..1.5, 2..12),
-            max_w in 0.1f64..0.5, overlap_frac in 0.0f64..0.5, angle in -3.0f64..3.0,
+            max_w in 0.1f64..0.5, min_frac in 0.0f64..0.5,
+            overlap_frac in prop_oneof![Just(0.0f64), 0.0f64..0.5],
+            angle in -3.0f64..3.0,
         ) {
             let overlap = overlap_frac * max_w;
+            let min_w = min_frac * max_w;
             let d = Vec2::from_angle(angle);
             let rungs: Vec<Rung> = widths.iter().enumerate().map(|(k, &w)| {
                 let left = Point::new(0.03 * k as f64, 0.1);
                 Rung { left, right: left + w * d }
             }).collect();
-            let passes = split_passes(&rungs, max_w, overlap).unwrap();
-            for p in &passes {
-                prop_assert_eq!(p.len(), rungs.len());
-                for r in p { prop_assert!(r.width() <= max_w + 1e-9); }
+            let split = split_passes(&rungs, max_w, min_w, overlap).unwrap();
+            // The stretches run from the first rung to the last, each
+            // sharing its end rung with the next.
+            let st = &split.stretches;
+            prop_assert_eq!(st[0].0, 0);
+            prop_assert_eq!(st[st.len() - 1].1, rungs.len() - 1);
+            for pair in st.windows(2) { prop_assert_eq!(pair[0].1, pair[1].0); }
+            prop_assert_eq!(split.passes.len(), st.iter().map(|s| s.2).sum::<usize>());
+            // One n suits every rung: one stretch, as before stretches.
+            let lo = |w: f64| (w / (max_w - overlap)).ceil().max(1.0);
+            let hi = |w: f64| if min_w > 0.0 { (w / min_w).floor().max(lo(w)) } else { f64::MAX };
+            let n_lo = widths.iter().map(|&w| lo(w)).fold(1.0, f64::max);
+            let n_hi = widths.iter().map(|&w| hi(w)).fold(f64::MAX, f64::min);
+            if widths.iter().all(|&w| w <= max_w) || n_lo <= n_hi {
+                prop_assert_eq!(st.len(), 1);
             }
-            for (k, r) in rungs.iter().enumerate() {
-                let w = r.width();
-                // Pieces in order, first at the left end, last at the right end,
-                // consecutive ones overlapping by exactly min(overlap, …) and 0 when overlap = 0.
-                prop_assert!((passes[0][k].left - r.left).hypot() < 1e-12);
-                prop_assert!((passes[passes.len() - 1][k].right - r.right).hypot() < 1e-12);
-                let covered: f64 = passes.iter().map(|p| p[k].width()).sum();
-                let seams = (passes.len() - 1) as f64;
-                prop_assert!(covered >= w - 1e-9);
-                prop_assert!(covered <= w + seams * overlap + 1e-9);
-                for pair in passes.windows(2) {
-                    // Next piece starts no later than this one ends: no gap.
-                    let end = (pair[0][k].right - r.left).hypot();
-                    let start = (pair[1][k].left - r.left).hypot();
-                    prop_assert!(start <= end + 1e-12);
-                    if overlap == 0.0 { prop_assert!((start - end).abs() < 1e-12); }
+            let mut first = 0;
+            for &(a, b, n) in st {
+                prop_assert!(b > a || rungs.len() == 1);
+                let passes = &split.passes[first..first + n];
+                first += n;
+                for p in passes {
+                    prop_assert_eq!(p.len(), b - a + 1);
+                    for r in p { prop_assert!(r.width() <= max_w + 1e-9); }
+                }
+                for (i, r) in rungs[a..=b].iter().enumerate() {
+                    let w = r.width();
+                    // No sliver where the rung can be cut into n pieces
+                    // each at least the narrowest fan.
+                    if overlap == 0.0 && min_w > 0.0 && n as f64 <= (w / min_w).floor() {
+                        for p in passes { prop_assert!(p[i].width() >= min_w - 1e-9); }
+                    }
+                    // Pieces in order, first at the left end, last at the
+                    // right end, consecutive ones overlapping by exactly
+                    // min(overlap, …) and 0 when overlap = 0.
+                    prop_assert!((passes[0][i].left - r.left).hypot() < 1e-12);
+                    prop_assert!((passes[n - 1][i].right - r.right).hypot() < 1e-12);
+                    let covered: f64 = passes.iter().map(|p| p[i].width()).sum();
+                    let seams = (n - 1) as f64;
+                    prop_assert!(covered >= w - 1e-9);
+                    prop_assert!(covered <= w + seams * overlap + 1e-9);
+                    for pair in passes.windows(2) {
+                        // Next piece starts no later than this one ends: no gap.
+                        let end = (pair[0][i].right - r.left).hypot();
+                        let start = (pair[1][i].left - r.left).hypot();
+                        prop_assert!(start <= end + 1e-12);
+                        if overlap == 0.0 { prop_assert!((start - end).abs() < 1e-12); }
+                    }
                 }
             }
         }
