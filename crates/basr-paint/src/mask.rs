@@ -228,7 +228,18 @@ pub fn inside_lattice(grid: &Grid, masks: &[Vec<MaskCell>]) -> Vec<u64> {
 pub struct Masks<'a> {
     glyphs: &'a [GlyphOutline],
     ids: &'a [usize],
-    made: std::sync::OnceLock<Vec<Vec<MaskCell>>>,
+    /// The masks made and the grid they were made on.
+    made: std::sync::OnceLock<(GridKey, Vec<Vec<MaskCell>>)>,
+}
+
+/// What places a grid's cells: origin and cell size (bits), and extent.
+type GridKey = ([u64; 3], [usize; 2]);
+
+fn key_of(grid: &Grid) -> GridKey {
+    (
+        [grid.x0.to_bits(), grid.y0.to_bits(), grid.cell_m.to_bits()],
+        [grid.nx, grid.ny],
+    )
 }
 
 impl<'a> Masks<'a> {
@@ -245,17 +256,18 @@ impl<'a> Masks<'a> {
     pub fn lattice(&self, grid: &Grid) -> Vec<u64> {
         let masks = glyph_masks(grid, self.glyphs, self.ids);
         let bits = inside_lattice(grid, &masks);
-        let _ = self.made.set(masks);
+        let _ = self.made.set((key_of(grid), masks));
         bits
     }
 
-    /// The masks made for the film laid on `grid` (made now if the film
-    /// was laid without them).
+    /// The masks on `grid`, the film's: those made for its lattice, or
+    /// made now (a film laid without them, or on another grid).
     pub fn take(self, grid: &Grid) -> Vec<Vec<MaskCell>> {
         let (glyphs, ids) = (self.glyphs, self.ids);
-        self.made
-            .into_inner()
-            .unwrap_or_else(|| glyph_masks(grid, glyphs, ids))
+        match self.made.into_inner() {
+            Some((key, masks)) if key == key_of(grid) => masks,
+            _ => glyph_masks(grid, glyphs, ids),
+        }
     }
 }
 

@@ -181,9 +181,10 @@ pub struct Part {
     covered: [f64; 2],
     /// Σ of the letters' cell fractions.
     letter_cells: f64,
-    /// Σ film over every cell, and over what lies outside the letters.
+    /// Σ film over every cell, and over what lies outside the letters
+    /// (`None` for a film laid without them: no overspray).
     film_sum: f64,
-    outside_sum: f64,
+    outside_sum: Option<f64>,
     /// Each glyph on it: its index in the job's glyphs, its row and peak.
     glyphs: Vec<(usize, GlyphMetrics, Option<Peak>)>,
     /// The edge widths measured and the true edge points considered.
@@ -248,14 +249,9 @@ pub fn measure_part(
         level,
     );
     // The paint that landed outside the letters, judged where it landed
-    // (`raster::Letters`): the film laid without them has none recorded.
-    let outside = |k: usize| film.outside.get(k).copied().unwrap_or(0.0);
-    debug_assert_eq!(
-        film.outside.len(),
-        n,
-        "a film measured is laid with its letters"
-    );
-    let outside_sum: f64 = (0..n).map(outside).sum::<f64>();
+    // (`raster::Letters`); a film laid without them has no overspray.
+    let outside = |k: usize| film.outside.as_ref().map_or(0.0, |o| o[k]);
+    let outside_sum: Option<f64> = film.outside.as_ref().map(|o| o.iter().sum::<f64>());
 
     // Per glyph: its cells' paint, and the paint outside the letters in
     // each cell, go to the glyph whose box is nearest the cell.
@@ -293,7 +289,8 @@ pub fn measure_part(
                 mean_film_m: gm,
                 cv: gcv,
                 coverage: coverage_share(g, m.iter().copied(), level),
-                overspray: (owner_vol[bi].0 > 0.0).then(|| owner_vol[bi].1 / owner_vol[bi].0),
+                overspray: (outside_sum.is_some() && owner_vol[bi].0 > 0.0)
+                    .then(|| owner_vol[bi].1 / owner_vol[bi].0),
                 u_min: u.map(|u| u.u_min),
                 u_max: u.map(|u| u.u_max),
             };
@@ -347,8 +344,12 @@ pub fn finish(parts: Vec<Part>, whole: Whole<'_>, strokes: Vec<StrokeU>) -> Metr
     // (Σ·h)·h and Σ·(h·h), as `Grid::volume` and the single raster's
     // outside sum took them: one part gives its figures bit for bit.
     let volume = add(&|p| p.film_sum) * h * h;
-    let outside = add(&|p| p.outside_sum) * area;
-    let overspray = (volume > 0.0).then(|| outside / volume);
+    // No overspray unless every part judged where its paint landed.
+    let outside = parts
+        .iter()
+        .try_fold(0.0, |s, p| p.outside_sum.map(|o| s + o))
+        .map(|o| o * area);
+    let overspray = outside.filter(|_| volume > 0.0).map(|o| o / volume);
     let all_u = merge_u(strokes.iter().map(|s| s.u));
     let mut widths: Vec<f64> = parts
         .iter()
@@ -828,6 +829,28 @@ mod tests {
                 assert!(
                     (wide - 1.0 / 11.0).abs() < 0.003,
                     "cell {cell} offset {off}: {wide}"
+                );
+            }
+        }
+    }
+
+    /// A fan reaching past the outline by less than a piece of the fan
+    /// (half a cell) still puts that paint outside: each piece is read
+    /// along its length, an eighth of a cell apart. 1 mm past each side of
+    /// a 0.2 m stripe is 0.002 / 0.202 of the paint; at 5 mm and at 10 mm
+    /// cells, wherever the outline falls in a cell.
+    #[test]
+    fn a_fan_a_millimetre_past_the_outline_puts_that_millimetre_outside() {
+        let want = 0.002 / 0.202;
+        for cell in [0.005, 0.01] {
+            // the reading's resolution: a lattice step on each side
+            let tol = 2.0 * cell / 8.0 / 0.202;
+            for o in 0..5 {
+                let off = o as f64 * cell / 5.0;
+                let got = stripe_overspray(0.202, 0.2, off, cell);
+                assert!(
+                    (got - want).abs() <= tol,
+                    "cell {cell} offset {off}: {got} (want {want})"
                 );
             }
         }

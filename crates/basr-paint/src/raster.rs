@@ -14,11 +14,14 @@
 //!
 //! Where the letters are given (a [`Letters`] lattice), each piece is also
 //! judged where it lands, before the bilinear splat spreads it over four
-//! cells: a piece whose point lies outside the letters (at the nearest of
-//! each cell's `LATTICE` × `LATTICE` lattice points) adds its volume to
-//! [`Film::outside`] in the cell it lands in. Overspray is that volume:
-//! the splat's one-cell spread across an outline the fan paints exactly
-//! is the raster's, not paint on the road outside the letter.
+//! cells: the piece's length along the fan is read at points an eighth of
+//! a cell apart, each at the nearest of its cell's `LATTICE` × `LATTICE`
+//! lattice points, and the share of them outside the letters adds that
+//! share of the piece's volume to [`Film::outside`] in the cell the piece
+//! lands in. Overspray is that volume: the splat's one-cell spread across
+//! an outline the fan paints exactly is the raster's, not paint on the
+//! road outside the letter, while a fan reaching past an outline by a
+//! millimetre puts its millimetre outside.
 
 use rayon::prelude::*;
 
@@ -211,9 +214,9 @@ impl Grid {
 pub struct Film {
     pub grid: Grid,
     /// Per cell of `grid`, the film (m: volume over the cell's area) of
-    /// the paint that landed outside the letters in that cell; empty when
-    /// laid without [`Letters`].
-    pub outside: Vec<f64>,
+    /// the paint that landed outside the letters in that cell; `None`
+    /// when laid without [`Letters`] (nothing was judged).
+    pub outside: Option<Vec<f64>>,
     /// Volume laid: flow × efficiency × gun-on time (m³).
     pub laid_m3: f64,
     /// Total gun-on time (s).
@@ -241,15 +244,17 @@ struct Canvas<'a> {
     inv_h: f64,
     /// Splats that fell outside the window (rare: a fan turning or tilting
     /// past the bounds of its end poses).
-    spill: Vec<([f64; 2], f64)>,
+    spill: Vec<([f64; 2], f64, f64)>,
 }
 
 impl Canvas<'_> {
-    /// Add mass `m` at `p` to the four nearest cell centres; when they are
-    /// not all in the window, keep it in `spill` for the global grid.
-    fn splat(&mut self, p: [f64; 2], m: f64) {
+    /// Add mass `m` at `p` to the four nearest cell centres, `outside` of
+    /// it (judged by [`Judge::outside_share`]) to the outside film of the
+    /// cell `p` lies in; when they are not all in the window, keep it in
+    /// `spill` for the global grid.
+    fn splat(&mut self, p: [f64; 2], m: f64, outside: f64) {
         let f = self.cells(p);
-        self.splat_cells(f, m, || p);
+        self.splat_cells(f, m, outside, || p);
     }
 
     /// `p` in cells from the grid's first cell centre.
@@ -264,11 +269,17 @@ impl Canvas<'_> {
     /// [`Canvas::splat`] of the point `[fx, fy]` cells from the grid's
     /// first cell centre; `p()` is that point on the road, for `spill`.
     #[inline]
-    fn splat_cells(&mut self, [fx, fy]: [f64; 2], m: f64, p: impl FnOnce() -> [f64; 2]) {
+    fn splat_cells(
+        &mut self,
+        [fx, fy]: [f64; 2],
+        m: f64,
+        outside: f64,
+        p: impl FnOnce() -> [f64; 2],
+    ) {
         // Left of or below the grid's first cell centre (or not a number):
         // off every window. From there on truncation is the floor.
         if !(fx >= 0.0 && fy >= 0.0) {
-            self.spill.push((p(), m));
+            self.spill.push((p(), m, outside));
             return;
         }
         let (fi, fj) = (fx as i64, fy as i64);
@@ -276,7 +287,7 @@ impl Canvas<'_> {
         let i = fi - self.i0;
         let j = fj - self.j0;
         if i < 0 || j < 0 || i + 1 >= self.nx as i64 || j + 1 >= self.ny as i64 {
-            self.spill.push((p(), m));
+            self.spill.push((p(), m, outside));
             return;
         }
         let (i, j) = (i as usize, j as usize);
@@ -286,26 +297,11 @@ impl Canvas<'_> {
         self.vol[k + 1] += a * tx;
         self.vol[k + self.nx] += b * (1.0 - tx);
         self.vol[k + self.nx + 1] += b * tx;
-        if let Some(judge) = self.letters {
+        if outside > 0.0 && !self.out.is_empty() {
             // The cell the point lands in: of the splat's four (so in the
             // window), the one whose centre is nearest.
             let (di, dj) = (usize::from(tx >= 0.5), usize::from(ty >= 0.5));
-            let global = (fj as usize + dj) * judge.nx + fi as usize + di;
-            let outside = match judge.class[global] {
-                Judge::INSIDE => false,
-                Judge::OUTSIDE => true,
-                _ => {
-                    // its nearest lattice point: the point's place in the
-                    // cell, in eighths
-                    let per = LATTICE as f64;
-                    let col = (((tx + 0.5 - di as f64) * per) as usize).min(LATTICE - 1);
-                    let row = (((ty + 0.5 - dj as f64) * per) as usize).min(LATTICE - 1);
-                    judge.bits[global] >> (row * LATTICE + col) & 1 == 0
-                }
-            };
-            if outside {
-                self.out[k + dj * self.nx + di] += m;
-            }
+            self.out[k + dj * self.nx + di] += outside;
         }
     }
 }
@@ -316,6 +312,7 @@ impl Canvas<'_> {
 /// byte, the cell's class.
 struct Judge {
     nx: usize,
+    ny: usize,
     bits: Vec<u64>,
     class: Vec<u8>,
 }
@@ -324,6 +321,58 @@ impl Judge {
     const OUTSIDE: u8 = 0;
     const INSIDE: u8 = 1;
     const EDGE: u8 = 2;
+
+    /// Points at which a piece (at most half a cell long) is read: an
+    /// eighth of a cell apart, the lattice's spacing.
+    const READS: usize = LATTICE / 2;
+
+    /// The cell class of the point `f` (cells from the first cell centre)
+    /// and, for a cell the outline cuts, whether the point is outside;
+    /// off the grid is outside.
+    #[inline]
+    fn outside_at(&self, f: [f64; 2]) -> (u8, bool) {
+        let (gx, gy) = (f[0] + 0.5, f[1] + 0.5);
+        if !(gx >= 0.0 && gy >= 0.0) {
+            return (Judge::OUTSIDE, true);
+        }
+        let (ci, cj) = (gx as usize, gy as usize);
+        if ci >= self.nx || cj >= self.ny {
+            return (Judge::OUTSIDE, true);
+        }
+        let k = cj * self.nx + ci;
+        match self.class[k] {
+            Judge::INSIDE => (Judge::INSIDE, false),
+            Judge::OUTSIDE => (Judge::OUTSIDE, true),
+            c => {
+                let per = LATTICE as f64;
+                let col = (((gx - ci as f64) * per) as usize).min(LATTICE - 1);
+                let row = (((gy - cj as f64) * per) as usize).min(LATTICE - 1);
+                (c, self.bits[k] >> (row * LATTICE + col) & 1 == 0)
+            }
+        }
+    }
+
+    /// The share of a piece of the fan from `a` to `b` (cells from the
+    /// first cell centre; at most half a cell apart) that lies outside the
+    /// letters: none or all when both ends lie in cells wholly inside or
+    /// wholly outside, else read at [`Judge::READS`] points along it.
+    #[inline]
+    fn outside_share(&self, a: [f64; 2], b: [f64; 2]) -> f64 {
+        let (ca, oa) = self.outside_at(a);
+        let (cb, _) = self.outside_at(b);
+        if ca != Judge::EDGE && ca == cb {
+            return if oa { 1.0 } else { 0.0 };
+        }
+        let n = Judge::READS;
+        let out = (0..n)
+            .filter(|&j| {
+                let t = (j as f64 + 0.5) / n as f64;
+                self.outside_at([a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t])
+                    .1
+            })
+            .count();
+        out as f64 / n as f64
+    }
 
     fn of(grid: &Grid, bits: Vec<u64>) -> Judge {
         let class = bits
@@ -336,6 +385,7 @@ impl Judge {
             .collect();
         Judge {
             nx: grid.nx,
+            ny: grid.ny,
             bits,
             class,
         }
@@ -583,15 +633,18 @@ pub fn deposit_intervals(
         if !c.out.is_empty() {
             add_window(&mut whole.out, &c.out, c);
         }
-        for &(p, m) in &c.spill {
-            whole.splat(p, m);
+        for &(p, m, o) in &c.spill {
+            whole.splat(p, m, o);
         }
     }
     let lost_m3: f64 = whole.spill.iter().map(|s| s.1).sum();
     grid.data = whole.vol;
     grid.data.iter_mut().for_each(|v| *v /= area);
-    let mut outside = whole.out;
-    outside.iter_mut().for_each(|v| *v /= area);
+    let outside = letters.map(|_| {
+        let mut o = whole.out;
+        o.iter_mut().for_each(|v| *v /= area);
+        o
+    });
     let gun_on_s: f64 = painted
         .iter()
         .map(|&i| poses[i + 1].t_s - poses[i].t_s)
@@ -680,6 +733,11 @@ fn lay_line(
     // the sheet's normal in cells per metre: a depth node d off the line
     // lies d·nh cells from it
     let nh = [n[0] * canvas.inv_h, n[1] * canvas.inv_h];
+    // half a piece along the fan, in cells
+    let half = [
+        0.5 * step * fp.u[0] * canvas.inv_h,
+        0.5 * step * fp.u[1] * canvas.inv_h,
+    ];
     let mut c_lo = model.cdf(fp.theta_at(fp.r_minus));
     for k in 0..pieces {
         let r_hi = fp.r_minus + (k + 1) as f64 * step;
@@ -692,11 +750,16 @@ fn lay_line(
         let p = fp.at(r_hi - 0.5 * step);
         let f = canvas.cells(p);
         for &(d, wd) in depth {
-            canvas.splat_cells(
-                [f[0] + d * nh[0], f[1] + d * nh[1]],
-                vol * share * wd,
-                || [p[0] + d * n[0], p[1] + d * n[1]],
-            );
+            let c = [f[0] + d * nh[0], f[1] + d * nh[1]];
+            let m = vol * share * wd;
+            // the piece from one end to the other, judged where it lands
+            let outside = canvas.letters.map_or(0.0, |judge| {
+                m * judge.outside_share(
+                    [c[0] - half[0], c[1] - half[1]],
+                    [c[0] + half[0], c[1] + half[1]],
+                )
+            });
+            canvas.splat_cells(c, m, outside, || [p[0] + d * n[0], p[1] + d * n[1]]);
         }
     }
 }
@@ -768,14 +831,14 @@ mod tests {
         };
         let check = |p: [f64; 2]| {
             let mut c = window();
-            c.splat(p, 2.0);
+            c.splat(p, 2.0, 0.0);
             let fx = (p[0] - c.x0) * c.inv_h - 0.5;
             let fy = (p[1] - c.y0) * c.inv_h - 0.5;
             let (i, j) = (fx.floor() - c.i0 as f64, fy.floor() - c.j0 as f64);
             let inside = i >= 0.0 && j >= 0.0 && i + 1.0 < c.nx as f64 && j + 1.0 < c.ny as f64;
             let laid: f64 = c.vol.iter().sum();
             if !inside {
-                assert_eq!(c.spill, vec![(p, 2.0)], "{p:?}");
+                assert_eq!(c.spill, vec![(p, 2.0, 0.0)], "{p:?}");
                 assert_eq!(laid, 0.0);
                 return;
             }
@@ -809,7 +872,7 @@ mod tests {
         ] {
             if p[0].is_nan() {
                 let mut c = window();
-                c.splat(p, 2.0);
+                c.splat(p, 2.0, 0.0);
                 assert_eq!(c.spill.len(), 1);
                 assert_eq!(c.vol.iter().sum::<f64>(), 0.0);
                 continue;
@@ -829,7 +892,7 @@ mod tests {
             [-0.1 + 0.2 * h, 0.2 + 2.0 * h],
             [-0.1 + 2.0 * h, 0.2 + 0.3 * h],
         ] {
-            c.splat(p, 2.0);
+            c.splat(p, 2.0, 0.0);
         }
         assert_eq!(c.spill.len(), 2);
         assert_eq!(c.vol.iter().sum::<f64>(), 0.0);
