@@ -338,6 +338,7 @@ fn stroke_passes(
             stroke: sid,
             owner: owner.clone(),
             passes: split.abreast(),
+            stretches: split.stretches.len(),
             max_width_m: law.max_width_m(),
         });
     }

@@ -109,11 +109,14 @@ pub enum Note {
     /// the method kept per region, the candidates' measured film, the
     /// places narrower than the fan); `label` is the shape's file stem.
     Shape { label: String, text: String },
-    /// A stroke wider than one pass paints, painted in parallel passes.
+    /// A stroke wider than one pass paints, painted in parallel passes
+    /// (`passes` side by side at most), cut across into `stretches` where
+    /// its width changes (`passes::split_passes`).
     Passes {
         stroke: usize,
         owner: Owner,
         passes: usize,
+        stretches: usize,
         max_width_m: f64,
     },
     /// Rungs narrower than the fan paints from the nozzle's lowest height.
@@ -352,6 +355,7 @@ impl Note {
                 stroke,
                 owner,
                 passes,
+                stretches,
                 max_width_m,
             } => Warning {
                 kind: WarningKind::Passes,
@@ -360,11 +364,22 @@ impl Note {
                 stroke: Some(*stroke),
                 t_s: None,
                 factor: Some(*passes as f64),
-                message: format!(
-                    "{owner}, stroke {stroke}: wider than one sweep of the fan ({:.0} mm), so it \
-                     is painted in {passes} side-by-side sweeps. {todo}",
-                    max_width_m * 1e3
-                ),
+                message: if *stretches > 1 {
+                    format!(
+                        "{owner}, stroke {stroke}: wider than one sweep of the fan ({:.0} mm) \
+                         where it is widest and under two of its narrowest where it narrows, so \
+                         it is cut across into {stretches} stretches, painted in up to {passes} \
+                         side-by-side sweeps; the stretches meet across the stroke in a thin \
+                         seam. {todo}",
+                        max_width_m * 1e3
+                    )
+                } else {
+                    format!(
+                        "{owner}, stroke {stroke}: wider than one sweep of the fan ({:.0} mm), so \
+                         it is painted in {passes} side-by-side sweeps. {todo}",
+                        max_width_m * 1e3
+                    )
+                },
             },
             Note::HeightClamped {
                 stroke,
@@ -545,10 +560,21 @@ mod tests {
             stroke: 2,
             owner: owner(),
             passes: 3,
+            stretches: 1,
             max_width_m: 0.2,
         };
         assert_eq!(passes.render().factor, Some(3.0));
         assert_eq!(passes.severity().name(), "info");
+        assert!(!passes.render().message.contains("stretches"));
+        let cut = Note::Passes {
+            stroke: 2,
+            owner: owner(),
+            passes: 3,
+            stretches: 2,
+            max_width_m: 0.2,
+        };
+        assert!(cut.render().message.contains("cut across into 2 stretches"));
+        assert_eq!(cut.render().factor, Some(3.0));
     }
 
     #[test]
