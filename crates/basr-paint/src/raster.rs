@@ -315,6 +315,11 @@ struct Judge {
     ny: usize,
     bits: Vec<u64>,
     class: Vec<u8>,
+    /// Per cell: every cell within `reach` cells of it wholly inside
+    /// (`INSIDE`), wholly outside (`OUTSIDE`), or neither (`EDGE`): a
+    /// piece landing there, with all its sheet's depth nodes, is judged
+    /// by this one byte.
+    deep: Vec<u8>,
 }
 
 impl Judge {
@@ -374,8 +379,10 @@ impl Judge {
         out as f64 / n as f64
     }
 
-    fn of(grid: &Grid, bits: Vec<u64>) -> Judge {
-        let class = bits
+    /// The judge of `grid`'s lattice `bits`, for pieces whose points lie
+    /// within `reach_m` of the point they are splatted about.
+    fn of(grid: &Grid, bits: Vec<u64>, reach_m: f64) -> Judge {
+        let class: Vec<u8> = bits
             .iter()
             .map(|&b| match b {
                 0 => Judge::OUTSIDE,
@@ -383,12 +390,82 @@ impl Judge {
                 _ => Judge::EDGE,
             })
             .collect();
+        // A point within reach_m of a point in cell i lies within
+        // ⌈reach / cell⌉ cells of i; one more for rounding.
+        let r = ((reach_m / grid.cell_m).ceil().max(0.0) as usize).min(grid.nx.max(grid.ny)) + 1;
+        let all = |c: u8| Judge::all_within(&class, grid.nx, grid.ny, r, |k| class[k] == c);
+        let (inside, outside) = (all(Judge::INSIDE), all(Judge::OUTSIDE));
+        let deep = inside
+            .iter()
+            .zip(&outside)
+            .map(|(&i, &o)| {
+                if i {
+                    Judge::INSIDE
+                } else if o {
+                    Judge::OUTSIDE
+                } else {
+                    Judge::EDGE
+                }
+            })
+            .collect();
         Judge {
             nx: grid.nx,
             ny: grid.ny,
             bits,
             class,
+            deep,
         }
+    }
+
+    /// Per cell: whether `is` holds for every cell within `r` cells
+    /// (Chebyshev) of it, cells off the grid counting as not (a row pass
+    /// then a column pass of running counts).
+    fn all_within(
+        class: &[u8],
+        nx: usize,
+        ny: usize,
+        r: usize,
+        is: impl Fn(usize) -> bool,
+    ) -> Vec<bool> {
+        let window = 2 * r + 1;
+        let run = |n: usize, at: &dyn Fn(usize) -> bool| -> Vec<bool> {
+            // prefix counts over 0..n, then each window [i − r, i + r]
+            let mut pre = vec![0usize; n + 1];
+            for i in 0..n {
+                pre[i + 1] = pre[i] + usize::from(at(i));
+            }
+            (0..n)
+                .map(|i| i >= r && i + r < n && pre[i + r + 1] - pre[i - r] == window)
+                .collect()
+        };
+        let mut rows = vec![false; class.len()];
+        for j in 0..ny {
+            let ok = run(nx, &|i| is(j * nx + i));
+            rows[j * nx..(j + 1) * nx].copy_from_slice(&ok);
+        }
+        let mut out = vec![false; class.len()];
+        for i in 0..nx {
+            let ok = run(ny, &|j| rows[j * nx + i]);
+            for (j, v) in ok.into_iter().enumerate() {
+                out[j * nx + i] = v;
+            }
+        }
+        out
+    }
+
+    /// The deep class of the cell the point `f` (cells from the first
+    /// cell centre) lies in; `EDGE` off the grid.
+    #[inline]
+    fn deep_at(&self, f: [f64; 2]) -> u8 {
+        let (gx, gy) = (f[0] + 0.5, f[1] + 0.5);
+        if !(gx >= 0.0 && gy >= 0.0) {
+            return Judge::EDGE;
+        }
+        let (ci, cj) = (gx as usize, gy as usize);
+        if ci >= self.nx || cj >= self.ny {
+            return Judge::EDGE;
+        }
+        self.deep[cj * self.nx + ci]
     }
 }
 
@@ -588,7 +665,10 @@ pub fn deposit_intervals(
     let mut grid = Grid::covering(extent.grow(2.0 * cell_m), cell_m)?;
     let half = cell_m / 2.0;
     let depth = model.depth.nodes(half);
-    let judge = letters.map(|f| Judge::of(&grid, f(&grid)));
+    // a piece's points: its depth nodes' reach, and half a piece (a
+    // quarter of a cell) along the fan
+    let reach = depth_reach(model) + 0.25 * cell_m;
+    let judge = letters.map(|f| Judge::of(&grid, f(&grid), reach));
     let letters = judge.as_ref();
 
     let done = std::sync::atomic::AtomicUsize::new(0);
@@ -749,16 +829,24 @@ fn lay_line(
         }
         let p = fp.at(r_hi - 0.5 * step);
         let f = canvas.cells(p);
+        // far from every outline, the whole piece and its sheet at once
+        let deep = canvas
+            .letters
+            .map_or(Judge::INSIDE, |judge| judge.deep_at(f));
         for &(d, wd) in depth {
             let c = [f[0] + d * nh[0], f[1] + d * nh[1]];
             let m = vol * share * wd;
             // the piece from one end to the other, judged where it lands
-            let outside = canvas.letters.map_or(0.0, |judge| {
-                m * judge.outside_share(
-                    [c[0] - half[0], c[1] - half[1]],
-                    [c[0] + half[0], c[1] + half[1]],
-                )
-            });
+            let outside = match (deep, canvas.letters) {
+                (Judge::INSIDE, _) | (_, None) => 0.0,
+                (Judge::OUTSIDE, _) => m,
+                (_, Some(judge)) => {
+                    m * judge.outside_share(
+                        [c[0] - half[0], c[1] - half[1]],
+                        [c[0] + half[0], c[1] + half[1]],
+                    )
+                }
+            };
             canvas.splat_cells(c, m, outside, || [p[0] + d * n[0], p[1] + d * n[1]]);
         }
     }
@@ -771,6 +859,34 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A cell is deep inside only when every cell within the radius is
+    /// wholly inside (off the grid counts as not): a 3 × 3 block of
+    /// inside cells in a 7 × 7 grid is deep inside at its centre alone at
+    /// radius 1, nowhere at radius 2; deep outside needs the whole
+    /// neighbourhood outside and on the grid.
+    #[test]
+    fn deep_cells_have_their_whole_neighbourhood_on_one_side() {
+        let (nx, ny) = (7, 7);
+        let class: Vec<u8> = (0..nx * ny)
+            .map(|k| {
+                let (i, j) = (k % nx, k / nx);
+                if (2..5).contains(&i) && (2..5).contains(&j) {
+                    Judge::INSIDE
+                } else {
+                    Judge::OUTSIDE
+                }
+            })
+            .collect();
+        let inside = |r| Judge::all_within(&class, nx, ny, r, |k| class[k] == Judge::INSIDE);
+        let deep: Vec<usize> = (0..nx * ny).filter(|&k| inside(1)[k]).collect();
+        assert_eq!(deep, vec![3 * nx + 3]);
+        assert!(inside(2).iter().all(|&d| !d));
+        let outside = Judge::all_within(&class, nx, ny, 1, |k| class[k] == Judge::OUTSIDE);
+        let deep_out: Vec<usize> = (0..nx * ny).filter(|&k| outside[k]).collect();
+        // none: every on-grid cell with a full neighbourhood touches the block
+        assert!(deep_out.is_empty(), "{deep_out:?}");
+    }
 
     /// `floor` is `f64::floor` bit for bit: the edge cases, and any f64.
     #[test]
