@@ -336,25 +336,33 @@ impl Judge {
     /// off the grid is outside.
     #[inline]
     fn outside_at(&self, f: [f64; 2]) -> (u8, bool) {
-        let (gx, gy) = (f[0] + 0.5, f[1] + 0.5);
-        if !(gx >= 0.0 && gy >= 0.0) {
+        let Some((k, [u, v])) = self.cell_of(f) else {
             return (Judge::OUTSIDE, true);
-        }
-        let (ci, cj) = (gx as usize, gy as usize);
-        if ci >= self.nx || cj >= self.ny {
-            return (Judge::OUTSIDE, true);
-        }
-        let k = cj * self.nx + ci;
+        };
         match self.class[k] {
             Judge::INSIDE => (Judge::INSIDE, false),
             Judge::OUTSIDE => (Judge::OUTSIDE, true),
             c => {
                 let per = LATTICE as f64;
-                let col = (((gx - ci as f64) * per) as usize).min(LATTICE - 1);
-                let row = (((gy - cj as f64) * per) as usize).min(LATTICE - 1);
+                let col = ((u * per) as usize).min(LATTICE - 1);
+                let row = ((v * per) as usize).min(LATTICE - 1);
                 (c, self.bits[k] >> (row * LATTICE + col) & 1 == 0)
             }
         }
+    }
+
+    /// The cell the point `f` (cells from the first cell centre) lies in
+    /// and the point's place in it (0 to 1 along x and y); `None` off the
+    /// grid.
+    #[inline]
+    fn cell_of(&self, f: [f64; 2]) -> Option<(usize, [f64; 2])> {
+        let (gx, gy) = (f[0] + 0.5, f[1] + 0.5);
+        if !(gx >= 0.0 && gy >= 0.0) {
+            return None;
+        }
+        let (ci, cj) = (gx as usize, gy as usize);
+        (ci < self.nx && cj < self.ny)
+            .then(|| (cj * self.nx + ci, [gx - ci as f64, gy - cj as f64]))
     }
 
     /// The share of a piece of the fan from `a` to `b` (cells from the
@@ -393,7 +401,7 @@ impl Judge {
         // A point within reach_m of a point in cell i lies within
         // ⌈reach / cell⌉ cells of i; one more for rounding.
         let r = ((reach_m / grid.cell_m).ceil().max(0.0) as usize).min(grid.nx.max(grid.ny)) + 1;
-        let all = |c: u8| Judge::all_within(&class, grid.nx, grid.ny, r, |k| class[k] == c);
+        let all = |c: u8| Judge::all_within(grid.nx, grid.ny, r, |k| class[k] == c);
         let (inside, outside) = (all(Judge::INSIDE), all(Judge::OUTSIDE));
         let deep = inside
             .iter()
@@ -420,13 +428,7 @@ impl Judge {
     /// Per cell: whether `is` holds for every cell within `r` cells
     /// (Chebyshev) of it, cells off the grid counting as not (a row pass
     /// then a column pass of running counts).
-    fn all_within(
-        class: &[u8],
-        nx: usize,
-        ny: usize,
-        r: usize,
-        is: impl Fn(usize) -> bool,
-    ) -> Vec<bool> {
+    fn all_within(nx: usize, ny: usize, r: usize, is: impl Fn(usize) -> bool) -> Vec<bool> {
         let window = 2 * r + 1;
         let run = |n: usize, at: &dyn Fn(usize) -> bool| -> Vec<bool> {
             // prefix counts over 0..n, then each window [i − r, i + r]
@@ -438,12 +440,12 @@ impl Judge {
                 .map(|i| i >= r && i + r < n && pre[i + r + 1] - pre[i - r] == window)
                 .collect()
         };
-        let mut rows = vec![false; class.len()];
+        let mut rows = vec![false; nx * ny];
         for j in 0..ny {
             let ok = run(nx, &|i| is(j * nx + i));
             rows[j * nx..(j + 1) * nx].copy_from_slice(&ok);
         }
-        let mut out = vec![false; class.len()];
+        let mut out = vec![false; nx * ny];
         for i in 0..nx {
             let ok = run(ny, &|j| rows[j * nx + i]);
             for (j, v) in ok.into_iter().enumerate() {
@@ -457,15 +459,7 @@ impl Judge {
     /// cell centre) lies in; `EDGE` off the grid.
     #[inline]
     fn deep_at(&self, f: [f64; 2]) -> u8 {
-        let (gx, gy) = (f[0] + 0.5, f[1] + 0.5);
-        if !(gx >= 0.0 && gy >= 0.0) {
-            return Judge::EDGE;
-        }
-        let (ci, cj) = (gx as usize, gy as usize);
-        if ci >= self.nx || cj >= self.ny {
-            return Judge::EDGE;
-        }
-        self.deep[cj * self.nx + ci]
+        self.cell_of(f).map_or(Judge::EDGE, |(k, _)| self.deep[k])
     }
 }
 
@@ -838,14 +832,14 @@ fn lay_line(
             let m = vol * share * wd;
             // the piece from one end to the other, judged where it lands
             let outside = match (deep, canvas.letters) {
-                (Judge::INSIDE, _) | (_, None) => 0.0,
-                (Judge::OUTSIDE, _) => m,
-                (_, Some(judge)) => {
+                (Judge::EDGE, Some(judge)) => {
                     m * judge.outside_share(
                         [c[0] - half[0], c[1] - half[1]],
                         [c[0] + half[0], c[1] + half[1]],
                     )
                 }
+                (Judge::OUTSIDE, _) => m,
+                _ => 0.0,
             };
             canvas.splat_cells(c, m, outside, || [p[0] + d * n[0], p[1] + d * n[1]]);
         }
@@ -878,11 +872,11 @@ mod tests {
                 }
             })
             .collect();
-        let inside = |r| Judge::all_within(&class, nx, ny, r, |k| class[k] == Judge::INSIDE);
+        let inside = |r| Judge::all_within(nx, ny, r, |k| class[k] == Judge::INSIDE);
         let deep: Vec<usize> = (0..nx * ny).filter(|&k| inside(1)[k]).collect();
         assert_eq!(deep, vec![3 * nx + 3]);
         assert!(inside(2).iter().all(|&d| !d));
-        let outside = Judge::all_within(&class, nx, ny, 1, |k| class[k] == Judge::OUTSIDE);
+        let outside = Judge::all_within(nx, ny, 1, |k| class[k] == Judge::OUTSIDE);
         let deep_out: Vec<usize> = (0..nx * ny).filter(|&k| outside[k]).collect();
         // none: every on-grid cell with a full neighbourhood touches the block
         assert!(deep_out.is_empty(), "{deep_out:?}");

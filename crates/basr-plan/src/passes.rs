@@ -588,7 +588,7 @@ pub fn split_passes(
             } else {
                 usize::MAX
             };
-            most.max(l).max(1)
+            most.max(l)
         })
         .collect();
     // Stretches [a, b] (rungs, the ends shared) and their n.
