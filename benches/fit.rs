@@ -66,6 +66,7 @@ fn bench(c: &mut Criterion) {
                 fitted: 0,
                 road,
                 kept: job.summary.stops.clone(),
+                painted: basr::plan::site::painted_passes(&job.samples, job.stations.len()),
             });
             compile_job(&req).expect("re-plans")
         })

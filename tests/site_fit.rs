@@ -127,6 +127,18 @@ fn fit(dir: &Path, points: &str, extra: &[&str]) -> std::process::Output {
     basr(dir, &args)
 }
 
+/// The strokes station `si` of `job` paints, in its order (a stroke
+/// painted in several passes running on is named once).
+fn stroke_order(job: &Job, si: usize) -> Vec<i64> {
+    let s = &job.samples;
+    let mut order: Vec<i64> = (0..s.len())
+        .filter(|&i| s.station[i] as usize == si && s.paint[i] != 0)
+        .map(|i| s.stroke[i])
+        .collect();
+    order.dedup();
+    order
+}
+
 /// Compile, fit from the truth, and check every acceptance point.
 fn fit_case(
     dir: &Path,
@@ -160,6 +172,12 @@ fn fit_case(
             assert_eq!(a, b, "stop {} moved", k + 1);
         }
     }
+    // The fitted stop paints its strokes in the order the job sheet gives.
+    assert_eq!(
+        stroke_order(&fitted, stop - 1),
+        stroke_order(&job, stop - 1),
+        "the fitted stop keeps the job's order"
+    );
     let (off, dh) = run_from_truth(&fitted, stop, &truth);
     assert!(off <= 0.005, "paint lands {:.1} mm off the plan", off * 1e3);
     assert!(dh <= 0.003, "nozzle height {:.1} mm off the plan", dh * 1e3);
@@ -255,6 +273,67 @@ fn fit_a_scene_stop() {
             )
         },
     );
+}
+
+/// The road under stop `stop` level in the arm's frame, 3 mm under its
+/// base (the truck stands on the road it paints): its passes are the
+/// job's.
+fn level(stop: usize) -> StopPlane {
+    StopPlane {
+        stop,
+        z_m: -0.003,
+        dz_dx: 0.0,
+        dz_dy: 0.0,
+    }
+}
+
+/// A crew fits each stop as it reaches it: the job fitted at one stop is
+/// fitted again at the next; the stop fitted first keeps its motion, and
+/// each paints its strokes in the job's order.
+#[test]
+fn a_fitted_job_is_fitted_again_at_its_next_stop() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
+    let m = marking.to_str().unwrap();
+    succeeded(basr(d, &["compile", "--marking", m, "-o", "j.job.json"]));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let first = moved(&job, 1, [0.15, -0.10, 1.5], level(1));
+    succeeded(fit(
+        d,
+        &points_file(&job, 1, &first, 0.002, 3),
+        &["--marking", m],
+    ));
+    let once = Job::read(&d.join("f.job.json")).unwrap();
+    std::fs::rename(d.join("f.job.json"), d.join("j.job.json")).unwrap();
+    let second = moved(&once, 2, [-0.05, 0.05, -0.5], level(2));
+    succeeded(fit(
+        d,
+        &points_file(&once, 2, &second, 0.002, 4),
+        &["--marking", m],
+    ));
+    let twice = Job::read(&d.join("f.job.json")).unwrap();
+    assert_eq!(twice.stations[0], once.stations[0]);
+    let rows = |j: &Job| -> Vec<Vec<String>> {
+        let s = &j.samples;
+        (0..s.len())
+            .filter(|&i| s.station[i] == 0)
+            .map(|i| s.csv_fields(i).into_iter().skip(1).collect())
+            .collect()
+    };
+    assert_eq!(
+        rows(&twice),
+        rows(&once),
+        "the first fitted stop moves as it did"
+    );
+    for k in [0, 1] {
+        assert_eq!(
+            stroke_order(&twice, k),
+            stroke_order(&job, k),
+            "stop {}",
+            k + 1
+        );
+    }
 }
 
 fn stop_job(dir: &Path) -> Job {
@@ -574,6 +653,7 @@ fn the_other_stops_keep_their_timing_and_are_not_simulated_again() {
             fitted,
             road: job.road.clone(),
             kept,
+            painted: basr::plan::site::painted_passes(&job.samples, n),
         }),
         ..req.clone()
     })
@@ -603,6 +683,7 @@ fn the_other_stops_keep_their_timing_and_are_not_simulated_again() {
             fitted,
             road: job.road.clone(),
             kept: short,
+            painted: vec![],
         }),
         ..req
     })

@@ -72,6 +72,7 @@ fn case(name: &str) -> CompileRequest {
                     fitted: 0,
                     road: job.road.clone(),
                     kept: vec![],
+                    painted: vec![],
                 }),
                 ..CompileRequest::message("STOP")
             }

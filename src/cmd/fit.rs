@@ -398,6 +398,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         fitted: si,
         road,
         kept: job.summary.stops.clone(),
+        painted: basr::plan::site::painted_passes(&job.samples, job.stations.len()),
     });
     let spin = super::spinner(
         !global.quiet && !args.json,

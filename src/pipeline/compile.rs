@@ -110,7 +110,7 @@ fn compile_for_tip(
 ) -> Result<Job, CompileError> {
     let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
     let (passes, plan) = passes_on_road(req, marking, strokes, &robot, tilt)?;
-    let tours = tours::tours(&passes, &plan, &robot);
+    let tours = as_the_job_paints(req, tours::tours(&passes, &plan, &robot), &passes, &plan);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot, &req.tuning.joins)?;
     let n = paths.stations.len();
     let mut paces = vec![trajectory::Pace::FULL; n];
@@ -152,6 +152,9 @@ fn compile_for_tip(
         nominal_m[si] = k.max_error_m;
         on_spread[si] = (!k.plants_max_error_m.is_empty()).then(|| k.plants_max_error_m.clone());
         kept_over[si] = k.over.clone();
+    }
+    if let Some((si, pace)) = warm_pace(req, n) {
+        paces[si] = pace;
     }
     loop {
         let timed = trajectory::time_law_paced(
@@ -384,6 +387,63 @@ fn kept_stops(
         .enumerate()
         .filter(|(si, _)| *si != site.fitted)
         .collect()
+}
+
+/// `tours` with each stop of a fitted job in the order the job being
+/// fitted paints it (`Site::painted`), where its passes are the job's
+/// (`tours::as_painted`): the fitted stop paints in the order of the
+/// crew's job sheet, not one ordered afresh from where the truck stopped,
+/// and the job's own pace for it (`warm_pace`) meets the joins it was
+/// found on (STOP's stop 0.3 m back and 2.5° turned, ordered afresh,
+/// started at the other end of the word and took seven rounds of
+/// verification); the other stops move as the job's did, whether it
+/// ordered them afresh or kept them from an earlier fit.
+fn as_the_job_paints(
+    req: &CompileRequest,
+    mut tours: tours::Tours,
+    passes: &passes::Passes,
+    plan: &stations::StationPlan,
+) -> tours::Tours {
+    let Some(site) = req.site.as_ref() else {
+        return tours;
+    };
+    for (si, painted) in site.painted.iter().enumerate() {
+        let kept = (!painted.is_empty())
+            .then(|| tours::as_painted(passes, plan, si, painted))
+            .flatten();
+        if let (Some(v), Some(t), Some(k)) =
+            (kept, tours.stations.get_mut(si), tours.kept.get_mut(si))
+        {
+            (*t, *k) = (v, true);
+        }
+    }
+    tours
+}
+
+/// The pace a fitted stop's verification starts from: the one the job
+/// being fitted found for it (`Site::kept`), when it is a pace (every
+/// share in (0, 1]); it is verified again all the same. The same joins in
+/// the same order (`as_the_job_paints`) mostly need the same slowing,
+/// which compile found in rounds of simulation; a pace slower than the
+/// fitted pose needs costs the crew seconds, never the path.
+fn warm_pace(req: &CompileRequest, n: usize) -> Option<(usize, trajectory::Pace)> {
+    let site = req.site.as_ref()?;
+    let k = site.kept.get(site.fitted).filter(|_| site.fitted < n)?;
+    let paces_ok = [k.air_pace, k.path_pace]
+        .into_iter()
+        .chain(k.join_paces.iter().map(|j| j.1))
+        .all(|p| p > 0.0 && p <= 1.0);
+    paces_ok.then(|| {
+        (
+            site.fitted,
+            trajectory::Pace {
+                air: k.air_pace,
+                path: k.path_pace,
+                joins: k.join_paces.clone(),
+                fly_in: k.fly_in,
+            },
+        )
+    })
 }
 
 /// Rounds of planning the passes again for the road's surface: each round

@@ -154,8 +154,10 @@ impl JoinCosts {
 /// is the starting point, and moves that reverse a pass, move it or reverse
 /// a run of passes are kept while they shorten the station's joint-time
 /// estimate, each priced with the shortest path over the branches
-/// (`best_branches`, every joint counted). A pass out of reach either way
-/// is refused with the stroke, its item and the place.
+/// (`best_branches`, every joint counted); a tour `Tours::kept` is painted
+/// as it is (where a pass reaches only the other way round, that way). A
+/// pass out of reach either way is refused with the stroke, its item and
+/// the place.
 pub fn joint_paths(
     strokes: &PlacedStrokes,
     passes: &Passes,
@@ -173,15 +175,19 @@ pub fn joint_paths(
     let stations: Vec<Result<Vec<Run>, CompileError>> = tours.stations[..n]
         .par_iter()
         .enumerate()
-        .map(|(si, tour)| station_runs(strokes, passes, plan, robot, joins, &stow, si, tour))
+        .map(|(si, tour)| {
+            let kept = tours.kept.get(si).copied().unwrap_or(false);
+            station_runs(strokes, passes, plan, robot, joins, &stow, si, tour, kept)
+        })
         .collect();
     Ok(JointPaths {
         stations: stations.into_iter().collect::<Result<_, _>>()?,
     })
 }
 
-/// [`joint_paths`] of station `si` of `plan` (its `tour`): its passes
-/// solved both ways round, its order and branches chosen.
+/// [`joint_paths`] of station `si` of `plan` (its `tour`, painted as it is
+/// when `kept`): its passes solved both ways round, its order and
+/// branches chosen.
 #[allow(clippy::too_many_arguments)]
 fn station_runs(
     strokes: &PlacedStrokes,
@@ -192,6 +198,7 @@ fn station_runs(
     stow: &Q,
     si: usize,
     tour: &[super::order::Visit],
+    kept: bool,
 ) -> Result<Vec<Run>, CompileError> {
     use rayon::prelude::*;
     let at = Stop::new(si, &plan.stations[si], &plan.road, robot);
@@ -238,7 +245,9 @@ fn station_runs(
         })
         .collect();
     let costs = JoinCosts::new(robot, joins, &ways);
-    improve(robot, stow, &ways, &mut seq, &costs);
+    if !kept {
+        improve(robot, stow, &ways, &mut seq, &costs);
+    }
     let picked: Vec<&Candidates> = seq
         .iter()
         .filter_map(|&(k, r)| ways[k][r as usize].as_ref())

@@ -4,7 +4,7 @@
 //! from which the arm cannot reach its marking is refused with the move
 //! that brings it into reach.
 
-use basr_job::{Road, Station};
+use basr_job::{Road, Samples, Station};
 use basr_robot::AnyRobot;
 
 use super::error::StationError;
@@ -27,6 +27,58 @@ pub struct Site {
     /// instead of simulating it again (the caller then checks each kept
     /// stop moves as the job's did).
     pub kept: Vec<basr_job::StopTiming>,
+    /// Each stop's passes as the job being fitted paints them, in its
+    /// order (`painted_passes`; empty: ordered afresh): the fitted stop
+    /// paints in the order the crew's job sheet gives, and the other
+    /// stops move as the job's did, however each was ordered.
+    pub painted: Vec<Vec<PaintedPass>>,
+}
+
+/// One pass as a job paints it: its stroke and the road points (m) where
+/// its painting rows start and end.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PaintedPass {
+    pub stroke: usize,
+    pub from_m: [f64; 2],
+    pub to_m: [f64; 2],
+}
+
+/// Each of `stops` stops' passes as `samples` paint them, in order: every
+/// run of painting rows of one station and stroke (a run that changes
+/// stroke without the gun closing is two).
+pub fn painted_passes(samples: &Samples, stops: usize) -> Vec<Vec<PaintedPass>> {
+    let mut out: Vec<Vec<PaintedPass>> = vec![Vec::new(); stops];
+    let mut open: Option<(usize, PaintedPass)> = None;
+    let mut close = |open: &mut Option<(usize, PaintedPass)>| {
+        if let Some((si, p)) = open.take() {
+            if let Some(stop) = out.get_mut(si) {
+                stop.push(p);
+            }
+        }
+    };
+    for i in 0..samples.len() {
+        let at = [samples.x_m[i], samples.y_m[i]];
+        let here = (samples.paint[i] != 0 && samples.stroke[i] >= 0)
+            .then(|| (samples.station[i] as usize, samples.stroke[i] as usize));
+        match (&mut open, here) {
+            (Some((si, p)), Some((s, k))) if *si == s && p.stroke == k => p.to_m = at,
+            (_, here) => {
+                close(&mut open);
+                open = here.map(|(si, stroke)| {
+                    (
+                        si,
+                        PaintedPass {
+                            stroke,
+                            from_m: at,
+                            to_m: at,
+                        },
+                    )
+                });
+            }
+        }
+    }
+    close(&mut open);
+    out
 }
 
 /// Rings of the search for a truck position that reaches (m): every
@@ -175,6 +227,51 @@ fn move_words(st: &Station, d: [f64; 2]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A job's painting rows read back as runs: one per station and
+    /// stroke the gun paints without closing, from its first row's place
+    /// to its last's; air rows and rows of other strokes end a run.
+    #[test]
+    fn painted_passes_are_the_runs_of_painting_rows() {
+        let mut s = Samples::default();
+        // (station, stroke, paint, x)
+        let rows: [(u32, i64, u8, f64); 10] = [
+            (0, -1, 0, 0.0),
+            (0, 3, 1, 0.1),
+            (0, 3, 1, 0.2),
+            (0, 3, 1, 0.3),
+            (0, 1, 1, 0.4), // a join that runs on into another stroke
+            (0, 1, 1, 0.5),
+            (0, -1, 0, 0.6),
+            (0, 3, 1, 0.7), // the same stroke again, after an air move
+            (1, 3, 1, 0.8), // the next stop's rows
+            (1, 3, 0, 0.9), // the gun closed on the stroke: not painting
+        ];
+        for (station, stroke, paint, x) in rows {
+            s.push(&basr_job::SampleRow {
+                station,
+                stroke,
+                paint,
+                x_m: x,
+                y_m: 1.0,
+                ..Default::default()
+            });
+        }
+        let p = |stroke, a: f64, b: f64| PaintedPass {
+            stroke,
+            from_m: [a, 1.0],
+            to_m: [b, 1.0],
+        };
+        assert_eq!(
+            painted_passes(&s, 2),
+            vec![
+                vec![p(3, 0.1, 0.3), p(1, 0.4, 0.5), p(3, 0.7, 0.7)],
+                vec![p(3, 0.8, 0.8)],
+            ]
+        );
+        // a station the job does not have is left out
+        assert_eq!(painted_passes(&s, 1).len(), 1);
+    }
 
     #[test]
     fn moves_are_said_in_the_truck_frame() {

@@ -18,12 +18,16 @@ pub struct Tours {
     /// `stations[s]`: visits in painting order; `Visit::item` indexes
     /// `passes`, `reversed` paints the pass end → start.
     pub stations: Vec<Vec<Visit>>,
+    /// `kept[s]`: station s is painted in exactly this order and these
+    /// directions (a fitted job's, `as_painted`); the others' tours are
+    /// where `joints::joint_paths`' search for a shorter one starts.
+    pub kept: Vec<bool>,
 }
 
 /// Order each station's passes to minimise the estimated air time.
 pub fn tours(passes: &Passes, plan: &StationPlan, robot: &AnyRobot) -> Tours {
     let stow_pose = robot.fk(&stow_joints(robot));
-    let stations = plan
+    let stations: Vec<Vec<Visit>> = plan
         .stations
         .iter()
         .enumerate()
@@ -64,7 +68,71 @@ pub fn tours(passes: &Passes, plan: &StationPlan, robot: &AnyRobot) -> Tours {
                 .collect()
         })
         .collect();
-    Tours { stations }
+    let kept = vec![false; stations.len()];
+    Tours { stations, kept }
+}
+
+/// Farthest (m) a painted run's ends may lie from a planned pass's for
+/// the two to start or end together. assumed: the gun opens and closes within
+/// its lead and lag of a pass's ends (a few centimetres at painting
+/// speeds), and two passes of one stroke lie a band apart (10 cm or more).
+const SAME_PASS_M: f64 = 0.05;
+
+/// Station `si`'s visits in the order `painted` paints its passes (a job
+/// being fitted, `site::painted_passes`): each painted run the pass of
+/// its stroke whose start lies nearest the run's, the right way round,
+/// then (where a run goes on without the gun closing, a join that
+/// continues) the next whose start lies nearest that one's end, until one
+/// ends where the run does. `None` when they are not the station's passes
+/// one to one (the surface re-planned a stroke into other passes): the
+/// station is ordered afresh.
+pub fn as_painted(
+    passes: &Passes,
+    plan: &StationPlan,
+    si: usize,
+    painted: &[crate::site::PaintedPass],
+) -> Option<Vec<Visit>> {
+    let mine: Vec<usize> = (0..passes.passes.len())
+        .filter(|&i| plan.station_of.get(i) == Some(&si))
+        .collect();
+    let tip = |k: Option<&Knot>| k.map(|k| [k.tip.x, k.tip.y]);
+    let ends: Vec<([f64; 2], [f64; 2])> = mine
+        .iter()
+        .map(|&i| {
+            let k = &passes.passes[i].knots;
+            Some((tip(k.first())?, tip(k.last())?))
+        })
+        .collect::<Option<_>>()?;
+    let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let mut used = vec![false; mine.len()];
+    let mut out = Vec::with_capacity(mine.len());
+    for p in painted {
+        let mut at = p.from_m;
+        loop {
+            // the unused pass of the run's stroke starting nearest `at`
+            let (j, reversed, off) = (0..mine.len())
+                .filter(|&j| !used[j] && passes.passes[mine[j]].stroke == p.stroke)
+                .flat_map(|j| {
+                    let (a, b) = ends[j];
+                    [(j, false, d(a, at)), (j, true, d(b, at))]
+                })
+                .min_by(|x, y| x.2.total_cmp(&y.2))?;
+            if off > SAME_PASS_M {
+                return None;
+            }
+            used[j] = true;
+            out.push(Visit {
+                item: mine[j],
+                reversed,
+            });
+            let (a, b) = ends[j];
+            at = if reversed { a } else { b };
+            if d(at, p.to_m) <= SAME_PASS_M {
+                break;
+            }
+        }
+    }
+    used.iter().all(|&u| u).then_some(out)
 }
 
 /// Base-frame polar coordinates (θ1, R) of a road point.
@@ -95,4 +163,95 @@ fn air_time_estimate(robot: &AnyRobot, station: &Station, a: EndPose, b: EndPose
         }
     };
     robot.air_time_estimate(&end(a), &end(b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::passes::Pass;
+    use crate::site::PaintedPass;
+    use kurbo::Point;
+
+    /// A pass of `stroke` from (x0, y) to (x1, y), two knots.
+    fn pass(stroke: usize, x0: f64, x1: f64, y: f64) -> Pass {
+        let knot = |x: f64| Knot {
+            mid: Point::new(x, y),
+            tip: Point::new(x, y),
+            z_m: 0.2,
+            yaw_rad: 0.0,
+            tilt_rad: 0.0,
+            width_m: 0.1,
+            fan_width_m: 0.1,
+            turn_rad: 0.0,
+            swept_width_m: 0.1,
+            speed_mps: 0.2,
+        };
+        Pass {
+            stroke,
+            knots: vec![knot(x0), knot(x1)],
+        }
+    }
+
+    fn ran(stroke: usize, from: [f64; 2], to: [f64; 2]) -> PaintedPass {
+        PaintedPass {
+            stroke,
+            from_m: from,
+            to_m: to,
+        }
+    }
+
+    /// The painted runs name the station's passes in their order and
+    /// directions, a run that goes on without the gun closing naming each
+    /// pass it joins; anything that is not the station's passes one to one
+    /// is none.
+    #[test]
+    fn a_job_s_runs_give_its_order() {
+        // stroke 0 cut across into two stretches the second of which
+        // continues the first, stroke 1 in one pass; a pass of another
+        // station between them
+        let passes = Passes {
+            passes: vec![
+                pass(0, 0.0, 1.0, 0.0),
+                pass(0, 1.003, 2.0, 0.0),
+                pass(5, 0.0, 1.0, 3.0),
+                pass(1, 2.5, 3.5, 0.5),
+            ],
+            ..Passes::default()
+        };
+        let st = Station {
+            x_m: 0.0,
+            y_m: 4.0,
+            heading_rad: -FRAC_PI_2,
+        };
+        let plan = StationPlan {
+            stations: vec![st.clone(), st],
+            station_of: vec![0, 0, 1, 0],
+            margin_m: vec![0.5; 2],
+            road: basr_job::Road::default(),
+        };
+        let v = |item, reversed| Visit { item, reversed };
+        // stroke 1 backwards, then both stretches of stroke 0 backwards in
+        // one run (the gun 2 cm short of the ends, as its lead and lag
+        // leave it)
+        let runs = [
+            ran(1, [3.5, 0.5], [2.5, 0.5]),
+            ran(0, [1.98, 0.0], [0.02, 0.0]),
+        ];
+        assert_eq!(
+            as_painted(&passes, &plan, 0, &runs),
+            Some(vec![v(3, true), v(1, true), v(0, true)])
+        );
+        // the other station's own pass
+        assert_eq!(
+            as_painted(&passes, &plan, 1, &[ran(5, [1.0, 3.0], [0.0, 3.0])]),
+            Some(vec![v(2, true)])
+        );
+        // a pass left unpainted, a run far from every pass, or of a
+        // stroke the station does not paint: ordered afresh
+        assert_eq!(as_painted(&passes, &plan, 0, &runs[..1]), None);
+        let far = [ran(1, [3.5, 0.8], [2.5, 0.8]), runs[1]];
+        assert_eq!(as_painted(&passes, &plan, 0, &far), None);
+        let other = [ran(5, [3.5, 0.5], [2.5, 0.5]), runs[1]];
+        assert_eq!(as_painted(&passes, &plan, 0, &other), None);
+    }
 }
