@@ -421,11 +421,15 @@ impl Footprint {
 /// A spray model: fan angle, flux profile and depth.
 #[derive(Clone, Debug)]
 pub struct SprayModel {
-    pub fan_angle_rad: f64,
+    /// Set once (`new`): `tan_half` is made from it.
+    fan_angle_rad: f64,
     pub profile: Profile,
     pub depth: Depth,
     /// CDF of the profile over θ on an even grid (only for table profiles).
     table: Vec<f64>,
+    /// tan(α/2), which the uniform profile's CDF divides by at every piece
+    /// of every footprint the film lays: made once (the same value).
+    tan_half: f64,
 }
 
 impl SprayModel {
@@ -471,6 +475,7 @@ impl SprayModel {
             profile,
             depth,
             table,
+            tan_half: (fan_angle_rad / 2.0).tan(),
         })
     }
 
@@ -483,13 +488,18 @@ impl SprayModel {
         self.fan_angle_rad / 2.0
     }
 
+    /// The fan angle α (rad).
+    pub fn fan_angle_rad(&self) -> f64 {
+        self.fan_angle_rad
+    }
+
     /// Share of the fan's paint leaving at angles below θ (0 at −α/2, 1 at α/2).
     pub fn cdf(&self, theta: f64) -> f64 {
         let a = self.half_angle();
         let th = theta.clamp(-a, a);
         match self.profile {
             // ∫ sec²θ dθ = tan θ.
-            Profile::Uniform => (th.tan() + a.tan()) / (2.0 * a.tan()),
+            Profile::Uniform => (th.tan() + self.tan_half) / (2.0 * self.tan_half),
             Profile::UniformAngle => (th + a) / (2.0 * a),
             _ => {
                 let n = self.table.len() - 1;
