@@ -128,9 +128,6 @@ fn compile_for_tip(
     // kept_over[s]: a plant's failure on station s compile did not re-time
     // for (`slower` gives none), in words.
     let mut kept_over: Vec<Option<String>> = vec![None; n];
-    // unfinished[si]: station s's last run on the description ended at a
-    // plant's failure (`Checked::unfinished`).
-    let mut unfinished: Vec<bool> = vec![false; n];
     // A fitted stop's job keeps its other stops as the job being fitted
     // timed and verified them (`Site::kept`): not simulated again.
     for (si, k) in kept_stops(req, n, robot.basr().is_some()) {
@@ -231,7 +228,6 @@ fn compile_for_tip(
             runs[si] = c.run.filter(|_| !c.verdict.ok);
             on_spread[si] = c.on_spread;
             nominal_m[si] = c.nominal_m;
-            unfinished[si] = c.unfinished;
             kept_over[si] = None;
             verdicts[si] = Some((paces[si].clone(), c.verdict));
         }
@@ -303,22 +299,6 @@ fn compile_for_tip(
                 // the set): the station is kept as it is and
                 // `summary.verified` says how far that plant strays.
                 None => {
-                    // The description's run ended at the plant's failure:
-                    // the rest of it first; failing, it is re-timed for
-                    // in the next round as any description's failure.
-                    if std::mem::take(&mut unfinished[si]) {
-                        if let Some(last) = runs[si].take() {
-                            let rows = rows[si].clone();
-                            let (d, last) =
-                                finish_description(&job, &skeleton, rows, req.period_s, last)?;
-                            runs[si] = last;
-                            nominal_m[si] = d.max_error_m;
-                            if !d.ok {
-                                verdicts[si] = Some((paces[si].clone(), d));
-                                continue;
-                            }
-                        }
-                    }
                     if let Some((_, v)) = verdicts[si].as_mut() {
                         kept_over[si] = Some(format!(
                             "{}; not re-timed for it: only a slower path for the whole station would \
@@ -658,11 +638,6 @@ struct Checked {
     on_spread: Option<Vec<f64>>,
     /// The largest error on the robot description.
     nominal_m: f64,
-    /// A plant failed first (`verify::Together::stopped`): the
-    /// description's run ended early, `nominal_m` is of the run up to
-    /// there, and the rest is run (`finish_description`) if the station is
-    /// kept as it is.
-    unfinished: bool,
 }
 
 /// A station's last simulated rows and its run's checkpoints, and the
@@ -751,7 +726,6 @@ fn verify_station(
         run,
         on_spread,
         nominal_m,
-        unfinished: false,
     })
 }
 
@@ -766,9 +740,7 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
     let kept_set = match t.set {
-        // A plant failed first (`t.stopped`): the set's verdict, whatever
-        // the description's run said after it.
-        Ok(set) if verdict.ok || t.stopped => {
+        Ok(set) if verdict.ok => {
             on_spread = Some(set.errors);
             if set.verdict.ok {
                 None
@@ -793,7 +765,6 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
         }),
         on_spread,
         nominal_m,
-        unfinished: t.stopped,
     }
 }
 
@@ -828,29 +799,6 @@ fn whole_set(
     let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
     let first = alone.samples.first_difference(&samples);
     Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)), false)?.map(|s| s.errors))
-}
-
-/// The verdict of the description's whole run on station `rows` of `job`,
-/// from `last` (a run a plant's failure ended first, the rows unchanged
-/// since): run on from its last checkpoint; `last` with this run's
-/// checkpoints, for the next round to resume from (none for a kind
-/// without them).
-fn finish_description(
-    job: &Job,
-    skeleton: &Job,
-    rows: std::ops::Range<usize>,
-    period_s: f64,
-    last: LastRun,
-) -> Result<(verify::Verdict, Option<LastRun>), CompileError> {
-    let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
-    let end = alone.samples.len();
-    let (verdict, kept) = verify::simulated_resuming(&alone, t0_s, Some((last.checkpoints, end)))?;
-    let last = kept.map(|kept| LastRun {
-        samples: rows_that_matter(&alone.samples, [&kept]),
-        checkpoints: kept,
-        plants: last.plants,
-    });
-    Ok((verdict, last))
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm
