@@ -5,7 +5,8 @@
 //! beside the plant set only when the round has fewer stations than the
 //! pool has threads, with the same verdicts. Compiled through the binary
 //! with one, two and three worker threads (`RAYON_NUM_THREADS`): a word on
-//! one stop, two lines on two stops, and a scene of several stops.
+//! one stop, two lines on two stops, a scene of several stops, and two
+//! lines where a plant of the set fails before the description does.
 
 use std::path::Path;
 use std::process::Command;
@@ -35,6 +36,10 @@ fn every_core_count_writes_the_same_job() {
         ("stop", vec!["STOP"]),
         ("school-xing", vec!["SCHOOL XING"]),
         ("stop-ahead", vec!["--marking", "markings/stop_ahead.toml"]),
+        // a station where a plant strays before the description does:
+        // verified beside the set or after the description, the
+        // description's failure is re-timed for first either way
+        ("bus-only", vec!["--marking", "markings/bus_only.toml"]),
     ] {
         let jobs: Vec<Vec<u8>> = [1, 2, 3]
             .iter()

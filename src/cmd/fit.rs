@@ -412,7 +412,9 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             station_motion(&new, k) == station_motion(&job, k),
             "{origin}: re-planned, stop {} is not the job's, so fit cannot keep it as it was \
              (the marking file given with --marking, the font or the robot is not the one \
-             the job was compiled from); give the job's own files",
+             the job was compiled from, or the job was written by another basr); give the \
+             job's own files, or compile the job again and fit that; if they are the job's \
+             own, report it with the job: this basr cannot re-plan it",
             k + 1
         );
     }

@@ -151,7 +151,11 @@ fn compile_for_tip(
         kept_over[si] = k.over.clone();
     }
     if let Some((si, pace)) = warm_pace(req, n) {
-        paces[si] = pace;
+        // a join is named by the stroke it enters, the move out of stow by
+        // the first stroke: in another order they are other moves
+        if tours.kept.get(si) == Some(&true) {
+            paces[si] = pace;
+        }
     }
     loop {
         let timed = trajectory::time_law_paced(
@@ -400,9 +404,10 @@ fn as_the_job_paints(
     tours
 }
 
-/// The pace a fitted stop's verification starts from: the one the job
-/// being fitted found for it (`Site::kept`), when it is a pace (every
-/// share in (0, 1]); it is verified again all the same. The same joins in
+/// The pace a fitted stop's verification starts from, when it paints in
+/// the job's order (`as_the_job_paints`): the one the job being fitted
+/// found for it (`Site::kept`), when it is a pace (every share in
+/// (0, 1]); it is verified again all the same. The same joins in
 /// the same order (`as_the_job_paints`) mostly need the same slowing,
 /// which compile found in rounds of simulation; a pace slower than the
 /// fitted pose needs costs the crew seconds, never the path.

@@ -34,13 +34,15 @@ pub struct Site {
     pub painted: Vec<Vec<PaintedPass>>,
 }
 
-/// One pass as a job paints it: its stroke and the road points (m) where
-/// its painting rows start and end.
+/// One pass as a job paints it: its stroke, the road points (m) where
+/// its painting rows start and end, and where it is a quarter of its rows
+/// in (which way round a closed pass, a wheel, is painted).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PaintedPass {
     pub stroke: usize,
     pub from_m: [f64; 2],
     pub to_m: [f64; 2],
+    pub quarter_m: [f64; 2],
 }
 
 /// Each of `stops` stops' passes as `samples` paint them, in order: every
@@ -48,32 +50,29 @@ pub struct PaintedPass {
 /// stroke without the gun closing is two).
 pub fn painted_passes(samples: &Samples, stops: usize) -> Vec<Vec<PaintedPass>> {
     let mut out: Vec<Vec<PaintedPass>> = vec![Vec::new(); stops];
-    let mut open: Option<(usize, PaintedPass)> = None;
-    let mut close = |open: &mut Option<(usize, PaintedPass)>| {
-        if let Some((si, p)) = open.take() {
+    let at = |i: usize| [samples.x_m[i], samples.y_m[i]];
+    // the open run: its station, stroke and first and last rows
+    let mut open: Option<(usize, usize, usize, usize)> = None;
+    let mut close = |open: &mut Option<(usize, usize, usize, usize)>| {
+        if let Some((si, stroke, first, last)) = open.take() {
             if let Some(stop) = out.get_mut(si) {
-                stop.push(p);
+                stop.push(PaintedPass {
+                    stroke,
+                    from_m: at(first),
+                    to_m: at(last),
+                    quarter_m: at(first + (last - first) / 4),
+                });
             }
         }
     };
     for i in 0..samples.len() {
-        let at = [samples.x_m[i], samples.y_m[i]];
         let here = (samples.paint[i] != 0 && samples.stroke[i] >= 0)
             .then(|| (samples.station[i] as usize, samples.stroke[i] as usize));
         match (&mut open, here) {
-            (Some((si, p)), Some((s, k))) if *si == s && p.stroke == k => p.to_m = at,
+            (Some((si, k, _, last)), Some((s, stroke))) if *si == s && *k == stroke => *last = i,
             (_, here) => {
                 close(&mut open);
-                open = here.map(|(si, stroke)| {
-                    (
-                        si,
-                        PaintedPass {
-                            stroke,
-                            from_m: at,
-                            to_m: at,
-                        },
-                    )
-                });
+                open = here.map(|(si, stroke)| (si, stroke, i, i));
             }
         }
     }
@@ -235,17 +234,19 @@ mod tests {
     fn painted_passes_are_the_runs_of_painting_rows() {
         let mut s = Samples::default();
         // (station, stroke, paint, x)
-        let rows: [(u32, i64, u8, f64); 10] = [
+        let rows: [(u32, i64, u8, f64); 12] = [
             (0, -1, 0, 0.0),
             (0, 3, 1, 0.1),
             (0, 3, 1, 0.2),
             (0, 3, 1, 0.3),
-            (0, 1, 1, 0.4), // a join that runs on into another stroke
-            (0, 1, 1, 0.5),
-            (0, -1, 0, 0.6),
-            (0, 3, 1, 0.7), // the same stroke again, after an air move
-            (1, 3, 1, 0.8), // the next stop's rows
-            (1, 3, 0, 0.9), // the gun closed on the stroke: not painting
+            (0, 3, 1, 0.4),
+            (0, 3, 1, 0.5),
+            (0, 1, 1, 0.6), // a join that runs on into another stroke
+            (0, 1, 1, 0.7),
+            (0, -1, 0, 0.8),
+            (0, 3, 1, 0.9), // the same stroke again, after an air move
+            (1, 3, 1, 1.0), // the next stop's rows
+            (1, 3, 0, 1.1), // the gun closed on the stroke: not painting
         ];
         for (station, stroke, paint, x) in rows {
             s.push(&basr_job::SampleRow {
@@ -257,16 +258,21 @@ mod tests {
                 ..Default::default()
             });
         }
-        let p = |stroke, a: f64, b: f64| PaintedPass {
+        let p = |stroke, a: f64, q: f64, b: f64| PaintedPass {
             stroke,
             from_m: [a, 1.0],
             to_m: [b, 1.0],
+            quarter_m: [q, 1.0],
         };
         assert_eq!(
             painted_passes(&s, 2),
             vec![
-                vec![p(3, 0.1, 0.3), p(1, 0.4, 0.5), p(3, 0.7, 0.7)],
-                vec![p(3, 0.8, 0.8)],
+                vec![
+                    p(3, 0.1, 0.2, 0.5),
+                    p(1, 0.6, 0.6, 0.7),
+                    p(3, 0.9, 0.9, 0.9)
+                ],
+                vec![p(3, 1.0, 1.0, 1.0)],
             ]
         );
         // a station the job does not have is left out

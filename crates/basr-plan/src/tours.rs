@@ -83,9 +83,11 @@ const SAME_PASS_M: f64 = 0.05;
 /// its stroke whose start lies nearest the run's, the right way round,
 /// then (where a run goes on without the gun closing, a join that
 /// continues) the next whose start lies nearest that one's end, until one
-/// ends where the run does. `None` when they are not the station's passes
-/// one to one (the surface re-planned a stroke into other passes): the
-/// station is ordered afresh.
+/// ends where the run does. A closed pass (a wheel: both ends at the
+/// run's start) is painted the way round whose quarter point lies nearer
+/// the run's. `None` when they are not the station's passes one to one
+/// (the surface re-planned a stroke into other passes): the station is
+/// ordered afresh.
 pub fn as_painted(
     passes: &Passes,
     plan: &StationPlan,
@@ -96,11 +98,21 @@ pub fn as_painted(
         .filter(|&i| plan.station_of.get(i) == Some(&si))
         .collect();
     let tip = |k: Option<&Knot>| k.map(|k| [k.tip.x, k.tip.y]);
+    // each pass's start and end, and its points a quarter of the way in
+    // from each
     let ends: Vec<([f64; 2], [f64; 2])> = mine
         .iter()
         .map(|&i| {
             let k = &passes.passes[i].knots;
             Some((tip(k.first())?, tip(k.last())?))
+        })
+        .collect::<Option<_>>()?;
+    let quarters: Vec<[[f64; 2]; 2]> = mine
+        .iter()
+        .map(|&i| {
+            let k = &passes.passes[i].knots;
+            let n = k.len().saturating_sub(1);
+            Some([tip(k.get(n / 4))?, tip(k.get(n - n / 4))?])
         })
         .collect::<Option<_>>()?;
     let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
@@ -110,7 +122,7 @@ pub fn as_painted(
         let mut at = p.from_m;
         loop {
             // the unused pass of the run's stroke starting nearest `at`
-            let (j, reversed, off) = (0..mine.len())
+            let (j, mut reversed, off) = (0..mine.len())
                 .filter(|&j| !used[j] && passes.passes[mine[j]].stroke == p.stroke)
                 .flat_map(|j| {
                     let (a, b) = ends[j];
@@ -119,6 +131,12 @@ pub fn as_painted(
                 .min_by(|x, y| x.2.total_cmp(&y.2))?;
             if off > SAME_PASS_M {
                 return None;
+            }
+            // a closed pass starts where the run does either way round
+            let (a, b) = ends[j];
+            if at == p.from_m && d(a, at).max(d(b, at)) <= SAME_PASS_M {
+                let [fwd, back] = quarters[j];
+                reversed = d(back, p.quarter_m) < d(fwd, p.quarter_m);
             }
             used[j] = true;
             out.push(Visit {
@@ -172,9 +190,9 @@ mod tests {
     use crate::site::PaintedPass;
     use kurbo::Point;
 
-    /// A pass of `stroke` from (x0, y) to (x1, y), two knots.
-    fn pass(stroke: usize, x0: f64, x1: f64, y: f64) -> Pass {
-        let knot = |x: f64| Knot {
+    /// A pass of `stroke` through `points`.
+    fn through(stroke: usize, points: &[[f64; 2]]) -> Pass {
+        let knot = |[x, y]: [f64; 2]| Knot {
             mid: Point::new(x, y),
             tip: Point::new(x, y),
             z_m: 0.2,
@@ -188,8 +206,13 @@ mod tests {
         };
         Pass {
             stroke,
-            knots: vec![knot(x0), knot(x1)],
+            knots: points.iter().copied().map(knot).collect(),
         }
+    }
+
+    /// A pass of `stroke` from (x0, y) to (x1, y), two knots.
+    fn pass(stroke: usize, x0: f64, x1: f64, y: f64) -> Pass {
+        through(stroke, &[[x0, y], [x1, y]])
     }
 
     fn ran(stroke: usize, from: [f64; 2], to: [f64; 2]) -> PaintedPass {
@@ -197,6 +220,7 @@ mod tests {
             stroke,
             from_m: from,
             to_m: to,
+            quarter_m: from,
         }
     }
 
@@ -253,5 +277,45 @@ mod tests {
         assert_eq!(as_painted(&passes, &plan, 0, &far), None);
         let other = [ran(5, [3.5, 0.5], [2.5, 0.5]), runs[1]];
         assert_eq!(as_painted(&passes, &plan, 0, &other), None);
+    }
+
+    /// A closed pass (a wheel) starts and ends where its run does either
+    /// way round: the run's quarter point says which.
+    #[test]
+    fn a_closed_pass_is_painted_the_way_round_the_job_paints_it() {
+        let ring = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.003]];
+        let passes = Passes {
+            passes: vec![through(0, &ring)],
+            ..Passes::default()
+        };
+        let st = Station {
+            x_m: 0.0,
+            y_m: 4.0,
+            heading_rad: -FRAC_PI_2,
+        };
+        let plan = StationPlan {
+            stations: vec![st],
+            station_of: vec![0],
+            margin_m: vec![0.5],
+            road: basr_job::Road::default(),
+        };
+        let run = |quarter: [f64; 2], from: [f64; 2], to: [f64; 2]| PaintedPass {
+            stroke: 0,
+            from_m: from,
+            to_m: to,
+            quarter_m: quarter,
+        };
+        let v = |reversed| Some(vec![Visit { item: 0, reversed }]);
+        // out along y = 0 first, or up x = 0 first (either end may start it)
+        for (from, to) in [([0.0, 0.0], [0.0, 0.003]), ([0.0, 0.003], [0.0, 0.0])] {
+            assert_eq!(
+                as_painted(&passes, &plan, 0, &[run([0.95, 0.0], from, to)]),
+                v(false)
+            );
+            assert_eq!(
+                as_painted(&passes, &plan, 0, &[run([0.0, 0.95], from, to)]),
+                v(true)
+            );
+        }
     }
 }
