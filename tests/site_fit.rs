@@ -303,6 +303,15 @@ fn level(stop: usize) -> StopPlane {
     }
 }
 
+/// The shipped railroad-crossing scene compiled in `d` as j.job.json, and
+/// its marking file's path.
+fn rxr_job(d: &Path) -> (Job, String) {
+    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
+    let m = marking.to_str().unwrap().to_string();
+    succeeded(basr(d, &["compile", "--marking", &m, "-o", "j.job.json"]));
+    (Job::read(&d.join("j.job.json")).unwrap(), m)
+}
+
 /// A crew fits each stop as it reaches it: the job fitted at one stop is
 /// fitted again at the next; the stop fitted first keeps its motion, and
 /// each paints its strokes in the job's order.
@@ -310,10 +319,8 @@ fn level(stop: usize) -> StopPlane {
 fn a_fitted_job_is_fitted_again_at_its_next_stop() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
-    let m = marking.to_str().unwrap();
-    succeeded(basr(d, &["compile", "--marking", m, "-o", "j.job.json"]));
-    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let (job, m) = rxr_job(d);
+    let m = m.as_str();
     let first = moved(&job, 1, [0.15, -0.10, 1.5], level(1));
     succeeded(fit(
         d,
@@ -485,10 +492,8 @@ fn bad_point_files_are_refused() {
 fn points_of_another_stop_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let marking = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/rxr.toml");
-    let m = marking.to_str().unwrap();
-    succeeded(basr(d, &["compile", "--marking", m, "-o", "j.job.json"]));
-    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let (job, m) = rxr_job(d);
+    let m = m.as_str();
     let truth = moved(
         &job,
         4,

@@ -215,6 +215,22 @@ mod tests {
         through(stroke, &[[x0, y], [x1, y]])
     }
 
+    /// Stations on a flat road, pass i painted by station `station_of[i]`.
+    fn plan_of(station_of: Vec<usize>) -> StationPlan {
+        let n = station_of.iter().max().map_or(0, |m| m + 1);
+        let st = Station {
+            x_m: 0.0,
+            y_m: 4.0,
+            heading_rad: -FRAC_PI_2,
+        };
+        StationPlan {
+            stations: vec![st; n],
+            station_of,
+            margin_m: vec![0.5; n],
+            road: basr_job::Road::default(),
+        }
+    }
+
     fn ran(stroke: usize, from: [f64; 2], to: [f64; 2]) -> PaintedPass {
         PaintedPass {
             stroke,
@@ -242,17 +258,7 @@ mod tests {
             ],
             ..Passes::default()
         };
-        let st = Station {
-            x_m: 0.0,
-            y_m: 4.0,
-            heading_rad: -FRAC_PI_2,
-        };
-        let plan = StationPlan {
-            stations: vec![st.clone(), st],
-            station_of: vec![0, 0, 1, 0],
-            margin_m: vec![0.5; 2],
-            road: basr_job::Road::default(),
-        };
+        let plan = plan_of(vec![0, 0, 1, 0]);
         let v = |item, reversed| Visit { item, reversed };
         // stroke 1 backwards, then both stretches of stroke 0 backwards in
         // one run (the gun 2 cm short of the ends, as its lead and lag
@@ -288,17 +294,7 @@ mod tests {
             passes: vec![through(0, &ring)],
             ..Passes::default()
         };
-        let st = Station {
-            x_m: 0.0,
-            y_m: 4.0,
-            heading_rad: -FRAC_PI_2,
-        };
-        let plan = StationPlan {
-            stations: vec![st],
-            station_of: vec![0],
-            margin_m: vec![0.5],
-            road: basr_job::Road::default(),
-        };
+        let plan = plan_of(vec![0]);
         let run = |quarter: [f64; 2], from: [f64; 2], to: [f64; 2]| PaintedPass {
             stroke: 0,
             from_m: from,
