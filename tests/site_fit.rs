@@ -252,6 +252,35 @@ fn fit_a_word() {
     );
 }
 
+/// A gun that opens and closes 0.4 s early starts and ends each painted
+/// run some 10 cm off its pass (the film is NOT READY for it, which fit
+/// writes all the same, exit 1): the fitted stop still paints the job's
+/// runs in the job's order.
+#[test]
+fn a_word_painted_with_a_long_gun_lead_is_fitted_in_its_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = basr(
+        d,
+        &[
+            "compile",
+            "ONLY",
+            "--gun-lead-s",
+            "0.4",
+            "--gun-lag-s",
+            "0.4",
+            "-o",
+            "j.job.json",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let truth = moved(&job, 1, MOVE, level(1));
+    let out = fit(d, &points_file(&job, 1, &truth, 0.002, 5), &[]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    same_runs(&Job::read(&d.join("f.job.json")).unwrap(), &job, 0);
+}
+
 /// A symbol on a road sloped 2 % against the truck's own plane.
 #[test]
 fn fit_a_symbol_on_a_slope() {

@@ -391,9 +391,10 @@ fn as_the_job_paints(
     let Some(site) = req.site.as_ref() else {
         return tours;
     };
+    let gun_s = req.gun_lead_s.max(req.gun_lag_s);
     for (si, painted) in site.painted.iter().enumerate() {
         let kept = (!painted.is_empty())
-            .then(|| tours::as_painted(passes, plan, si, painted))
+            .then(|| tours::as_painted(passes, plan, si, painted, gun_s))
             .flatten();
         if let (Some(v), Some(t), Some(k)) =
             (kept, tours.stations.get_mut(si), tours.kept.get_mut(si))

@@ -73,9 +73,12 @@ pub fn tours(passes: &Passes, plan: &StationPlan, robot: &AnyRobot) -> Tours {
 }
 
 /// Farthest (m) a painted run's ends may lie from a planned pass's for
-/// the two to start or end together. assumed: the gun opens and closes within
-/// its lead and lag of a pass's ends (a few centimetres at painting
-/// speeds), and two passes of one stroke lie a band apart (10 cm or more).
+/// the two to start or end together, past what the gun's lead or lag
+/// moves them at the pass's painting speed. assumed: the rows and the
+/// knots a pass is sampled at put its ends within a few millimetres of
+/// each other (the reviewer measured up to 7 mm on a bicycle's wheels),
+/// and two passes of one stroke lie a band apart (7 cm or more); the
+/// nearest pass is taken either way.
 const SAME_PASS_M: f64 = 0.05;
 
 /// Station `si`'s visits in the order `painted` paints its passes (a job
@@ -85,18 +88,28 @@ const SAME_PASS_M: f64 = 0.05;
 /// continues) the next whose start lies nearest that one's end, until one
 /// ends where the run does. A closed pass (a wheel: both ends at the
 /// run's start) is painted the way round whose quarter point lies nearer
-/// the run's. `None` when they are not the station's passes one to one
-/// (the surface re-planned a stroke into other passes): the station is
-/// ordered afresh.
+/// the run's. Ends match within [`SAME_PASS_M`] and what `gun_s`, the
+/// longer of the gun's lead and lag (s), moves them at the station's
+/// fastest painting speed. `None` when they are not the station's passes
+/// one to one (the surface re-planned a stroke into other passes): the
+/// station is ordered afresh.
 pub fn as_painted(
     passes: &Passes,
     plan: &StationPlan,
     si: usize,
     painted: &[crate::site::PaintedPass],
+    gun_s: f64,
 ) -> Option<Vec<Visit>> {
     let mine: Vec<usize> = (0..passes.passes.len())
         .filter(|&i| plan.station_of.get(i) == Some(&si))
         .collect();
+    let fastest = mine
+        .iter()
+        .flat_map(|&i| &passes.passes[i].knots)
+        .map(|k| k.speed_mps)
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, f64::max);
+    let near = SAME_PASS_M + gun_s.max(0.0) * fastest;
     let tip = |k: Option<&Knot>| k.map(|k| [k.tip.x, k.tip.y]);
     // each pass's start and end, and its points a quarter of the way in
     // from each
@@ -129,12 +142,12 @@ pub fn as_painted(
                     [(j, false, d(a, at)), (j, true, d(b, at))]
                 })
                 .min_by(|x, y| x.2.total_cmp(&y.2))?;
-            if off > SAME_PASS_M {
+            if off > near {
                 return None;
             }
             // a closed pass starts where the run does either way round
             let (a, b) = ends[j];
-            if at == p.from_m && d(a, at).max(d(b, at)) <= SAME_PASS_M {
+            if at == p.from_m && d(a, at).max(d(b, at)) <= near {
                 let [fwd, back] = quarters[j];
                 reversed = d(back, p.quarter_m) < d(fwd, p.quarter_m);
             }
@@ -145,7 +158,7 @@ pub fn as_painted(
             });
             let (a, b) = ends[j];
             at = if reversed { a } else { b };
-            if d(at, p.to_m) <= SAME_PASS_M {
+            if d(at, p.to_m) <= near {
                 break;
             }
         }
@@ -268,21 +281,32 @@ mod tests {
             ran(0, [1.98, 0.0], [0.02, 0.0]),
         ];
         assert_eq!(
-            as_painted(&passes, &plan, 0, &runs),
+            as_painted(&passes, &plan, 0, &runs, 0.0),
             Some(vec![v(3, true), v(1, true), v(0, true)])
         );
         // the other station's own pass
         assert_eq!(
-            as_painted(&passes, &plan, 1, &[ran(5, [1.0, 3.0], [0.0, 3.0])]),
+            as_painted(&passes, &plan, 1, &[ran(5, [1.0, 3.0], [0.0, 3.0])], 0.0),
             Some(vec![v(2, true)])
         );
         // a pass left unpainted, a run far from every pass, or of a
         // stroke the station does not paint: ordered afresh
-        assert_eq!(as_painted(&passes, &plan, 0, &runs[..1]), None);
+        assert_eq!(as_painted(&passes, &plan, 0, &runs[..1], 0.0), None);
         let far = [ran(1, [3.5, 0.8], [2.5, 0.8]), runs[1]];
-        assert_eq!(as_painted(&passes, &plan, 0, &far), None);
+        assert_eq!(as_painted(&passes, &plan, 0, &far, 0.0), None);
         let other = [ran(5, [3.5, 0.5], [2.5, 0.5]), runs[1]];
-        assert_eq!(as_painted(&passes, &plan, 0, &other), None);
+        assert_eq!(as_painted(&passes, &plan, 0, &other, 0.0), None);
+        // a gun that opens 0.5 s early at the passes' 0.2 m/s starts its
+        // runs 10 cm before them (and closes 0.5 s before their ends)
+        let early = [
+            ran(1, [3.6, 0.5], [2.6, 0.5]),
+            ran(0, [2.08, 0.0], [0.1, 0.0]),
+        ];
+        assert_eq!(as_painted(&passes, &plan, 0, &early, 0.0), None);
+        assert_eq!(
+            as_painted(&passes, &plan, 0, &early, 0.5),
+            Some(vec![v(3, true), v(1, true), v(0, true)])
+        );
     }
 
     /// A closed pass (a wheel) starts and ends where its run does either
@@ -305,11 +329,11 @@ mod tests {
         // out along y = 0 first, or up x = 0 first (either end may start it)
         for (from, to) in [([0.0, 0.0], [0.0, 0.003]), ([0.0, 0.003], [0.0, 0.0])] {
             assert_eq!(
-                as_painted(&passes, &plan, 0, &[run([0.95, 0.0], from, to)]),
+                as_painted(&passes, &plan, 0, &[run([0.95, 0.0], from, to)], 0.0),
                 v(false)
             );
             assert_eq!(
-                as_painted(&passes, &plan, 0, &[run([0.0, 0.95], from, to)]),
+                as_painted(&passes, &plan, 0, &[run([0.0, 0.95], from, to)], 0.0),
                 v(true)
             );
         }
