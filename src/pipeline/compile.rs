@@ -130,13 +130,8 @@ fn compile_for_tip(
     let mut kept_over: Vec<Option<String>> = vec![None; n];
     // A fitted stop's job keeps its other stops as the job being fitted
     // timed and verified them (`Site::kept`): not simulated again.
-    for (si, k) in kept_stops(req, n, robot.basr().is_some()) {
-        paces[si] = trajectory::Pace {
-            air: k.air_pace,
-            path: k.path_pace,
-            joins: k.join_paces.clone(),
-            fly_in: k.fly_in,
-        };
+    for (si, k, pace) in kept_stops(req, n, robot.basr().is_some()) {
+        paces[si] = pace;
         let verdict = verify::Verdict {
             max_error_m: k.max_error_m,
             ok: true,
@@ -341,7 +336,7 @@ fn kept_stops(
     req: &CompileRequest,
     n: usize,
     on_spread: bool,
-) -> Vec<(usize, &crate::job::StopTiming)> {
+) -> Vec<(usize, &crate::job::StopTiming, trajectory::Pace)> {
     let Some(site) = req.site.as_ref() else {
         return vec![];
     };
@@ -358,10 +353,7 @@ fn kept_stops(
                     .iter()
                     .chain([&k.max_error_m])
                     .all(|e| e.is_finite() && *e >= 0.0)
-                && [k.air_pace, k.path_pace]
-                    .into_iter()
-                    .chain(k.join_paces.iter().map(|j| j.1))
-                    .all(|p| p > 0.0 && p <= 1.0)
+                && pace_of(k).is_some()
         });
     if !fits {
         return vec![];
@@ -370,7 +362,23 @@ fn kept_stops(
         .iter()
         .enumerate()
         .filter(|(si, _)| *si != site.fitted)
+        .filter_map(|(si, k)| Some((si, k, pace_of(k)?)))
         .collect()
+}
+
+/// The pace a job recorded for a stop, when it is one (every share in
+/// (0, 1]).
+fn pace_of(k: &crate::job::StopTiming) -> Option<trajectory::Pace> {
+    [k.air_pace, k.path_pace]
+        .into_iter()
+        .chain(k.join_paces.iter().map(|j| j.1))
+        .all(|p| p > 0.0 && p <= 1.0)
+        .then(|| trajectory::Pace {
+            air: k.air_pace,
+            path: k.path_pace,
+            joins: k.join_paces.clone(),
+            fly_in: k.fly_in,
+        })
 }
 
 /// `tours` with each stop of a fitted job in the order the job being
@@ -407,29 +415,14 @@ fn as_the_job_paints(
 
 /// The pace a fitted stop's verification starts from, when it paints in
 /// the job's order (`as_the_job_paints`): the one the job being fitted
-/// found for it (`Site::kept`), when it is a pace (every share in
-/// (0, 1]); it is verified again all the same. The same joins in
-/// the same order (`as_the_job_paints`) mostly need the same slowing,
-/// which compile found in rounds of simulation; a pace slower than the
-/// fitted pose needs costs the crew seconds, never the path.
+/// found for it (`Site::kept`, [`pace_of`]); it is verified again all
+/// the same. The same joins in the same order mostly need the same
+/// slowing, which compile found in rounds of simulation; a pace slower
+/// than the fitted pose needs costs the crew seconds, never the path.
 fn warm_pace(req: &CompileRequest, n: usize) -> Option<(usize, trajectory::Pace)> {
     let site = req.site.as_ref()?;
     let k = site.kept.get(site.fitted).filter(|_| site.fitted < n)?;
-    let paces_ok = [k.air_pace, k.path_pace]
-        .into_iter()
-        .chain(k.join_paces.iter().map(|j| j.1))
-        .all(|p| p > 0.0 && p <= 1.0);
-    paces_ok.then(|| {
-        (
-            site.fitted,
-            trajectory::Pace {
-                air: k.air_pace,
-                path: k.path_pace,
-                joins: k.join_paces.clone(),
-                fly_in: k.fly_in,
-            },
-        )
-    })
+    Some((site.fitted, pace_of(k)?))
 }
 
 /// Rounds of planning the passes again for the road's surface: each round
