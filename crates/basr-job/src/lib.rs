@@ -503,6 +503,28 @@ macro_rules! same_bits_by_eq {
 }
 same_bits_by_eq!(i64, u32, u8);
 
+/// A column's value is a finite number (integers always are).
+trait Finite: Copy {
+    fn finite(self) -> bool;
+}
+
+impl Finite for f64 {
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+macro_rules! finite_by_type {
+    ($($t:ty),*) => {$(
+        impl Finite for $t {
+            fn finite(self) -> bool {
+                true
+            }
+        }
+    )*};
+}
+finite_by_type!(i64, u32, u8);
+
 macro_rules! samples_struct {
     ($($name:ident : $ty:ty),* $(,)?) => {
         /// The setpoints, column-wise (SPEC §3): equal-length arrays.
@@ -621,6 +643,13 @@ macro_rules! samples_struct {
                     }
                 }
                 Ok(())
+            }
+
+            /// Whether every value of row `i` is a finite number (its CSV
+            /// fields hold no `NaN` or `inf`), without writing them.
+            pub fn row_is_finite(&self, i: usize) -> bool {
+                true $(&& Finite::finite(self.$name[i]))*
+                    && self.kind_joints.get(i).is_none_or(|q| q.iter().all(|v| v.is_finite()))
             }
 
             /// Row `i` as CSV fields, in [`Samples::header`] order.
@@ -888,6 +917,44 @@ impl Job {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A row is finite exactly when its CSV fields hold no `NaN` or `inf`
+    /// (what `basr check` refused rows for before it read the numbers):
+    /// each float column, and an electric kind's own joints.
+    #[test]
+    fn a_row_is_finite_when_its_fields_are() {
+        let written = |s: &Samples, i: usize| {
+            !s.csv_fields(i)
+                .iter()
+                .any(|f| f == "NaN" || f.contains("inf"))
+        };
+        let mut s = Samples::default();
+        for v in [0.0, -1.5, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            s.push(&SampleRow {
+                x_m: v,
+                ..Default::default()
+            });
+            s.push(&SampleRow {
+                speed_mps: v,
+                enc_base: -7,
+                ..Default::default()
+            });
+        }
+        for i in 0..s.len() {
+            assert_eq!(s.row_is_finite(i), written(&s, i), "row {i}");
+        }
+        assert_eq!(
+            (0..s.len()).filter(|&i| !s.row_is_finite(i)).count(),
+            6,
+            "NaN, inf and −inf in either column"
+        );
+        // an electric kind's own joint
+        s.kind_columns = vec!["q".into(); 10];
+        s.kind_joints = vec![[0.0; 5]; s.len()];
+        s.kind_encoders = vec![[0; 5]; s.len()];
+        s.kind_joints[0][3] = f64::NAN;
+        assert!(!s.row_is_finite(0) && !written(&s, 0));
+    }
 
     pub(crate) fn tiny_job() -> Job {
         let mut samples = Samples::default();

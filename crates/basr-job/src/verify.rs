@@ -161,8 +161,7 @@ pub fn problems(job: &Job, origin: &str) -> Vec<String> {
         return c.finish(origin);
     }
     for i in 0..n {
-        let row = s.csv_fields(i);
-        if row.iter().any(|f| f == "NaN" || f.contains("inf")) {
+        if !s.row_is_finite(i) {
             c.add(
                 "not-finite",
                 format!("{origin}: row {i} holds a value that is not a finite number"),
