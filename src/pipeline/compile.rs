@@ -110,7 +110,10 @@ fn compile_for_tip(
 ) -> Result<Job, CompileError> {
     let (tilt, tilt_note) = request::tilt_for(req.tilt, &robot);
     let (passes, plan) = passes_on_road(req, marking, strokes, &robot, tilt)?;
-    let tours = as_the_job_paints(req, tours::tours(&passes, &plan, &robot), &passes, &plan);
+    // at the site, each stop whose passes are the job's in the job's order
+    let painted = req.site.as_ref().map_or(&[][..], |s| &s.painted[..]);
+    let gun_s = req.gun_lead_s.max(req.gun_lag_s);
+    let tours = tours::tours(&passes, &plan, &robot, painted, gun_s);
     let paths = joints::joint_paths(strokes, &passes, &plan, &tours, &robot, &req.tuning.joins)?;
     let n = paths.stations.len();
     let mut paces = vec![trajectory::Pace::FULL; n];
@@ -381,40 +384,8 @@ fn pace_of(k: &crate::job::StopTiming) -> Option<trajectory::Pace> {
         })
 }
 
-/// `tours` with each stop of a fitted job in the order the job being
-/// fitted paints it (`Site::painted`), where its passes are the job's
-/// (`tours::as_painted`): the fitted stop paints in the order of the
-/// crew's job sheet, not one ordered afresh from where the truck stopped,
-/// and the job's own pace for it (`warm_pace`) meets the joins it was
-/// found on (STOP's stop 0.3 m back and 2.5° turned, ordered afresh,
-/// started at the other end of the word and took seven rounds of
-/// verification); the other stops move as the job's did, whether it
-/// ordered them afresh or kept them from an earlier fit.
-fn as_the_job_paints(
-    req: &CompileRequest,
-    mut tours: tours::Tours,
-    passes: &passes::Passes,
-    plan: &stations::StationPlan,
-) -> tours::Tours {
-    let Some(site) = req.site.as_ref() else {
-        return tours;
-    };
-    let gun_s = req.gun_lead_s.max(req.gun_lag_s);
-    for (si, painted) in site.painted.iter().enumerate() {
-        let kept = (!painted.is_empty())
-            .then(|| tours::as_painted(passes, plan, si, painted, gun_s))
-            .flatten();
-        if let (Some(v), Some(t), Some(k)) =
-            (kept, tours.stations.get_mut(si), tours.kept.get_mut(si))
-        {
-            (*t, *k) = (v, true);
-        }
-    }
-    tours
-}
-
 /// The pace a fitted stop's verification starts from, when it paints in
-/// the job's order (`as_the_job_paints`): the one the job being fitted
+/// the job's order (`tours::tours`, `Tours::kept`): the one the job being fitted
 /// found for it (`Site::kept`, [`pace_of`]); it is verified again all
 /// the same. The same joins in the same order mostly need the same
 /// slowing, which compile found in rounds of simulation; a pace slower

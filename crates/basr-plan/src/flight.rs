@@ -217,7 +217,7 @@ mod tests {
         let passes = passes::passes(&strokes, &rungs, &robot, tilt.method(), &req.tuning).unwrap();
         let plan =
             stations::for_passes(&passes, laid.lane_width_m, req.reach_margin_m, &robot).unwrap();
-        let tours = tours::tours(&passes, &plan, &robot);
+        let tours = tours::tours(&passes, &plan, &robot, &[], 0.0);
         let paths =
             joints::joint_paths(&strokes, &passes, &plan, &tours, &robot, &req.tuning.joins)
                 .unwrap();

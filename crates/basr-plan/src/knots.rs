@@ -61,6 +61,24 @@ impl Knot {
     pub fn covered_width_m(&self) -> f64 {
         self.fan_width_m * self.turn_rad.cos()
     }
+
+    /// A test's knot at road (x, y): fan along +x, untilted, 0.2 m up,
+    /// a 0.1 m stroke painted at 0.2 m/s.
+    #[cfg(test)]
+    pub(crate) fn at(x: f64, y: f64) -> Knot {
+        Knot {
+            mid: Point::new(x, y),
+            tip: Point::new(x, y),
+            z_m: 0.2,
+            yaw_rad: 0.0,
+            tilt_rad: 0.0,
+            width_m: 0.1,
+            fan_width_m: 0.1,
+            turn_rad: 0.0,
+            swept_width_m: 0.1,
+            speed_mps: 0.2,
+        }
+    }
 }
 
 /// A knot whose nozzle height was raised to the vertical joint's minimum.

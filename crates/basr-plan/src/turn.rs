@@ -140,20 +140,13 @@ pub fn spread_smooth_steps(values: &mut [f64], step: &[f64], passes: usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use kurbo::{Point, Vec2};
+    use kurbo::Vec2;
 
     fn knot(x: f64, yaw: f64) -> Knot {
         Knot {
-            mid: Point::new(x, 0.0),
-            tip: Point::new(x, 0.0),
             z_m: 0.1,
             yaw_rad: yaw,
-            tilt_rad: 0.0,
-            width_m: 0.1,
-            fan_width_m: 0.1,
-            turn_rad: 0.0,
-            swept_width_m: 0.1,
-            speed_mps: 0.2,
+            ..Knot::at(x, 0.0)
         }
     }
 
