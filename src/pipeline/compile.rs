@@ -148,12 +148,8 @@ fn compile_for_tip(
         on_spread[si] = (!k.plants_max_error_m.is_empty()).then(|| k.plants_max_error_m.clone());
         kept_over[si] = k.over.clone();
     }
-    if let Some((si, pace)) = warm_pace(req, n) {
-        // a join is named by the stroke it enters, the move out of stow by
-        // the first stroke: in another order they are other moves
-        if tours.kept.get(si) == Some(&true) {
-            paces[si] = pace;
-        }
+    if let Some((si, pace)) = warm_pace(req, &tours) {
+        paces[si] = pace;
     }
     loop {
         let timed = trajectory::time_law_paced(
@@ -390,10 +386,14 @@ fn pace_of(k: &crate::job::StopTiming) -> Option<trajectory::Pace> {
 /// the same. The same joins in the same order mostly need the same
 /// slowing, which compile found in rounds of simulation; a pace slower
 /// than the fitted pose needs costs the crew seconds, never the path.
-fn warm_pace(req: &CompileRequest, n: usize) -> Option<(usize, trajectory::Pace)> {
+fn warm_pace(req: &CompileRequest, tours: &tours::Tours) -> Option<(usize, trajectory::Pace)> {
     let site = req.site.as_ref()?;
-    let k = site.kept.get(site.fitted).filter(|_| site.fitted < n)?;
-    Some((site.fitted, pace_of(k)?))
+    // a join is named by the stroke it enters, the move out of stow by the
+    // first stroke: in another order they are other moves
+    if tours.kept.get(site.fitted) != Some(&true) {
+        return None;
+    }
+    Some((site.fitted, pace_of(site.kept.get(site.fitted)?)?))
 }
 
 /// Rounds of planning the passes again for the road's surface: each round
