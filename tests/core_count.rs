@@ -1,9 +1,11 @@
 //! A job's bytes do not depend on the machine's core count: the planner's
 //! parallel work (each stroke's passes, each station's joint paths, each
 //! station's verification, the film's bands and letters) is gathered in
-//! its input's order, and a station verified alone runs its description
-//! beside the plant set only when the round has fewer stations than the
-//! pool has threads, with the same verdicts. Compiled through the binary
+//! its input's order, and a station runs its description beside the plant
+//! set when it is the only one its round verifies, whatever the pool's
+//! threads (its first failure in time re-timed, the description's or a
+//! plant's; stations verified together re-time the description's first).
+//! Compiled through the binary
 //! with one, two and three worker threads (`RAYON_NUM_THREADS`): a word on
 //! one stop, two lines on two stops, a scene of several stops, and two
 //! lines where a plant of the set fails before the description does.
@@ -36,9 +38,9 @@ fn every_core_count_writes_the_same_job() {
         ("stop", vec!["STOP"]),
         ("school-xing", vec!["SCHOOL XING"]),
         ("stop-ahead", vec!["--marking", "markings/stop_ahead.toml"]),
-        // a station where a plant strays before the description does:
-        // verified beside the set or after the description, the
-        // description's failure is re-timed for first either way
+        // a station where a plant strays before the description does: with
+        // one thread, two or three, the same station is verified beside the
+        // set in the same rounds
         ("bus-only", vec!["--marking", "markings/bus_only.toml"]),
     ] {
         let jobs: Vec<Vec<u8>> = [1, 2, 3]

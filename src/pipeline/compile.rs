@@ -131,6 +131,9 @@ fn compile_for_tip(
     // kept_over[s]: a plant's failure on station s compile did not re-time
     // for (`slower` gives none), in words.
     let mut kept_over: Vec<Option<String>> = vec![None; n];
+    // unfinished[si]: station s's last run on the description ended at a
+    // plant's failure (`Checked::unfinished`).
+    let mut unfinished: Vec<bool> = vec![false; n];
     // A fitted stop's job keeps its other stops as the job being fitted
     // timed and verified them (`Site::kept`): not simulated again.
     for (si, k, pace) in kept_stops(req, n, robot.basr().is_some()) {
@@ -200,11 +203,17 @@ fn compile_for_tip(
         let last: Vec<(usize, Option<LastRun>)> =
             stale.iter().map(|&si| (si, runs[si].take())).collect();
         // A station verified alone leaves cores idle while its description
-        // runs: it runs beside the plant set then. Stations verified
-        // together keep the cores busy already, and a description that
-        // fails where the whole path is re-timed would leave the set's runs
-        // beside it for nothing (200 letters: 34 s to 39 s).
-        let beside = stale.len() < rayon::current_num_threads();
+        // runs: it runs beside the plant set then, and the first failure
+        // in time, the description's or a plant's, is re-timed for.
+        // Stations verified together keep the cores busy already, and a
+        // description that fails where the whole path is re-timed would
+        // leave the set's runs beside it for nothing (200 letters: 34 s to
+        // 39 s): each is verified on the description first. Which of the
+        // two a round is decided by the job alone, never by the machine's
+        // cores: the two can re-time a station's failures in another order
+        // (markings/bus_only.toml), and a job's bytes are the same on every
+        // machine (tests/core_count.rs).
+        let beside = stale.len() == 1;
         let fresh: Vec<Result<Checked, CompileError>> = last
             .into_par_iter()
             .map(|(si, last)| {
@@ -226,6 +235,7 @@ fn compile_for_tip(
             runs[si] = c.run.filter(|_| !c.verdict.ok);
             on_spread[si] = c.on_spread;
             nominal_m[si] = c.nominal_m;
+            unfinished[si] = c.unfinished;
             kept_over[si] = None;
             verdicts[si] = Some((paces[si].clone(), c.verdict));
         }
@@ -297,6 +307,22 @@ fn compile_for_tip(
                 // the set): the station is kept as it is and
                 // `summary.verified` says how far that plant strays.
                 None => {
+                    // The description's run ended at the plant's failure:
+                    // the rest of it first; failing, it is re-timed for
+                    // in the next round as any description's failure.
+                    if std::mem::take(&mut unfinished[si]) {
+                        if let Some(last) = runs[si].take() {
+                            let rows = rows[si].clone();
+                            let (d, last) =
+                                finish_description(&job, &skeleton, rows, req.period_s, last)?;
+                            runs[si] = last;
+                            nominal_m[si] = d.max_error_m;
+                            if !d.ok {
+                                verdicts[si] = Some((paces[si].clone(), d));
+                                continue;
+                            }
+                        }
+                    }
                     if let Some((_, v)) = verdicts[si].as_mut() {
                         kept_over[si] = Some(format!(
                             "{}; not re-timed for it: only a slower path for the whole station would \
@@ -608,6 +634,11 @@ struct Checked {
     on_spread: Option<Vec<f64>>,
     /// The largest error on the robot description.
     nominal_m: f64,
+    /// A plant failed first (`verify::Together::stopped`): the
+    /// description's run ended early, `nominal_m` is of the run up to
+    /// there, and the rest is run (`finish_description`) if the station is
+    /// kept as it is.
+    unfinished: bool,
 }
 
 /// A station's last simulated rows and its run's checkpoints, and the
@@ -696,6 +727,7 @@ fn verify_station(
         run,
         on_spread,
         nominal_m,
+        unfinished: false,
     })
 }
 
@@ -710,7 +742,9 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
     let nominal_m = verdict.max_error_m;
     let mut on_spread = None;
     let kept_set = match t.set {
-        Ok(set) if verdict.ok => {
+        // A plant failed first (`t.stopped`): the set's verdict, whatever
+        // the description's run said after it.
+        Ok(set) if verdict.ok || t.stopped => {
             on_spread = Some(set.errors);
             if set.verdict.ok {
                 None
@@ -735,6 +769,7 @@ fn checked_together(alone: Job, t: verify::Together) -> Checked {
         }),
         on_spread,
         nominal_m,
+        unfinished: t.stopped,
     }
 }
 
@@ -769,6 +804,29 @@ fn whole_set(
     let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
     let first = alone.samples.first_difference(&samples);
     Ok(verify::on_spread(&alone, t0_s, Some((checkpoints, first)), false)?.map(|s| s.errors))
+}
+
+/// The verdict of the description's whole run on station `rows` of `job`,
+/// from `last` (a run a plant's failure ended first, the rows unchanged
+/// since): run on from its last checkpoint; `last` with this run's
+/// checkpoints, for the next round to resume from (none for a kind
+/// without them).
+fn finish_description(
+    job: &Job,
+    skeleton: &Job,
+    rows: std::ops::Range<usize>,
+    period_s: f64,
+    last: LastRun,
+) -> Result<(verify::Verdict, Option<LastRun>), CompileError> {
+    let (alone, t0_s) = station_alone(job, skeleton, rows, period_s);
+    let end = alone.samples.len();
+    let (verdict, kept) = verify::simulated_resuming(&alone, t0_s, Some((last.checkpoints, end)))?;
+    let last = kept.map(|kept| LastRun {
+        samples: rows_that_matter(&alone.samples, [&kept]),
+        checkpoints: kept,
+        plants: last.plants,
+    });
+    Ok((verdict, last))
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm

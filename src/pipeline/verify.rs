@@ -267,6 +267,9 @@ pub struct Together {
     /// The description's verdict and its run, for the next to resume from.
     pub verdict: Verdict,
     pub kept: sim::Checkpoints,
+    /// A plant failed first (`sim::plants::Beside::stopped`): `verdict` is
+    /// not the description's on the whole station, and `set` failed.
+    pub stopped: bool,
     /// The set's verdict as [`on_spread`] in step gives it, when the
     /// description's run was not cut short by its own failure; else `Err`
     /// of the plants' runs as far as the group let them go, for the next
@@ -278,7 +281,9 @@ pub struct Together {
 /// job of BASR's kind (`robot`, the job's; the electric kinds have no
 /// plant set) (`resume`: the description's last run and the first row
 /// that changed; `set_resume`: the set's): the same verdicts, on two
-/// cores that the description's run no longer leaves one of idle.
+/// cores that the description's run no longer leaves one of idle, except
+/// that a plant failing first ends the description's run too
+/// (`Together::stopped`).
 pub fn together(
     job: &Job,
     robot: &crate::robot::Robot,
@@ -289,19 +294,25 @@ pub fn together(
     let (model, opts) = verifying(robot)?;
     let set = spread::plants();
     let factors: Vec<Vec<f64>> = set.iter().map(|p| p.1.clone()).collect();
-    let ((outcome, kept), plants) = sim::plants::run_beside_description_in_step(
+    let beside = sim::plants::run_beside_description_in_step(
         job, &model, &opts, resume, &factors, set_resume,
     )
     .map_err(|e| CompileError::Verify(e.to_string()))?;
+    let (outcome, kept) = beside.description;
     let verdict = judged(&outcome.report, t0_s, &opts);
-    let set = match plants {
+    let set = match beside.plants {
         Ok(runs) => match judged_set(runs, t0_s, &opts, &set) {
             Some(s) => Ok(s),
             None => Err(Vec::new()),
         },
         Err(kept) => Err(kept),
     };
-    Ok(Together { verdict, kept, set })
+    Ok(Together {
+        verdict,
+        kept,
+        stopped: beside.stopped,
+        set,
+    })
 }
 
 /// The verdict on a simulated job: its painting error within

@@ -314,16 +314,25 @@ pub fn run_each_in_step(
 /// The robot description's own run of `job` (resumed from `described`,
 /// as `simulate_resumable` resumes) beside [`run_each_in_step`]'s plants,
 /// all in step: the description's run leads (`lockstep::Group::
-/// leader_gate`): a plant's failure does not end it, and its own failure
-/// (over `opts.stop_over_m`) ends the plants at the next checkpoint.
+/// leader_gate`): its failure ends the plants at the next checkpoint,
+/// and a plant's failure ends it at a checkpoint once it knows of it.
 /// Compile verifies a station on the description first and on the set
 /// only once it passes; run together, the two cores the set shares are
-/// never idle while the description runs alone. Returns the description's
-/// run and, when it was not cut short, the plants' reports as
-/// [`run_each_in_step`] gives them; when it was, `Err` of the plants'
-/// checkpoints as far as they ran (their reports say nothing: the station
-/// is re-timed for the description first), for the next round to resume
-/// from.
+/// never idle while the description runs alone, and a plant that fails
+/// early ends the description's run soon after: the station is re-timed
+/// at that failure, after which the rows differ and every run resumes
+/// there anyway (a fitted STOP ran the description 115 s past a plant's
+/// failure, twice). Returns the description's run and, when it did not
+/// fail before every plant did, the plants' reports as
+/// [`run_each_in_step`] gives them (`Beside::stopped`: a plant failed
+/// first); when it did, `Err` of the plants' checkpoints as far as they
+/// ran (their reports say nothing: the station is re-timed for the
+/// description first), for the next round to resume from. Which of these
+/// it is, and the plants' reports, do not depend on the threads' timing;
+/// whether and where the description's run ended after a plant failed
+/// first does (it runs on until it knows), and so its report, which says
+/// only that it had not failed before (a run on from its last checkpoint
+/// is the whole run, bit for bit).
 pub fn run_beside_description_in_step(
     job: &Job,
     nominal: &SimModel,
@@ -335,46 +344,73 @@ pub fn run_beside_description_in_step(
     let resumes = resumes_of(factors, resume)?;
     let models: Vec<SimModel> = factors.iter().map(|f| scaled(nominal, f)).collect();
     let mut runs = in_step(job, nominal, opts, Some(described), &models, resumes);
-    let (description, _) = runs.remove(0);
+    let (description, stopped) = runs.remove(0);
     let description = description?;
-    if description.0.report.cut_short_at_s.is_some() {
+    // A plant that failed before the description's own failure: the
+    // description, not knowing of it yet, ran on to its own.
+    let plant_first = |own: f64| {
+        runs.iter().any(|(run, _)| {
+            run.as_ref()
+                .is_ok_and(|(o, _)| o.report.cut_short_at_s.is_some_and(|t| t < own))
+        })
+    };
+    let own = description.0.report.cut_short_at_s;
+    let stopped = stopped || own.is_some_and(plant_first);
+    if own.is_some() && !stopped {
         let kept = runs
             .into_iter()
             .map(|(run, _)| run.map(|(_, k)| k))
             .collect::<Result<_, _>>()?;
-        return Ok((description, Err(kept)));
+        return Ok(Beside {
+            description,
+            stopped: false,
+            plants: Err(kept),
+        });
     }
     let plants = whole_where_broken(job, nominal, opts, &models, runs)?;
-    Ok((description, Ok(plants)))
+    Ok(Beside {
+        description,
+        stopped,
+        plants: Ok(plants),
+    })
+}
+
+/// The description's run beside the plants' ([`run_beside_description_in_step`]).
+pub struct Beside {
+    /// The description's run, and its checkpoints.
+    pub description: (super::Outcome, Checkpoints),
+    /// A plant failed first: the description's run ended at a checkpoint
+    /// after that failure, or at its own failure later; its report is not
+    /// a verdict (it had not failed before the plant did). Run on from its
+    /// last checkpoint (`simulate_resumable` with no row changed), it is
+    /// the whole run, for a station that is not re-timed there.
+    pub stopped: bool,
+    /// The plants' reports, or their checkpoints as far as they ran when
+    /// the description failed.
+    pub plants: Result<Vec<(super::Report, Checkpoints)>, Vec<Checkpoints>>,
 }
 
 /// A run of a group in step, and whether the group ended it.
 type StepRun = (Result<(super::Outcome, Checkpoints), SimError>, bool);
 
-/// The description's run beside the plants': the plants' reports, or
-/// their checkpoints as far as they ran when the description failed.
-type Beside = (
-    (super::Outcome, Checkpoints),
-    Result<Vec<(super::Report, Checkpoints)>, Vec<Checkpoints>>,
-);
-
 /// Runs of `job` in step on their own threads: the description's (driven
-/// by the controller built for `nominal`, resumed from `leader`'s
-/// checkpoints) first and leading when `leader` is given, then one per
-/// plant of `models` (resumed from `resumes`); each run and whether the
-/// group ended it. One thread per run: they wait for each other, which a
-/// pool of fewer threads could not.
+/// by the controller built for `nominal`, resumed from `described`'s
+/// checkpoints) first and leading (`lockstep::Group::leader_gate`) when
+/// `described` is given, then one per plant of `models` (resumed from
+/// `resumes`); each run and whether the group ended it. One thread per
+/// run: they wait for each other, which a pool of fewer threads could
+/// not.
 fn in_step(
     job: &Job,
     nominal: &SimModel,
     opts: &Options,
-    leader: Option<Option<(Checkpoints, usize)>>,
+    described: Option<Option<(Checkpoints, usize)>>,
     models: &[SimModel],
     resumes: Vec<Option<(Checkpoints, usize)>>,
 ) -> Vec<StepRun> {
-    let led = leader.is_some();
+    let led = described.is_some();
     let mut runs: Vec<(&SimModel, Option<(Checkpoints, usize)>)> = Vec::new();
-    if let Some(resume) = leader {
+    if let Some(resume) = described {
         runs.push((nominal, resume));
     }
     runs.extend(models.iter().zip(resumes));
@@ -629,10 +665,11 @@ mod tests {
         }
     }
 
-    /// The description's run beside the set is its run alone, whatever the
-    /// plants do; when it passes, the plants report as in step without it;
-    /// when it fails, the plants end soon after and their checkpoints are
-    /// returned for the next round.
+    /// The description's run beside the set is its run alone up to where
+    /// the group ends it: run on from its last checkpoint, it is its run
+    /// alone; when a plant fails first, the plants report as in step
+    /// without it; when it fails first, the plants end soon after and
+    /// their checkpoints are returned for the next round.
     #[test]
     fn the_description_beside_the_set_is_its_run_alone() {
         let (job, nominal, factors, whole) = set_up();
@@ -651,32 +688,83 @@ mod tests {
             ..Options::default()
         };
         for _ in 0..3 {
-            let ((d, _), set) =
-                run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None)
-                    .unwrap();
-            assert_eq!(d.report, lone(&opts));
+            let b = run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None)
+                .unwrap();
+            let (d, kept) = b.description;
+            assert_eq!(d.report.cut_short_at_s, None, "it did not fail itself");
+            // ended early once it knew of the plant's failure, or whole
+            // when it did not know in time
+            let rest =
+                crate::simulate_resumable(&job, &nominal, &opts, Some((kept, job.samples.len())))
+                    .unwrap()
+                    .0
+                    .report;
+            assert_eq!(rest, lone(&opts), "run on, it is its run alone");
+            assert!(d.report.max_error_m <= rest.max_error_m);
+            if !b.stopped {
+                assert_eq!(d.report, rest);
+            }
             let step = run_each_in_step(&job, &nominal, &opts, &factors, None).unwrap();
-            let Ok(set) = set else {
-                panic!("the description passed: the plants report");
+            let Ok(set) = b.plants else {
+                panic!("the description did not fail: the plants report");
             };
             let a: Vec<&crate::Report> = set.iter().map(|(r, _)| r).collect();
             let b: Vec<&crate::Report> = step.iter().map(|(r, _)| r).collect();
             assert_eq!(a, b);
         }
-        // the description fails: the plants end at most a checkpoint later
+        // no run fails: the description runs whole
         let opts = Options {
-            stop_over_m: Some(0.5 * described),
+            stop_over_m: Some(2.0 * errors[5].max(described)),
             ..Options::default()
         };
-        let want = lone(&opts);
-        assert!(want.cut_short_at_s.is_some(), "the description fails");
-        let ((d, _), set) =
+        let b =
             run_beside_description_in_step(&job, &nominal, &opts, None, &factors, None).unwrap();
-        assert_eq!(d.report, want);
-        let Err(kept) = set else {
-            panic!("the set's runs wait for the next round");
-        };
-        assert_eq!(kept.len(), factors.len());
+        assert!(!b.stopped);
+        assert_eq!(b.description.0.report, lone(&opts));
+        // the description fails: when before every plant, the plants end
+        // at most a checkpoint later and wait for the next round; when a
+        // plant failed first, the plants report (the station is re-timed
+        // there first)
+        // (plants like the description fail with it, not before it)
+        let same = vec![vec![1.0; factors[0].len()]; 2];
+        let mut seen = [false; 2];
+        for (factors, k) in [&factors, &same]
+            .into_iter()
+            .flat_map(|f| (3..10).map(move |k| (f, k)))
+        {
+            let opts = Options {
+                stop_over_m: Some(0.1 * k as f64 * described),
+                ..Options::default()
+            };
+            let want = lone(&opts);
+            let Some(own) = want.cut_short_at_s else {
+                continue;
+            };
+            let plant_first = run_each(&job, &nominal, &opts, factors, None)
+                .unwrap()
+                .iter()
+                .filter_map(|(r, _)| r.cut_short_at_s)
+                .any(|t| t < own);
+            let b =
+                run_beside_description_in_step(&job, &nominal, &opts, None, factors, None).unwrap();
+            assert_eq!(b.stopped, plant_first, "bound {k}/10");
+            match b.plants {
+                Err(kept) => {
+                    assert!(!plant_first);
+                    assert_eq!(b.description.0.report, want);
+                    assert_eq!(kept.len(), factors.len());
+                }
+                Ok(set) => {
+                    assert!(plant_first);
+                    let step = run_each_in_step(&job, &nominal, &opts, factors, None).unwrap();
+                    let a: Vec<&crate::Report> = set.iter().map(|(r, _)| r).collect();
+                    let b: Vec<&crate::Report> = step.iter().map(|(r, _)| r).collect();
+                    assert_eq!(a, b);
+                }
+            }
+            seen[plant_first as usize] = true;
+        }
+        assert_eq!(seen, [true, true], "both orders met");
     }
 
     /// Runs in step resumed from checkpoints past the group's first
