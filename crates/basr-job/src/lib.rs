@@ -603,6 +603,14 @@ macro_rules! samples_struct {
                 Ok(n)
             }
 
+            /// Move `other`'s rows to the end of `self` (the kind's
+            /// columns named as `self`'s), leaving `other` empty.
+            pub fn append(&mut self, other: &mut Samples) {
+                $(self.$name.append(&mut other.$name);)*
+                self.kind_joints.append(&mut other.kind_joints);
+                self.kind_encoders.append(&mut other.kind_encoders);
+            }
+
             /// Rows `r` as samples of their own, the kind's columns too
             /// (a station's rows, simulated alone).
             pub fn rows(&self, r: std::ops::Range<usize>) -> Samples {

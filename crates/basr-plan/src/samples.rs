@@ -5,6 +5,8 @@
 
 use std::f64::consts::FRAC_PI_2;
 
+use rayon::prelude::*;
+
 use crate::knots::Knot;
 use basr_job::{self as job, SampleRow, Samples, Station};
 use basr_robot::kinematics::wrap_pi;
@@ -28,11 +30,10 @@ pub fn sample(
     robot: &AnyRobot,
     period_s: f64,
 ) -> Result<Samples, CompileError> {
-    let mut samples = Samples {
-        kind_columns: robot.own_sample_columns(),
-        ..Samples::default()
-    };
-    let rows: usize = (0..plan.stations.len().min(timed.stations.len()))
+    let n = plan.stations.len().min(timed.stations.len());
+    // Each station's rows: the truck's drive to it (none before the
+    // first), then its own motion.
+    let counts: Vec<usize> = (0..n)
         .map(|si| {
             let drive = match si {
                 0 => 0,
@@ -40,38 +41,91 @@ pub fn sample(
             };
             drive + timed.stations[si].len()
         })
-        .sum();
-    samples.reserve_exact(rows);
-    for (si, (station, mut rows)) in plan.stations.iter().zip(timed.stations).enumerate() {
-        if si > 0 {
-            // The truck drives to this station with the arm stowed: rows of
-            // the station being driven to (the road frame jumps where the
-            // rows change station), one piece with the station's own rows so
-            // the speed column's differences run across the seam.
-            let hold = Timed {
-                q: stow_joints(robot),
-                run: None,
-                s: 0.0,
-                gun: None,
-            };
-            let n = truck_rows(robot, &plan.stations[si - 1], station, period_s);
-            rows.splice(0..0, std::iter::repeat_n(hold, n));
+        .collect();
+    let mut samples = Samples {
+        kind_columns: robot.own_sample_columns(),
+        ..Samples::default()
+    };
+    samples.reserve_exact(counts.iter().sum());
+    let mut stations: Vec<(usize, Vec<Timed>)> =
+        timed.stations.into_iter().take(n).enumerate().collect();
+    // Stations are sampled in parallel, a few at a time and appended in
+    // order (the same rows as one after another): a long job's rows are
+    // held twice only for the stations in hand, not the whole job.
+    let group = 2 * rayon::current_num_threads();
+    let mut first = 0usize;
+    while !stations.is_empty() {
+        let rest = stations.split_off(group.min(stations.len()));
+        let starts: Vec<usize> = stations
+            .iter()
+            .scan(first, |at, (si, _)| {
+                let start = *at;
+                *at += counts[*si];
+                Some(start)
+            })
+            .collect();
+        first += stations.iter().map(|(si, _)| counts[*si]).sum::<usize>();
+        let blocks: Vec<Result<Samples, CompileError>> = stations
+            .into_par_iter()
+            .zip(starts)
+            .map(|((si, rows), start)| {
+                station_samples(plan, paths, robot, si, rows, start, period_s)
+            })
+            .collect();
+        for block in blocks {
+            samples.append(&mut block?);
         }
-        clamp_to_range(robot, &mut rows)?;
-        check_sampled(robot, &rows, si + 1, period_s)?;
-        append_samples(
-            &mut samples,
-            robot,
-            StationRows {
-                station,
-                index: si as u32,
-                origin_z: plan.road.origin_z(station),
-            },
-            &paths.stations[si],
-            &rows,
-            period_s,
-        );
+        stations = rest;
     }
+    Ok(samples)
+}
+
+/// Station `si`'s rows (`rows`, its own motion), the truck's drive to it
+/// put before them, checked and made the job's rows from row `start` on.
+fn station_samples(
+    plan: &StationPlan,
+    paths: &JointPaths,
+    robot: &AnyRobot,
+    si: usize,
+    mut rows: Vec<Timed>,
+    start: usize,
+    period_s: f64,
+) -> Result<Samples, CompileError> {
+    let station = &plan.stations[si];
+    if si > 0 {
+        // The truck drives to this station with the arm stowed: rows of
+        // the station being driven to (the road frame jumps where the
+        // rows change station), one piece with the station's own rows so
+        // the speed column's differences run across the seam.
+        let hold = Timed {
+            q: stow_joints(robot),
+            run: None,
+            s: 0.0,
+            gun: None,
+        };
+        let n = truck_rows(robot, &plan.stations[si - 1], station, period_s);
+        rows.splice(0..0, std::iter::repeat_n(hold, n));
+    }
+    clamp_to_range(robot, &mut rows)?;
+    check_sampled(robot, &rows, si + 1, period_s)?;
+    let mut samples = Samples {
+        kind_columns: robot.own_sample_columns(),
+        ..Samples::default()
+    };
+    samples.reserve_exact(rows.len());
+    append_samples(
+        &mut samples,
+        robot,
+        StationRows {
+            station,
+            index: si as u32,
+            origin_z: plan.road.origin_z(station),
+            start,
+        },
+        &paths.stations[si],
+        &rows,
+        period_s,
+    );
     Ok(samples)
 }
 
@@ -128,9 +182,12 @@ struct StationRows<'a> {
     /// The road-frame height of its base frame's origin: the z_m column is
     /// the road frame's (docs/site.md).
     origin_z: f64,
+    /// Its first row's number in the job (the `t_s` column counts ticks
+    /// from the job's start).
+    start: usize,
 }
 
-/// Append a station's samples to the job's columns.
+/// Append a station's samples to `samples`.
 fn append_samples(
     samples: &mut Samples,
     robot: &AnyRobot,
@@ -143,8 +200,8 @@ fn append_samples(
         station,
         index: station_index,
         origin_z,
+        start: t0,
     } = at;
-    let t0 = samples.len();
     let arcs: Vec<Vec<f64>> = runs.iter().map(|r| arc_lengths(&r.knots)).collect();
     // Nozzle in the road frame at every sample.
     let poses: Vec<(NozzlePose, [f64; 2], f64)> = timed
