@@ -294,3 +294,56 @@ fn a_job_that_calls_for_another_tip_names_it() {
     assert!(!d.join("b2.html").exists());
     assert_eq!(std::fs::read_to_string(d.join("t.toml")).unwrap(), tally);
 }
+
+/// A letter whose own figure is past a film bound while the whole film is
+/// within them all (SCHOOL at 6 ft: S and C about 3.0 and 3.3 % overspray,
+/// the word 2.2 %) is marked OVER, its figure in bold, with a line saying
+/// what that means: not FAIL on a sheet whose verdict says the job paints.
+#[test]
+fn a_letter_past_a_bound_of_a_passing_film_is_over_not_fail() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = basr(
+        d,
+        &[
+            "compile",
+            "SCHOOL",
+            "--letter-height",
+            "6ft",
+            "-o",
+            "s.job.json",
+            "-q",
+        ],
+    );
+    assert!(out.status.code().is_some_and(|c| c <= 1));
+    let out = basr(d, &["report", "s.job.json", "--no-sim", "-q"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(d.join("s.sheet.html")).unwrap();
+    assert!(html.contains(">READY WITH NOTES<"), "the job paints");
+    let letters = html
+        .split("<table id=\"letters\">")
+        .nth(1)
+        .and_then(|t| t.split("</section>").next())
+        .expect("the letters table");
+    let table = letters.split("</table>").next().unwrap_or_default();
+    let rows: Vec<&str> = table.split("<tr>").skip(2).collect();
+    assert_eq!(rows.len(), 6, "one row per letter of SCHOOL");
+    assert!(!letters.contains("FAIL"), "{letters}");
+    let over: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.contains("<span class=\"notice\"><strong>OVER</strong>"))
+        .copied()
+        .collect();
+    assert!(!over.is_empty(), "some letter is past a bound: {letters}");
+    for r in &over {
+        assert!(
+            r.contains("<td class=\"num\"><strong>"),
+            "its figure in bold: {r}"
+        );
+    }
+    assert!(letters.contains("the film as a whole is within every limit"));
+}

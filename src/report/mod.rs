@@ -103,7 +103,16 @@ pub struct Letter {
     pub cv: Option<f64>,
     pub coverage: Option<f64>,
     pub overspray: Option<f64>,
-    pub pass: bool,
+    /// The figures past the bounds the whole film is judged by (`cv`,
+    /// `coverage`, `overspray`): none for a letter that passes.
+    pub over: Vec<&'static str>,
+}
+
+impl Letter {
+    /// Every figure within the film's bounds.
+    pub fn pass(&self) -> bool {
+        self.over.is_empty()
+    }
 }
 
 /// A warning as the sheet lists it.
@@ -385,7 +394,11 @@ fn letters(m: &Metrics, v: &Verdict) -> Vec<Letter> {
                 cv: g.cv,
                 coverage: g.coverage,
                 overspray: g.overspray,
-                pass: crate::paint::verdict::glyph_passes(g, &v.thresholds),
+                over: crate::paint::verdict::glyph_checks(g, &v.thresholds)
+                    .into_iter()
+                    .filter(|c| !c.pass)
+                    .map(|c| c.metric)
+                    .collect(),
             }
         })
         .collect()
