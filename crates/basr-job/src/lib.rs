@@ -624,33 +624,21 @@ macro_rules! samples_struct {
 
             /// Each column's serialised name and value, in the order of
             /// their names (the canonical form's), the kind's columns only
-            /// when present (as serialising skips them empty); `write`
-            /// writes the column's value.
-            pub(crate) fn each_column_sorted(
-                &self,
-                write: &mut dyn FnMut(&str, &dyn stream::Column) -> std::io::Result<()>,
-            ) -> std::io::Result<()> {
-                let mut names: Vec<&'static str> = vec![$(stringify!($name)),*];
+            /// when present (as serialising skips them empty).
+            pub(crate) fn columns_sorted(&self) -> Vec<(&'static str, &(dyn stream::Column + Sync))> {
+                let mut columns: Vec<(&'static str, &(dyn stream::Column + Sync))> =
+                    vec![$((stringify!($name), &self.$name)),*];
                 if !self.kind_columns.is_empty() {
-                    names.push("kind_columns");
+                    columns.push(("kind_columns", &self.kind_columns));
                 }
                 if !self.kind_joints.is_empty() {
-                    names.push("kind_joints");
+                    columns.push(("kind_joints", &self.kind_joints));
                 }
                 if !self.kind_encoders.is_empty() {
-                    names.push("kind_encoders");
+                    columns.push(("kind_encoders", &self.kind_encoders));
                 }
-                names.sort_unstable();
-                for name in names {
-                    match name {
-                        $(stringify!($name) => write(name, &self.$name)?,)*
-                        "kind_columns" => write(name, &self.kind_columns)?,
-                        "kind_joints" => write(name, &self.kind_joints)?,
-                        "kind_encoders" => write(name, &self.kind_encoders)?,
-                        _ => {}
-                    }
-                }
-                Ok(())
+                columns.sort_unstable_by_key(|c| c.0);
+                columns
             }
 
             /// Whether every value of row `i` is a finite number (its CSV
