@@ -347,3 +347,75 @@ fn a_letter_past_a_bound_of_a_passing_film_is_over_not_fail() {
     }
     assert!(letters.contains("the film as a whole is within every limit"));
 }
+
+/// A scene's stops are said from the item at the road's origin, not its
+/// first line: an arrow 12 m before ONLY (at the origin) puts stop 2 past
+/// ONLY, and the sheet must not say past the arrow (a truck 12 m off).
+/// Two items of one name are told apart by number; an origin no item's
+/// near edge lies at is said from the nearest item.
+#[test]
+fn a_scenes_stops_are_said_from_the_item_at_the_anchor() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("scene.toml"),
+        "[marking]\nname = \"t\"\n[[item]]\nsymbol = \"arrow-left\"\nat_m = [0.0, -12.0]\n\
+         [[item]]\nword = \"ONLY\"\nat_m = [0.0, 0.0]\nletter_height_ft = 8\n",
+    )
+    .unwrap();
+    let out = basr(
+        d,
+        &["compile", "--marking", "scene.toml", "-o", "s.job.json"],
+    );
+    assert!(out.status.code().is_some_and(|c| c <= 1));
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(
+        text.contains("before the near edge of ONLY")
+            && text.contains("past the near edge of ONLY"),
+        "{text}"
+    );
+    assert!(!text.contains("edge of [arrow-left]"), "{text}");
+    let out = basr(d, &["report", "s.job.json", "--no-sim", "-q"]);
+    assert!(out.status.success());
+    let html = std::fs::read_to_string(d.join("s.sheet.html")).unwrap();
+    assert!(
+        html.contains("past the near edge of ONLY (the marking's anchor)"),
+        "the sheet's stops"
+    );
+
+    // two arrows, the second at the origin: named by number
+    let out = basr(
+        d,
+        &[
+            "compile",
+            "--marking",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/markings/turn_lane.toml"),
+            "-o",
+            "t.job.json",
+        ],
+    );
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(
+        text.contains("the near edge of item 2, [arrow-left]"),
+        "{text}"
+    );
+
+    // a word moved 2 m past the origin: the origin said from it
+    std::fs::write(
+        d.join("moved.toml"),
+        "[marking]\nlines = [\"STOP\"]\nanchor_y_m = 2.0\n",
+    )
+    .unwrap();
+    let out = basr(
+        d,
+        &["compile", "--marking", "moved.toml", "-o", "m.job.json"],
+    );
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(
+        text.contains("past the marking's anchor, 1.98 m before the near edge of STOP"),
+        "{text}"
+    );
+}

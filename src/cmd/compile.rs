@@ -871,8 +871,8 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         s.strokes,
         job.samples.len()
     )];
-    let anchor = basr::report::anchor_words(job);
     let units = units_of(args);
+    let anchor = basr::report::anchor_words_in(job, units);
     if stops <= MAX_STOP_LINES {
         for (k, st) in job.stations.iter().enumerate() {
             lines.push(format!(

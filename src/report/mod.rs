@@ -33,6 +33,11 @@ pub struct SimVerdict {
     pub max_error_m: f64,
     pub rms_error_m: f64,
     pub tolerance_m: f64,
+    /// What `verdict` judges: the robot description's own run, or the
+    /// 95th percentile over plants (`simulate --plants N`); absent in
+    /// results written before it (the description's run).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub verdict_on: Option<crate::sim::report::VerdictOn>,
 }
 
 impl SimVerdict {
@@ -45,6 +50,7 @@ impl SimVerdict {
             max_error_m: r.max_error_m,
             rms_error_m: r.rms_error_m,
             tolerance_m: r.tolerance_m,
+            verdict_on: Some(r.verdict_on),
         }
     }
 
@@ -58,6 +64,7 @@ impl SimVerdict {
             max_error_m: r.max_error_m,
             rms_error_m: r.rms_error_m,
             tolerance_m: r.tolerance_m,
+            verdict_on: Some(crate::sim::report::VerdictOn::Nominal),
         }
     }
 }
@@ -282,8 +289,70 @@ pub fn time_on_site_s(job: &Job) -> f64 {
 
 /// What the stations are measured from, in words.
 pub fn anchor_words(job: &Job) -> String {
-    let first_line = job.message.lines().next().unwrap_or("the marking");
-    format!("the near edge of {first_line}")
+    anchor_words_in(job, System::Metric)
+}
+
+/// How near a line's or item's near edge must lie to the road's origin to
+/// be named as the anchor (m). assumed: a letter's round parts dip 2 cm
+/// below its grid (O of 8 ft letters: 0.0195 m), which a crew marks at
+/// the grid's edge; 5 cm is under any item's clear space.
+const AT_ANCHOR_M: f64 = 0.05;
+
+/// [`anchor_words`] in the crew's units. The stops are placed from the
+/// road's origin: a message's anchor is the near edge of its first line
+/// (`the near edge of STOP`), but a scene places its items around the
+/// origin (`at_m`) and a marking file may move it (`anchor_y_m`): the line
+/// or item whose near edge lies at the origin is named (with its number
+/// where two share a name: `item 2, [arrow-left]`), else the origin is
+/// said from the nearest one (`the marking's anchor, 30.48 m past the near
+/// edge of item 1, [arrow-left]`). A job without letters says its first
+/// line.
+pub fn anchor_words_in(job: &Job, units: System) -> String {
+    let names: Vec<&str> = job.message.lines().collect();
+    // each line's (a scene's item's) near edge: the lowest point of its
+    // outlines, along the road
+    let mut near: std::collections::BTreeMap<usize, f64> = Default::default();
+    for g in &job.layout.glyphs {
+        let low = g
+            .strokes
+            .iter()
+            .flat_map(|s| s.left.iter().chain(&s.right))
+            .map(|p| p[1])
+            .fold(f64::INFINITY, f64::min);
+        if low.is_finite() {
+            let e = near.entry(g.line).or_insert(f64::INFINITY);
+            *e = e.min(low);
+        }
+    }
+    let label = |k: usize| {
+        let name = names.get(k).copied().unwrap_or("the marking");
+        if names.iter().filter(|n| **n == name).count() > 1 {
+            let what = if name.starts_with('[') {
+                "item"
+            } else {
+                "line"
+            };
+            format!("{what} {}, {name}", k + 1)
+        } else {
+            name.to_string()
+        }
+    };
+    let nearest = near
+        .iter()
+        .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(a.0.cmp(b.0)));
+    match nearest {
+        None => format!(
+            "the near edge of {}",
+            names.first().unwrap_or(&"the marking")
+        ),
+        Some((&k, &y)) if y.abs() <= AT_ANCHOR_M => format!("the near edge of {}", label(k)),
+        Some((&k, &y)) => format!(
+            "the marking's anchor, {} {} the near edge of {}",
+            units.length(y.abs()),
+            if y < 0.0 { "past" } else { "before" },
+            label(k)
+        ),
+    }
 }
 
 /// `ready`, `ready with notes` or `not ready` from the warnings'
@@ -337,7 +406,12 @@ pub fn stops(job: &Job) -> Vec<Stop> {
 
 /// [`stops`] in the crew's units.
 pub fn stops_in(job: &Job, units: System) -> Vec<Stop> {
-    let anchor = format!("{} (the marking's anchor)", anchor_words(job));
+    let words = anchor_words_in(job, units);
+    let anchor = if words.starts_with("the marking's anchor") {
+        words
+    } else {
+        format!("{words} (the marking's anchor)")
+    };
     let n = job.stations.len();
     let mut work = vec![0.0; n];
     let s = &job.samples;

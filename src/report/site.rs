@@ -32,12 +32,24 @@ fn words(p: [f64; 2], units: System) -> String {
     } else {
         format!("{} left", units.length(-p[0]))
     };
-    let along = if p[1] >= 0.0 {
-        format!("{} past", units.length(p[1]))
+    // under half a centimetre either way reads 0.00 m (or 0 in) past, not
+    // "0.00 m before" of a point a hair behind
+    let along = if p[1] >= -0.005 {
+        format!("{} past", units.length(p[1].max(0.0)))
     } else {
         format!("{} before", units.length(-p[1]))
     };
     format!("{across}, {along}")
+}
+
+/// `v`, but 0 where it prints as zero at three decimals (a point a
+/// hair behind the anchor printed `-0.000`).
+fn unsigned_zero(v: f64) -> f64 {
+    if v.abs() < 5e-4 {
+        0.0
+    } else {
+        v
+    }
 }
 
 /// The strokes painted from stop `index`, as closed outlines (road frame).
@@ -175,8 +187,8 @@ pub fn render(out: &mut String, c: &Chalk) {
                 k + 1,
                 escape(name),
                 escape(w),
-                p[0],
-                p[1]
+                unsigned_zero(p[0]),
+                unsigned_zero(p[1])
             )
         })
         .collect();
@@ -198,6 +210,14 @@ mod tests {
             words([0.0, -1.0], System::Metric),
             "on the centre, 1.00 m before"
         );
+        // a point a hair behind the anchor is not "0.00 m before", nor
+        // printed -0.000
+        assert_eq!(
+            words([-1.134, -0.0004], System::Metric),
+            "1.13 m left, 0.00 m past"
+        );
+        assert_eq!(format!("{:.3}", unsigned_zero(-0.0004)), "0.000");
+        assert_eq!(unsigned_zero(-0.0006), -0.0006);
     }
 
     #[test]
