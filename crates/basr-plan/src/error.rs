@@ -97,14 +97,17 @@ pub enum StationError {
     SiteStops { job: usize, planned: usize },
     #[error(
         "stop {stop}: the arm cannot reach the marking from where the truck stopped (axis at \
-         x {x:.3} m, y {y:.3} m, heading {heading_deg:.1}°): the point ({px:.3}, {py:.3}) m is \
-         {short_m:.3} m outside its reach; {advice}, then chalk and measure the points again"
+         x {x:.3} m, y {y:.3} m, the truck turned {turned_deg:+.1}° from the lane direction, \
+         counter-clockwise +): the point ({px:.3}, {py:.3}) m is {short_m:.3} m outside its \
+         reach; {advice}, then chalk and measure the points again"
     )]
     SiteOutOfReach {
         stop: usize,
         x: f64,
         y: f64,
-        heading_deg: f64,
+        /// From the lane direction (deg, counter-clockwise +), as the job
+        /// sheet says a stop.
+        turned_deg: f64,
         px: f64,
         py: f64,
         short_m: f64,

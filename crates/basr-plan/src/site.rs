@@ -149,14 +149,14 @@ pub fn put_at_site(
         None => format!(
             "{} (to where the job planned the stop; nothing nearer reaches the whole stop: \
              check the points and the stop number too)",
-            move_words(&st, [planned.x_m - st.x_m, planned.y_m - st.y_m])
+            back_to(&st, &planned)
         ),
     };
     Err(StationError::SiteOutOfReach {
         stop: si + 1,
         x: st.x_m,
         y: st.y_m,
-        heading_deg: st.heading_rad.to_degrees(),
+        turned_deg: turned_deg(st.heading_rad),
         px,
         py,
         short_m: -here,
@@ -195,9 +195,67 @@ fn nearest_reaching(
     None
 }
 
+/// How far a truck at `heading_rad` is turned from the lane direction
+/// (deg, counter-clockwise +, in (−180, 180]): the job sheet's and fit's
+/// words for a stop (`report::place_words`), not the road frame's heading.
+fn turned_deg(heading_rad: f64) -> f64 {
+    let t = (heading_rad + std::f64::consts::FRAC_PI_2).to_degrees() % 360.0;
+    if t > 180.0 {
+        t - 360.0
+    } else if t <= -180.0 {
+        t + 360.0
+    } else {
+        t
+    }
+}
+
+/// The way from the truck at `st` back to the `planned` stop in the crew's
+/// words: the move, and the turn where the headings differ (a truck
+/// turned far round had only a move of 0.00 m to make).
+fn back_to(st: &Station, planned: &Station) -> String {
+    let d = [planned.x_m - st.x_m, planned.y_m - st.y_m];
+    // clockwise is a negative turn (counter-clockwise +)
+    let turn = turned_deg(planned.heading_rad) - turned_deg(st.heading_rad);
+    let turn = if turn > 180.0 {
+        turn - 360.0
+    } else if turn <= -180.0 {
+        turn + 360.0
+    } else {
+        turn
+    };
+    // assumed: under half a degree is not a turn a driver can make.
+    let turn_words = (turn.abs() >= 0.5).then(|| {
+        format!(
+            "turn it {:.1}° {}",
+            turn.abs(),
+            if turn < 0.0 {
+                "clockwise"
+            } else {
+                "counter-clockwise"
+            }
+        )
+    });
+    match (move_parts(st, d).is_empty(), turn_words) {
+        (true, Some(t)) => t.replacen("it", "the truck", 1),
+        (false, Some(t)) => format!("{} and {t}", move_words(st, d)),
+        (_, None) => move_words(st, d),
+    }
+}
+
 /// A road-frame move `d` of the truck at `st` in the crew's words: forward
 /// or back along the truck, to its left or right.
 fn move_words(st: &Station, d: [f64; 2]) -> String {
+    format!(
+        "move the truck {} (road frame: x {:+.2} m, y {:+.2} m)",
+        move_parts(st, d).join(" and "),
+        d[0],
+        d[1]
+    )
+}
+
+/// [`move_words`]'s parts: forward or back, left or right (none under a
+/// centimetre).
+fn move_parts(st: &Station, d: [f64; 2]) -> Vec<String> {
     // The truck faces away from the arm: +y of the base frame points back
     // along the arm's symmetry axis (heading_rad), so forward is its
     // opposite; the driver's right is forward turned a quarter clockwise.
@@ -215,17 +273,51 @@ fn move_words(st: &Station, d: [f64; 2]) -> String {
         let way = if across > 0.0 { "right" } else { "left" };
         parts.push(format!("{:.2} m to the {way}", across.abs()));
     }
-    format!(
-        "move the truck {} (road frame: x {:+.2} m, y {:+.2} m)",
-        parts.join(" and "),
-        d[0],
-        d[1]
-    )
+    parts
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Back to the planned stop: a truck turned far round is told to turn
+    /// (it had a move of 0.00 m to make), in the sheet's convention
+    /// (turned from the lane direction, counter-clockwise +); a truck off
+    /// and turned gets both; one only off, the move alone.
+    #[test]
+    fn the_way_back_says_the_turn() {
+        let down = -std::f64::consts::FRAC_PI_2;
+        let planned = Station {
+            x_m: 0.0,
+            y_m: 4.57,
+            heading_rad: down,
+        };
+        let at = |x_m: f64, y_m: f64, turned: f64| Station {
+            x_m,
+            y_m,
+            heading_rad: down + turned.to_radians(),
+        };
+        assert_eq!(turned_deg(at(0.0, 0.0, 130.0).heading_rad), 130.0);
+        assert!((turned_deg(at(0.0, 0.0, 200.0).heading_rad) + 160.0).abs() < 1e-9);
+        assert_eq!(
+            back_to(&at(0.0, 4.57, 130.0), &planned),
+            "turn the truck 130.0° clockwise"
+        );
+        assert_eq!(
+            back_to(&at(0.0, 4.57, -20.0), &planned),
+            "turn the truck 20.0° counter-clockwise"
+        );
+        let both = back_to(&at(0.0, 2.57, 10.0), &planned);
+        assert!(
+            both.starts_with("move the truck ") && both.ends_with(" and turn it 10.0° clockwise"),
+            "{both}"
+        );
+        let moved = back_to(&at(2.5, 4.57, 0.2), &planned);
+        assert!(
+            moved.starts_with("move the truck 2.50 m") && !moved.contains("turn"),
+            "{moved}"
+        );
+    }
 
     /// A job's painting rows read back as runs: one per station and
     /// stroke the gun paints without closing, from its first row's place
