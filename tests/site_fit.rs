@@ -762,3 +762,29 @@ fn the_other_stops_keep_their_timing_and_are_not_simulated_again() {
         "every stop verified again"
     );
 }
+
+/// A scene fitted with another marking file is told to pass its own: not
+/// to write its items as `lines = [...]`, which a marking file refuses
+/// (`[` is no letter).
+#[test]
+fn a_scene_fitted_with_another_marking_file_is_told_to_pass_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (job, _) = rxr_job(d);
+    let truth = moved(&job, 1, [0.0, 0.0, 0.0], level(1));
+    let other = Path::new(env!("CARGO_MANIFEST_DIR")).join("markings/turn_lane.toml");
+    let out = fit(
+        d,
+        &points_file(&job, 1, &truth, 0.0, 1),
+        &["--marking", other.to_str().unwrap()],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the job is a scene")
+            && err.contains("only the marking file it was compiled from"),
+        "{err}"
+    );
+    assert!(!err.contains("lines = ["), "{err}");
+    assert!(!d.join("f.job.json").exists());
+}

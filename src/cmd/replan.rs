@@ -202,8 +202,17 @@ pub fn recover(
         None => format!("the job's message \"{}\"", lines.join(" ")),
     };
     // A message of several lines compiled with --line-gap lays out again
-    // from a marking file of its lines and that gap.
-    let gap = if lines.len() > 1 {
+    // from a marking file of its lines and that gap (a scene's lines are
+    // its items, `[symbol]`, which such a file refuses: a scene has only
+    // its own marking file).
+    let scene = job.message.contains('[');
+    let gap = if scene {
+        format!(
+            "; the job is a scene (its items: {}): only the marking file it was compiled \
+             from lays it out again",
+            lines.join(", ")
+        )
+    } else if lines.len() > 1 {
         format!(
             "; a message compiled with --line-gap: write its lines and the gap in a marking \
              file ([marking] lines = [{}], line_gap_m = the gap given) and pass that",
@@ -219,7 +228,12 @@ pub fn recover(
     anyhow::bail!(
         "{origin}: {by} cannot re-plan this job: {what} lays out differently from the \
          job ({differs}); pass the marking file the job was compiled from with --marking \
-         FILE{gap} (a --shape job cannot be re-planned: compile it again instead)"
+         FILE{gap}{shape}",
+        shape = if scene {
+            ""
+        } else {
+            " (a --shape job cannot be re-planned: compile it again instead)"
+        }
     )
 }
 
