@@ -625,8 +625,8 @@ macro_rules! samples_struct {
             /// Each column's serialised name and value, in the order of
             /// their names (the canonical form's), the kind's columns only
             /// when present (as serialising skips them empty).
-            pub(crate) fn columns_sorted(&self) -> Vec<(&'static str, &(dyn stream::Column + Sync))> {
-                let mut columns: Vec<(&'static str, &(dyn stream::Column + Sync))> =
+            pub(crate) fn columns_sorted(&self) -> Vec<(&'static str, &dyn stream::Column)> {
+                let mut columns: Vec<(&'static str, &dyn stream::Column)> =
                     vec![$((stringify!($name), &self.$name)),*];
                 if !self.kind_columns.is_empty() {
                     columns.push(("kind_columns", &self.kind_columns));
