@@ -788,3 +788,39 @@ fn a_scene_fitted_with_another_marking_file_is_told_to_pass_its_own() {
     assert!(!err.contains("lines = ["), "{err}");
     assert!(!d.join("f.job.json").exists());
 }
+
+/// A fit that comes out NOT READY says why, as compile does, and what the
+/// crew can do at the site (the notes' remedies are the planner's: letter
+/// sizes and tips). STOP on a plane 4 mm under the base, sloped 1 % and
+/// −0.5 % against the truck: the lowest nozzle height over it rises to
+/// 109 mm and the fan outgrows the narrow strokes (overspray 0.066).
+#[test]
+fn a_fit_that_is_not_ready_says_why_and_what_to_do_at_the_site() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let job = stop_job(d);
+    let truth = moved(
+        &job,
+        1,
+        [0.0, 0.0, 0.0],
+        StopPlane {
+            stop: 1,
+            z_m: -0.004,
+            dz_dx: 0.01,
+            dz_dy: -0.005,
+        },
+    );
+    let out = fit(d, &points_file(&job, 1, &truth, 0.0, 1), &[]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "NOT READY: {err}");
+    assert!(err.contains("(NOT READY:"), "{err}");
+    assert!(err.contains("  problem: "), "the problems are said: {err}");
+    assert!(
+        err.contains("at the site: do not paint this stop as fitted. Check the points"),
+        "{err}"
+    );
+    assert!(
+        d.join("f.job.json").exists(),
+        "written, for the report to say why"
+    );
+}

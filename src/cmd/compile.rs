@@ -942,21 +942,8 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         }
         return lines;
     }
-    let groups = grouped(&shown)
-        .into_iter()
-        .map(|g| format!("  problem: {}{}", g[0].message, same_on(&g)))
-        .collect::<Vec<_>>();
     let room = MAX_LINES.saturating_sub(lines.len());
-    if groups.len() > room {
-        let keep = room.saturating_sub(1);
-        let left = groups.len() - keep;
-        lines.extend(groups.into_iter().take(keep));
-        lines.push(format!(
-            "  … {left} more problem lines: --verbose, or `basr report` for the job sheet"
-        ));
-    } else {
-        lines.extend(groups);
-    }
+    lines.extend(problem_lines(&shown, room));
     lines
 }
 
@@ -1012,6 +999,26 @@ fn film_line(f: &basr::job::FilmSummary) -> String {
             .map_or("–".to_string(), |m| format!("{:.0} µm", m * 1e6)),
         f.target_film_m * 1e6,
     )
+}
+
+/// The `problems` (warnings of that severity), one line a group of the
+/// same warning (`  problem: …, the same on strokes …`), in at most `room`
+/// lines (the last then says how many more there are and where).
+pub(super) fn problem_lines(problems: &[&Warning], room: usize) -> Vec<String> {
+    let groups = grouped(problems)
+        .into_iter()
+        .map(|g| format!("  problem: {}{}", g[0].message, same_on(&g)))
+        .collect::<Vec<_>>();
+    if groups.len() <= room {
+        return groups;
+    }
+    let keep = room.saturating_sub(1);
+    let left = groups.len() - keep;
+    let mut lines: Vec<String> = groups.into_iter().take(keep).collect();
+    lines.push(format!(
+        "  … {left} more problem lines: --verbose, or `basr report` for the job sheet"
+    ));
+    lines
 }
 
 #[cfg(test)]

@@ -516,6 +516,26 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             new.summary.duration_s,
             si + 1
         );
+        if verdict == "not ready" {
+            // Why, as compile says it; the notes' remedies are the
+            // planner's (letter sizes, tips), which the crew cannot change
+            // at the site: what it can do comes after.
+            let problems: Vec<&basr::job::Warning> = new
+                .summary
+                .warnings
+                .iter()
+                .filter(|w| w.severity == Some(basr::job::Severity::Problem))
+                .collect();
+            for line in super::compile::problem_lines(&problems, 8) {
+                note!("{line}");
+            }
+            note!(
+                "at the site: do not paint this stop as fitted. Check the points (a height \
+                 read wrong tilts the fitted road), stand the truck where the job sheet says \
+                 and level with the road it paints, and fit again; or ask the engineer who \
+                 planned the job (letter sizes and tips are the planner's remedies above)"
+            );
+        }
     }
     // NOT READY is a negative verdict, as compile's: the job is written for
     // `basr report` to say why, and the exit code says not to paint it.
