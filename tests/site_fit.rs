@@ -824,3 +824,34 @@ fn a_fit_that_is_not_ready_says_why_and_what_to_do_at_the_site() {
         "written, for the report to say why"
     );
 }
+
+/// Fitting again over a fitted job whose CSV was bound to it says that
+/// CSV stays beside the new job and is not its own; fitting again with
+/// --csv writes the pair anew and says nothing of it.
+#[test]
+fn fitting_over_a_fitted_job_says_its_csv_is_left_behind() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let job = stop_job(d);
+    let truth = moved(&job, 1, [0.05, -0.05, 0.5], level(1));
+    let points = points_file(&job, 1, &truth, 0.0, 1);
+    let first = fit(d, &points, &["--csv", "f.csv"]);
+    assert!(
+        first.status.code().is_some_and(|c| c <= 1),
+        "{}",
+        stderr(&first)
+    );
+    // replacing it with its CSV written again: the pair is new, nothing left
+    let with_csv = fit(d, &points, &["--csv", "f.csv"]);
+    let err = stderr(&with_csv);
+    assert!(with_csv.status.code().is_some_and(|c| c <= 1), "{err}");
+    assert!(!err.contains("stays beside it"), "{err}");
+    // replacing it without: its CSV is left behind
+    let again = fit(d, &points, &[]);
+    let err = stderr(&again);
+    assert!(again.status.code().is_some_and(|c| c <= 1), "{err}");
+    assert!(
+        err.contains("replaced a job whose csv file f.csv stays beside it"),
+        "{err}"
+    );
+}

@@ -309,6 +309,23 @@ fn check_frames(job: &Job, si: usize, points: &[Measured], origin: &str) -> anyh
     Ok(())
 }
 
+/// The files bound to the job at `path` about to be replaced (`outputs`:
+/// kind and file name), none when there is no such job or it cannot be
+/// read as one.
+fn replaced_bound(path: &Path) -> Vec<(String, String)> {
+    #[derive(serde::Deserialize)]
+    struct Bound {
+        #[serde(default)]
+        outputs: std::collections::BTreeMap<String, basr::job::BoundFile>,
+    }
+    let Ok(file) = std::fs::File::open(path) else {
+        return vec![];
+    };
+    serde_json::from_reader::<_, Bound>(std::io::BufReader::new(file))
+        .map(|b| b.outputs.into_iter().map(|(k, f)| (k, f.file)).collect())
+        .unwrap_or_default()
+}
+
 /// The fitted job's path: `X.job.json` → `X.fit.job.json`.
 fn default_output(job: &Path) -> PathBuf {
     let name = job
@@ -418,6 +435,17 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             k + 1
         );
     }
+    // A fitted job replaced (a crew fitting again, or a second fit
+    // without -o): the files bound to it stay beside it, no longer the
+    // job's. Said after writing, for the files not written again now.
+    let left_bound: Vec<(String, String)> = replaced_bound(&out)
+        .into_iter()
+        .filter(|(kind, _)| match kind.as_str() {
+            "csv" => args.csv.is_none(),
+            "adept" => args.adept.is_none(),
+            _ => true,
+        })
+        .collect();
     super::outputs::write_job(
         &mut new,
         &out,
@@ -425,6 +453,14 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         args.adept.as_deref(),
         key.as_ref(),
     )?;
+    for (kind, file) in &left_bound {
+        note!(
+            "note: {} replaced a job whose {kind} file {file} stays beside it: that file is \
+             not this job's (`basr check` refuses the pair); write this job's with --{kind} \
+             FILE, or delete it",
+            out.display()
+        );
+    }
 
     let planned_st = &job.stations[si];
     let st = &new.stations[si];
