@@ -73,13 +73,13 @@ pub(crate) trait Column {
 impl<T: Serialize> Column for T {
     fn pretty(&self, indent: &[u8]) -> io::Result<Vec<u8>> {
         // Printed into memory, indented as it is printed (one buffer the
-        // size of the column's text): printed through [`Indented`] into
-        // the output, each number and each line end was a write of its
-        // own through two writers of `dyn Write`.
+        // size of the column's text): printed into the output through a
+        // `dyn Write`, each number and each line end was a write of its
+        // own through two writers.
         let mut out = Vec::new();
         serde_json::to_writer_pretty(
-            IndentedVec {
-                out: &mut out,
+            Indented {
+                inner: &mut out,
                 indent,
             },
             self,
@@ -89,37 +89,13 @@ impl<T: Serialize> Column for T {
     }
 }
 
-/// [`Indented`] into a `Vec`: every line after the first `indent` further
-/// in.
-struct IndentedVec<'a> {
-    out: &'a mut Vec<u8>,
+/// A writer that indents every line after the first by `indent` more.
+struct Indented<'a, W: Write + ?Sized> {
+    inner: &'a mut W,
     indent: &'a [u8],
 }
 
-impl Write for IndentedVec<'_> {
-    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        let mut rest = buf;
-        while let Some(i) = rest.iter().position(|&b| b == b'\n') {
-            self.out.extend_from_slice(&rest[..=i]);
-            self.out.extend_from_slice(self.indent);
-            rest = &rest[i + 1..];
-        }
-        self.out.extend_from_slice(rest);
-        Ok(buf.len())
-    }
-
-    fn flush(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-}
-
-/// A writer that indents every line after the first by `indent` more.
-struct Indented<'a> {
-    inner: &'a mut dyn Write,
-    indent: &'static [u8],
-}
-
-impl Write for Indented<'_> {
+impl<W: Write + ?Sized> Write for Indented<'_, W> {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
         let mut rest = buf;
         while let Some(i) = rest.iter().position(|&b| b == b'\n') {
