@@ -5,6 +5,7 @@
 //! that brings it into reach.
 
 use basr_job::{Road, Samples, Station};
+use basr_robot::kinematics::wrap_pi;
 use basr_robot::AnyRobot;
 
 use super::error::StationError;
@@ -199,14 +200,7 @@ fn nearest_reaching(
 /// (deg, counter-clockwise +, in (−180, 180]): the job sheet's and fit's
 /// words for a stop (`report::place_words`), not the road frame's heading.
 fn turned_deg(heading_rad: f64) -> f64 {
-    let t = (heading_rad + std::f64::consts::FRAC_PI_2).to_degrees() % 360.0;
-    if t > 180.0 {
-        t - 360.0
-    } else if t <= -180.0 {
-        t + 360.0
-    } else {
-        t
-    }
+    wrap_pi(heading_rad + std::f64::consts::FRAC_PI_2).to_degrees()
 }
 
 /// The way from the truck at `st` back to the `planned` stop in the crew's
@@ -214,19 +208,12 @@ fn turned_deg(heading_rad: f64) -> f64 {
 /// turned far round had only a move of 0.00 m to make).
 fn back_to(st: &Station, planned: &Station) -> String {
     let d = [planned.x_m - st.x_m, planned.y_m - st.y_m];
-    // clockwise is a negative turn (counter-clockwise +)
-    let turn = turned_deg(planned.heading_rad) - turned_deg(st.heading_rad);
-    let turn = if turn > 180.0 {
-        turn - 360.0
-    } else if turn <= -180.0 {
-        turn + 360.0
-    } else {
-        turn
-    };
+    // counter-clockwise +
+    let turn = wrap_pi(planned.heading_rad - st.heading_rad).to_degrees();
     // assumed: under half a degree is not a turn a driver can make.
-    let turn_words = (turn.abs() >= 0.5).then(|| {
+    let turn = (turn.abs() >= 0.5).then(|| {
         format!(
-            "turn it {:.1}° {}",
+            "{:.1}° {}",
             turn.abs(),
             if turn < 0.0 {
                 "clockwise"
@@ -235,9 +222,9 @@ fn back_to(st: &Station, planned: &Station) -> String {
             }
         )
     });
-    match (move_parts(st, d).is_empty(), turn_words) {
-        (true, Some(t)) => t.replacen("it", "the truck", 1),
-        (false, Some(t)) => format!("{} and {t}", move_words(st, d)),
+    match (move_parts(st, d).is_empty(), turn) {
+        (true, Some(t)) => format!("turn the truck {t}"),
+        (false, Some(t)) => format!("{} and turn it {t}", move_words(st, d)),
         (_, None) => move_words(st, d),
     }
 }
