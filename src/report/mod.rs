@@ -308,6 +308,12 @@ const AT_ANCHOR_M: f64 = 0.05;
 /// edge of item 1, [arrow-left]`). A job without letters says its first
 /// line.
 pub fn anchor_words_in(job: &Job, units: System) -> String {
+    anchor_in(job, units).0
+}
+
+/// [`anchor_words_in`], and whether the words name the anchor itself
+/// (`the marking's anchor, …`) rather than the item at it.
+fn anchor_in(job: &Job, units: System) -> (String, bool) {
     let names: Vec<&str> = job.message.lines().collect();
     // each line's (a scene's item's) near edge: the lowest point of its
     // outlines, along the road
@@ -341,16 +347,24 @@ pub fn anchor_words_in(job: &Job, units: System) -> String {
         .iter()
         .min_by(|a, b| a.1.abs().total_cmp(&b.1.abs()).then(a.0.cmp(b.0)));
     match nearest {
-        None => format!(
-            "the near edge of {}",
-            names.first().unwrap_or(&"the marking")
+        None => (
+            format!(
+                "the near edge of {}",
+                names.first().unwrap_or(&"the marking")
+            ),
+            false,
         ),
-        Some((&k, &y)) if y.abs() <= AT_ANCHOR_M => format!("the near edge of {}", label(k)),
-        Some((&k, &y)) => format!(
-            "the marking's anchor, {} {} the near edge of {}",
-            units.length(y.abs()),
-            if y < 0.0 { "past" } else { "before" },
-            label(k)
+        Some((&k, &y)) if y.abs() <= AT_ANCHOR_M => {
+            (format!("the near edge of {}", label(k)), false)
+        }
+        Some((&k, &y)) => (
+            format!(
+                "the marking's anchor, {} {} the near edge of {}",
+                units.length(y.abs()),
+                if y < 0.0 { "past" } else { "before" },
+                label(k)
+            ),
+            true,
         ),
     }
 }
@@ -406,11 +420,9 @@ pub fn stops(job: &Job) -> Vec<Stop> {
 
 /// [`stops`] in the crew's units.
 pub fn stops_in(job: &Job, units: System) -> Vec<Stop> {
-    let words = anchor_words_in(job, units);
-    let anchor = if words.starts_with("the marking's anchor") {
-        words
-    } else {
-        format!("{words} (the marking's anchor)")
+    let anchor = match anchor_in(job, units) {
+        (words, true) => words,
+        (words, false) => format!("{words} (the marking's anchor)"),
     };
     let n = job.stations.len();
     let mut work = vec![0.0; n];
