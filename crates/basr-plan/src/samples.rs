@@ -47,35 +47,34 @@ pub fn sample(
         ..Samples::default()
     };
     samples.reserve_exact(counts.iter().sum());
-    let mut stations: Vec<(usize, Vec<Timed>)> =
-        timed.stations.into_iter().take(n).enumerate().collect();
+    // each station with the job's row its rows start at
+    let mut start = 0usize;
+    let mut stations = timed
+        .stations
+        .into_iter()
+        .take(n)
+        .enumerate()
+        .map(|(si, rows)| {
+            let at = start;
+            start += counts[si];
+            (si, rows, at)
+        });
     // Stations are sampled in parallel, a few at a time and appended in
     // order (the same rows as one after another): a long job's rows are
     // held twice only for the stations in hand, not the whole job.
     let group = 2 * rayon::current_num_threads();
-    let mut first = 0usize;
-    while !stations.is_empty() {
-        let rest = stations.split_off(group.min(stations.len()));
-        let starts: Vec<usize> = stations
-            .iter()
-            .scan(first, |at, (si, _)| {
-                let start = *at;
-                *at += counts[*si];
-                Some(start)
-            })
-            .collect();
-        first += stations.iter().map(|(si, _)| counts[*si]).sum::<usize>();
-        let blocks: Vec<Result<Samples, CompileError>> = stations
+    loop {
+        let hand: Vec<(usize, Vec<Timed>, usize)> = stations.by_ref().take(group).collect();
+        if hand.is_empty() {
+            break;
+        }
+        let blocks: Vec<Result<Samples, CompileError>> = hand
             .into_par_iter()
-            .zip(starts)
-            .map(|((si, rows), start)| {
-                station_samples(plan, paths, robot, si, rows, start, period_s)
-            })
+            .map(|(si, rows, at)| station_samples(plan, paths, robot, si, rows, at, period_s))
             .collect();
         for block in blocks {
             samples.append(&mut block?);
         }
-        stations = rest;
     }
     Ok(samples)
 }
