@@ -930,20 +930,15 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
         if problems == 1 { "" } else { "s" },
         if notices == 1 { "" } else { "s" },
     ));
-    let shown: Vec<&Warning> = s
-        .warnings
-        .iter()
-        .filter(|w| args.verbose || w.severity == Some(Severity::Problem))
-        .collect();
     if args.verbose {
-        for w in shown {
+        for w in &s.warnings {
             let sev = w.severity.map_or("", Severity::name);
             lines.push(format!("  {sev}: {}", w.message));
         }
         return lines;
     }
     let room = MAX_LINES.saturating_sub(lines.len());
-    lines.extend(problem_lines(&shown, room));
+    lines.extend(problem_lines(&s.warnings, room));
     lines
 }
 
@@ -1001,11 +996,15 @@ fn film_line(f: &basr::job::FilmSummary) -> String {
     )
 }
 
-/// The `problems` (warnings of that severity), one line a group of the
-/// same warning (`  problem: …, the same on strokes …`), in at most `room`
-/// lines (the last then says how many more there are and where).
-pub(super) fn problem_lines(problems: &[&Warning], room: usize) -> Vec<String> {
-    let groups = grouped(problems)
+/// The problems among `warnings`, one line a group of the same warning
+/// (`  problem: …, the same on strokes …`), in at most `room` lines (the
+/// last then says how many more there are and where).
+pub(super) fn problem_lines(warnings: &[Warning], room: usize) -> Vec<String> {
+    let problems: Vec<&Warning> = warnings
+        .iter()
+        .filter(|w| w.severity == Some(Severity::Problem))
+        .collect();
+    let groups = grouped(&problems)
         .into_iter()
         .map(|g| format!("  problem: {}{}", g[0].message, same_on(&g)))
         .collect::<Vec<_>>();

@@ -556,13 +556,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             // Why, as compile says it; the notes' remedies are the
             // planner's (letter sizes, tips), which the crew cannot change
             // at the site: what it can do comes after.
-            let problems: Vec<&basr::job::Warning> = new
-                .summary
-                .warnings
-                .iter()
-                .filter(|w| w.severity == Some(basr::job::Severity::Problem))
-                .collect();
-            for line in super::compile::problem_lines(&problems, 8) {
+            for line in super::compile::problem_lines(&new.summary.warnings, 8) {
                 note!("{line}");
             }
             note!(
