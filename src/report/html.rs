@@ -212,27 +212,21 @@ fn film(out: &mut String, s: &Sheet) {
     // verdict (and the job's) judges the whole marking, and one letter's
     // figures, over a few thousand cells, scatter more (SCHOOL at 6 ft:
     // S and C at 3.0 and 3.3 % overspray, the word at 2.2 %).
-    let t = &s.film_verdict.thresholds;
-    let pct = |v: Option<f64>, l: &super::Letter, metric: &str| {
-        let limit = match metric {
-            "cv" => t.cv_max,
-            "coverage" => t.coverage_min,
-            _ => t.overspray_max,
-        };
+    let pct = |c: &crate::paint::verdict::Check| {
         // two decimals where one would read as the limit itself (3.0 %
         // over a 3 % limit, or 3.0 % within it)
-        let t = v.map_or("–".into(), |v| {
+        let t = c.value.map_or("–".into(), |v| {
             let short = format!("{:.1}", v * 100.0);
-            if short == format!("{:.1}", limit * 100.0) && v != limit {
+            if short == format!("{:.1}", c.limit * 100.0) && v != c.limit {
                 format!("{:.2} %", v * 100.0)
             } else {
                 format!("{short} %")
             }
         });
-        if l.over.contains(&metric) {
-            format!("<strong>{t}</strong>")
+        if c.pass {
+            format!("<td class=\"num\">{t}</td>")
         } else {
-            t
+            format!("<td class=\"num\"><strong>{t}</strong></td>")
         }
     };
     let film_passes = s.film_verdict.pass();
@@ -240,16 +234,13 @@ fn film(out: &mut String, s: &Sheet) {
         let _ = writeln!(
             out,
             "<tr><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>\
-             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
-             <td class=\"num\">{}</td><td>{}</td></tr>",
+             <td class=\"num\">{}</td>{}<td>{}</td></tr>",
             l.line,
             l.place,
             escape(&l.char),
             l.mean_film_m
                 .map_or("–".into(), |f| format!("{:.0} µm", f * 1e6)),
-            pct(l.cv, l, "cv"),
-            pct(l.coverage, l, "coverage"),
-            pct(l.overspray, l, "overspray"),
+            l.checks.iter().map(pct).collect::<String>(),
             if !l.pass() && film_passes {
                 "<span class=\"notice\"><strong>OVER</strong></span>"
             } else {
@@ -259,6 +250,7 @@ fn film(out: &mut String, s: &Sheet) {
     }
     out.push_str("</table>\n");
     if film_passes && s.letters.iter().any(|l| !l.pass()) {
+        let t = &s.film_verdict.thresholds;
         let _ = writeln!(
             out,
             "<p class=\"notice\"><strong>OVER</strong>: that letter's own figure in bold is \

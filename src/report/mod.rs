@@ -107,18 +107,15 @@ pub struct Letter {
     pub place: usize,
     pub char: String,
     pub mean_film_m: Option<f64>,
-    pub cv: Option<f64>,
-    pub coverage: Option<f64>,
-    pub overspray: Option<f64>,
-    /// The figures past the bounds the whole film is judged by (`cv`,
-    /// `coverage`, `overspray`): none for a letter that passes.
-    pub over: Vec<&'static str>,
+    /// Its cv, coverage and overspray against the bounds the whole film is
+    /// judged by, in that order (`paint::verdict::glyph_checks`).
+    pub checks: Vec<crate::paint::verdict::Check>,
 }
 
 impl Letter {
     /// Every figure within the film's bounds.
     pub fn pass(&self) -> bool {
-        self.over.is_empty()
+        self.checks.iter().all(|c| c.pass)
     }
 }
 
@@ -477,14 +474,7 @@ fn letters(m: &Metrics, v: &Verdict) -> Vec<Letter> {
                 place: *place,
                 char: g.char.clone(),
                 mean_film_m: g.mean_film_m,
-                cv: g.cv,
-                coverage: g.coverage,
-                overspray: g.overspray,
-                over: crate::paint::verdict::glyph_checks(g, &v.thresholds)
-                    .into_iter()
-                    .filter(|c| !c.pass)
-                    .map(|c| c.metric)
-                    .collect(),
+                checks: crate::paint::verdict::glyph_checks(g, &v.thresholds),
             }
         })
         .collect()

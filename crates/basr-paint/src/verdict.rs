@@ -138,13 +138,8 @@ pub fn judge(m: &Metrics, t: &Thresholds) -> Verdict {
     }
 }
 
-/// Whether one letter passes (the per-letter figures of the plots and the
-/// job sheet mark the letters that do not).
-pub fn glyph_passes(g: &GlyphMetrics, t: &Thresholds) -> bool {
-    glyph_checks(g, t).iter().all(|c| c.pass)
-}
-
-/// One letter's figures against the bounds the whole film is judged by.
+/// One letter's figures against the bounds the whole film is judged by
+/// (the job sheet marks the letters past one).
 pub fn glyph_checks(g: &GlyphMetrics, t: &Thresholds) -> Vec<Check> {
     checks(g.cv, g.coverage, g.overspray, t)
 }
