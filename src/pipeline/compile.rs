@@ -370,25 +370,26 @@ fn kept_stops(
     } else {
         0
     };
-    let fits = req.verify
-        && site.kept.len() == n
-        && site.kept.iter().all(|k| {
-            k.plants_max_error_m.len() == plants
+    if !req.verify || site.kept.len() != n {
+        return vec![];
+    }
+    // every record, or none
+    let kept: Option<Vec<_>> = site
+        .kept
+        .iter()
+        .enumerate()
+        .map(|(si, k)| {
+            let figures = k.plants_max_error_m.len() == plants
                 && k.plants_max_error_m
                     .iter()
                     .chain([&k.max_error_m])
-                    .all(|e| e.is_finite() && *e >= 0.0)
-                && pace_of(k).is_some()
-        });
-    if !fits {
-        return vec![];
-    }
-    site.kept
-        .iter()
-        .enumerate()
-        .filter(|(si, _)| *si != site.fitted)
-        .filter_map(|(si, k)| Some((si, k, pace_of(k)?)))
-        .collect()
+                    .all(|e| e.is_finite() && *e >= 0.0);
+            figures.then(|| Some((si, k, pace_of(k)?))).flatten()
+        })
+        .collect();
+    let mut kept = kept.unwrap_or_default();
+    kept.retain(|(si, ..)| *si != site.fitted);
+    kept
 }
 
 /// The pace a job recorded for a stop, when it is one (every share in
