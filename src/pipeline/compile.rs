@@ -451,6 +451,11 @@ fn passes_on_road(
         passes::passes(strokes, &rungs, planner, tilt.method(), &req.tuning)
     };
     let stations_for = |passes: &passes::Passes| -> Result<stations::StationPlan, CompileError> {
+        // at the site, the job's stops as it grouped them
+        let site = req.site.as_ref();
+        if let Some(plan) = site.and_then(|s| basr_plan::site::job_stations(passes, s, robot)) {
+            return Ok(plan);
+        }
         let mut plan =
             stations::for_passes(passes, marking.lane_width_m, req.reach_margin_m, robot)?;
         match &req.site {

@@ -90,6 +90,52 @@ const RING_MAX_M: f64 = 5.0;
 /// Directions tried on each ring (5° apart).
 const RING_DIRECTIONS: usize = 72;
 
+/// The site's stations for `passes`, each pass at the stop that painted
+/// its stroke in the job being fitted (`Site::painted`), when that says
+/// it for every pass (each stroke painted from one stop) and the fitted
+/// stop reaches every point of its passes (as [`put_at_site`] asks): the
+/// job's own grouping, without searching stations afresh only to replace
+/// them (`stations::for_passes` then [`put_at_site`]; a third of
+/// planning STOP's fitted stop). `None` otherwise (a job written before
+/// `painted`, a stroke split between stops, a stop out of reach): the
+/// caller plans the stations and [`put_at_site`] says what is wrong.
+pub fn job_stations(passes: &Passes, site: &Site, robot: &AnyRobot) -> Option<StationPlan> {
+    let mut stop_of = std::collections::BTreeMap::new();
+    for (si, stop) in site.painted.iter().enumerate() {
+        for p in stop {
+            if *stop_of.entry(p.stroke).or_insert(si) != si {
+                return None;
+            }
+        }
+    }
+    let station_of: Vec<usize> = passes
+        .passes
+        .iter()
+        .map(|p| stop_of.get(&p.stroke).copied())
+        .collect::<Option<_>>()?;
+    let n = site.stations.len();
+    if site.painted.len() != n || site.fitted >= n || station_of.iter().any(|&s| s >= n) {
+        return None;
+    }
+    let region = robot.reach();
+    let margin = |x: f64, y: f64| region.margin(x, y);
+    // each stop's worst margin over its passes' points, as the planner's
+    let mut margins = vec![f64::INFINITY; n];
+    for (p, &si) in passes.passes.iter().zip(&station_of) {
+        let st = &site.stations[si];
+        for q in thin_tips(&p.knots) {
+            let b = st.road_to_base(q);
+            margins[si] = margins[si].min(margin(b[0], b[1]));
+        }
+    }
+    (margins[site.fitted] >= 0.0).then(|| StationPlan {
+        stations: site.stations.clone(),
+        station_of,
+        margin_m: margins,
+        road: site.road.clone(),
+    })
+}
+
 /// `plan` with the site's stations and road: the stations compile planned
 /// must be as many as the site's, and the fitted stop must reach every
 /// point of its passes with `margin_m` to spare, or the move that does is
@@ -266,6 +312,67 @@ fn move_parts(st: &Station, d: [f64; 2]) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The job's grouping: each pass (stroke 2's two among them) at the
+    /// stop that painted its stroke in the job, at the site's poses; a
+    /// stroke painted from two stops, one the job never painted, a job
+    /// without painted passes, or a fitted stop out of reach: none, so
+    /// the planner's search and `put_at_site`'s refusal speak.
+    #[test]
+    fn a_fitted_job_keeps_the_jobs_stops() {
+        use crate::knots::Knot;
+        use crate::passes::Pass;
+        let robot = AnyRobot::Basr(basr_robot::Robot::basr());
+        let down = -std::f64::consts::FRAC_PI_2;
+        let stop = |y_m: f64| Station {
+            x_m: 0.0,
+            y_m,
+            heading_rad: down,
+        };
+        // stop 0's axis 4 m up the lane, stop 1's 14 m: each paints 3 m
+        // behind it
+        let pass = |stroke: usize, y: f64| Pass {
+            stroke,
+            knots: vec![Knot::at(-0.2, y), Knot::at(0.2, y)],
+        };
+        let passes = Passes {
+            passes: vec![pass(0, 1.0), pass(1, 11.0), pass(2, 11.2), pass(2, 11.4)],
+            ..Passes::default()
+        };
+        let ran = |stroke: usize| PaintedPass {
+            stroke,
+            from_m: [0.0, 0.0],
+            to_m: [0.0, 0.0],
+            quarter_m: [0.0, 0.0],
+        };
+        let site = Site {
+            stations: vec![stop(4.0), stop(14.0)],
+            fitted: 1,
+            road: Road::default(),
+            kept: vec![],
+            painted: vec![vec![ran(0)], vec![ran(1), ran(2)]],
+        };
+        let plan = job_stations(&passes, &site, &robot).expect("the job says every pass");
+        assert_eq!(plan.station_of, vec![0, 1, 1, 1]);
+        assert_eq!(plan.stations, site.stations);
+        assert!(
+            plan.margin_m.iter().all(|&m| m > 0.0),
+            "{:?}",
+            plan.margin_m
+        );
+        let mut far = site.clone();
+        far.stations[1] = stop(24.0);
+        assert!(job_stations(&passes, &far, &robot).is_none());
+        let mut two = site.clone();
+        two.painted[0].push(ran(1));
+        assert!(job_stations(&passes, &two, &robot).is_none());
+        let mut unpainted = site.clone();
+        unpainted.painted[1].pop();
+        assert!(job_stations(&passes, &unpainted, &robot).is_none());
+        let mut old = site.clone();
+        old.painted.clear();
+        assert!(job_stations(&passes, &old, &robot).is_none());
+    }
 
     /// Back to the planned stop: a truck turned far round is told to turn
     /// (it had a move of 0.00 m to make), in the sheet's convention
