@@ -239,7 +239,7 @@ fn not_ready_exits_1_everywhere_and_says_so() {
         d,
         &[
             "compile",
-            "STOP AHEAD",
+            "BOB",
             "--letter-height",
             "6ft",
             "--json",
@@ -256,27 +256,40 @@ fn not_ready_exits_1_everywhere_and_says_so() {
         "{}",
         stderr(&out)
     );
-    let job = d.join("STOP_AHEAD.job.json");
+    let job = d.join("BOB.job.json");
     assert!(job.exists(), "a NOT READY job is written all the same");
-    let out = expect(d, &["check", "STOP_AHEAD.job.json"], 1);
+    let out = expect(d, &["check", "BOB.job.json"], 1);
     let err = stderr(&out);
     assert!(
-        err.contains("STOP_AHEAD.job.json: verdict NOT READY")
+        err.contains("BOB.job.json: verdict NOT READY")
             && err.contains("do not load it on the truck"),
         "{err}"
     );
-    let out = expect(d, &["check", "--validate-only", "STOP_AHEAD.job.json"], 0);
+    let out = expect(d, &["check", "--validate-only", "BOB.job.json"], 0);
     assert!(
         stderr(&out).contains("ok (verdict NOT READY)"),
         "{}",
         stderr(&out)
     );
-    let out = expect(d, &["report", "STOP_AHEAD.job.json", "--no-sim"], 1);
+    let out = expect(d, &["report", "BOB.job.json", "--no-sim"], 1);
     let err = stderr(&out);
+    assert!(err.starts_with("NOT READY: wrote BOB.sheet.html"), "{err}");
+}
+
+/// A job compile planned with the gentle tilt says so in its summary (D
+/// at 6 ft: its first plan had problems); one planned as usual does not.
+#[test]
+fn a_gently_planned_job_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = expect(d, &["compile", "D", "--letter-height", "6ft"], 0);
     assert!(
-        err.starts_with("NOT READY: wrote STOP_AHEAD.sheet.html"),
-        "{err}"
+        stderr(&out).contains("\n  tilt: planned gently (its first plan had problems"),
+        "{}",
+        stderr(&out)
     );
+    let out = expect(d, &["compile", "D"], 0);
+    assert!(!stderr(&out).contains("planned gently"), "{}", stderr(&out));
 }
 
 /// A scene measured with a tape in feet compiles to the job of its metric

@@ -332,6 +332,45 @@ fn level(stop: usize) -> StopPlane {
     }
 }
 
+/// A job compile planned with the gentle tilt (D at 6 ft: its first plan
+/// slowed the bowl on the tilt's acceleration) records it, and fit plans
+/// its stop gently again: the fitted job records it too and passes every
+/// point of `fit_case`.
+#[test]
+fn a_gently_planned_job_is_fitted_gently() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    fit_case(
+        d,
+        &["compile", "D", "--letter-height", "6ft", "-o", "j.job.json"],
+        None,
+        1,
+        // on the truck's plane: a road 3 mm under it holds 6 ft's narrow
+        // strokes at the bottom of the vertical stroke, 3 mm over the plan
+        // (`tuning::Surface::clamp_free_m`)
+        |job| {
+            moved(
+                job,
+                1,
+                MOVE,
+                StopPlane {
+                    z_m: 0.0,
+                    ..level(1)
+                },
+            )
+        },
+    );
+    let gentle = |name: &str| {
+        Job::read(&d.join(name))
+            .unwrap()
+            .layout
+            .options
+            .is_some_and(|o| o.gentle_tilt)
+    };
+    assert!(gentle("j.job.json"), "compile planned D at 6 ft gently");
+    assert!(gentle("f.job.json"), "fit planned it gently again");
+}
+
 /// The shipped railroad-crossing scene compiled in `d` as j.job.json, and
 /// its marking file's path.
 fn rxr_job(d: &Path) -> (Job, String) {

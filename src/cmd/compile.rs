@@ -32,7 +32,11 @@ pub enum TiltArg {
 /// Every job is verified in the closed-loop simulator and its film measured
 /// as `basr preview` measures it (summary.film): a film that fails the
 /// preview's bounds (cv <= 0.05, coverage >= 0.98, overspray <= 0.03) is a
-/// problem and the verdict reads NOT READY.
+/// problem and the verdict reads NOT READY. Before that, a job whose plan
+/// has problems is planned again with each spray tip the robot lists and
+/// with a gentler tilt (a smaller share of the tilt joint's acceleration:
+/// small letters' bowls), and the first that paints is written; the
+/// summary names the tip to mount and says "tilt: planned gently".
 ///
 /// When a word marking (a message or a file of lines) is NOT READY, compile
 /// then compiles the quarter-foot letter heights around it, up to 2 ft each
@@ -899,6 +903,13 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     }
     if let Some(tip) = basr::report::tip_words(job) {
         lines.push(format!("  spray tip: {tip}"));
+    }
+    if job.layout.options.as_ref().is_some_and(|o| o.gentle_tilt) {
+        lines.push(
+            "  tilt: planned gently (its first plan had problems; a smaller share of the tilt \
+             joint's acceleration paints it)"
+                .to_string(),
+        );
     }
     if let Some(f) = &s.film {
         lines.push(film_line(f));

@@ -36,6 +36,16 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
 /// its robot's `paint.mounted`). When no tip paints it without problems
 /// the first tip's job is kept: its notes name the tip. A robot whose tip
 /// is mounted already is planned with that tip alone.
+///
+/// A job that has problems so is planned again with a gentler tilt
+/// (`CompileRequest::gentle_tilt`: a smaller share of the tilt joint's
+/// acceleration, `tuning::Rates::gentle_tilt_acc_share`), first without
+/// the closed loop as another tip is; the gentle job is kept when it has
+/// none (it records `options.gentle_tilt`). Small letters' bowls ask the
+/// tilt for more acceleration than the time law then gives, and the
+/// slowed nozzle lays a heavy film there; a job that paints with the
+/// default share keeps it (a gentler tilt slows some 8 ft tails instead).
+/// Not at the site: `basr fit` plans as the job being fitted was planned.
 pub fn compile_strokes(
     req: &CompileRequest,
     marking: &layout::Marking,
@@ -43,6 +53,49 @@ pub fn compile_strokes(
     robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
+    let job = compile_tips(req, marking, font, robot.clone(), strokes)?;
+    if req.gentle_tilt || req.site.is_some() || problems(&job) == 0 {
+        return Ok(job);
+    }
+    let gentle = CompileRequest {
+        gentle_tilt: true,
+        ..req.clone()
+    };
+    let planned = CompileRequest {
+        verify: false,
+        ..gentle.clone()
+    };
+    if req.verify
+        && !compile_tips(&planned, marking, font, robot.clone(), strokes)
+            .is_ok_and(|j| problems(&j) == 0)
+    {
+        return Ok(job);
+    }
+    match compile_tips(&gentle, marking, font, robot, strokes) {
+        Ok(g) if problems(&g) == 0 => Ok(g),
+        _ => Ok(job),
+    }
+}
+
+/// [`compile_strokes`] with the request's tilt as it is: each tip the
+/// robot carries, in turn (below).
+fn compile_tips(
+    req: &CompileRequest,
+    marking: &layout::Marking,
+    font: &crate::font::Font,
+    robot: crate::robot::AnyRobot,
+    strokes: &PlacedStrokes,
+) -> Result<Job, CompileError> {
+    let tuned;
+    let req = if req.gentle_tilt {
+        tuned = CompileRequest {
+            tuning: req.planning_tuning(),
+            ..req.clone()
+        };
+        &tuned
+    } else {
+        req
+    };
     // A robot with its tip already mounted (a job's own, planned again by
     // `basr fit` or `preview --compare`) keeps that tip: the crew has it on
     // the gun, and the job's other stops were painted with it.

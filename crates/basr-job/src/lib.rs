@@ -415,6 +415,11 @@ pub struct PlanOptions {
     pub gun_lag_s: f64,
     /// Margin kept from the edge of the arm's reach (m).
     pub reach_margin_m: f64,
+    /// The tilt was planned gently (a smaller share of its joint's
+    /// acceleration): compile's second plan of a job whose first had
+    /// problems. Absent when false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub gentle_tilt: bool,
 }
 
 /// One control period's setpoint: a row of the CSV.

@@ -173,9 +173,9 @@ pub fn limit_tilt_rate(
 }
 
 /// The vertical joint's speed (m/s) and acceleration (m/s²) the nozzle
-/// height may take while painting: the same shares of its limits as the
-/// tilt's (`tuning::Rates`), for the same spline; None for a kind without
-/// a vertical joint.
+/// height may take while painting: the tilt's share of its speed limit
+/// and its own of its acceleration limit (`tuning::Rates`), for the same
+/// spline; None for a kind without a vertical joint.
 pub fn height_follow(robot: &AnyRobot, rates: &Rates) -> Option<[f64; 2]> {
     let j = robot
         .joint_names()
@@ -184,7 +184,7 @@ pub fn height_follow(robot: &AnyRobot, rates: &Rates) -> Option<[f64; 2]> {
     let l = robot.limits()[j];
     Some([
         l.max_vel * rates.tilt_share,
-        l.max_acc * rates.tilt_acc_share,
+        l.max_acc * rates.height_acc_share,
     ])
 }
 

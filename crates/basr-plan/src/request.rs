@@ -124,6 +124,12 @@ pub struct CompileRequest {
     /// the command line writes; another only where a caller explores one
     /// (the sensitivity test). A job does not record it.
     pub tuning: crate::tuning::Tuning,
+    /// Plan the tilt gently (`tuning::Rates::gentle_tilt_acc_share` for
+    /// `tilt_acc_share`): compile sets it when the first plan of a job has
+    /// problems and keeps the gentle job when that has none; the job
+    /// records it (`options.gentle_tilt`), so that `basr fit` and
+    /// `preview --compare` plan again as compile did.
+    pub gentle_tilt: bool,
 }
 
 impl CompileRequest {
@@ -146,6 +152,7 @@ impl CompileRequest {
             film: true,
             site: None,
             tuning: crate::tuning::Tuning::DEFAULT,
+            gentle_tilt: false,
         }
     }
 }
@@ -160,11 +167,13 @@ impl CompileRequest {
             gun_lead_s: self.gun_lead_s,
             gun_lag_s: self.gun_lag_s,
             reach_margin_m: self.reach_margin_m,
+            gentle_tilt: self.gentle_tilt,
         };
         let same = o.rung_spacing_m == d.rung_spacing_m
             && o.gun_lead_s == d.gun_lead_s
             && o.gun_lag_s == d.gun_lag_s
-            && o.reach_margin_m == d.reach_margin_m;
+            && o.reach_margin_m == d.reach_margin_m
+            && o.gentle_tilt == d.gentle_tilt;
         (!same).then_some(o)
     }
 
@@ -176,7 +185,18 @@ impl CompileRequest {
         self.gun_lead_s = o.map_or(d.gun_lead_s, |o| o.gun_lead_s);
         self.gun_lag_s = o.map_or(d.gun_lag_s, |o| o.gun_lag_s);
         self.reach_margin_m = o.map_or(d.reach_margin_m, |o| o.reach_margin_m);
+        self.gentle_tilt = o.is_some_and(|o| o.gentle_tilt);
         self
+    }
+
+    /// The tuning this request plans with: `tuning`, its tilt's
+    /// acceleration share the gentle one where `gentle_tilt`.
+    pub fn planning_tuning(&self) -> crate::tuning::Tuning {
+        let mut t = self.tuning;
+        if self.gentle_tilt {
+            t.rates.tilt_acc_share = t.rates.gentle_tilt_acc_share;
+        }
+        t
     }
 }
 

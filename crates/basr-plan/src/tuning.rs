@@ -99,14 +99,37 @@ pub struct Rates {
     /// of its spline between knots, which exceeds the knot-to-knot slope
     /// by up to ≈ 15 % where the rate changes; 0.8 leaves that room.
     pub tilt_share: f64,
-    /// Share of the tilt joint's (and the height joint's) acceleration
-    /// limit the knot-to-knot value may take (1). assumed: the time law's
+    /// Share of the tilt joint's acceleration limit the knot-to-knot tilt
+    /// may take (1). assumed: the time law's
     /// shape-preserving spline is flat at a local extremum of the knots'
     /// values, which about doubles the curvature next to it, so under half,
     /// and the time law's step bounds are conservative on top: measured on
     /// 8's waist, 0.4 left the tilt's acceleration slowing it to 1.16× film
-    /// there, 0.3 to 1.08×.
+    /// there, 0.3 to 1.08×. The nozzle height's joint keeps its own
+    /// share (`height_acc_share`); a job with problems is planned again
+    /// with `gentle_tilt_acc_share`.
     pub tilt_acc_share: f64,
+    /// Share of the vertical joint's acceleration limit the knot-to-knot
+    /// nozzle height may take (1). assumed: the same spline as the tilt's
+    /// (`tilt_acc_share`'s 0.3 of 8's waist); a gently planned job keeps it
+    /// (the height's follow only ever raises a knot, a fan wider than its
+    /// rung, and lowering it helped no glyph of the sweep that lowering
+    /// the tilt's did).
+    pub height_acc_share: f64,
+    /// `tilt_acc_share` for a job planned gently (`CompileRequest::
+    /// gentle_tilt`): compile plans a job again with it when its first plan
+    /// has problems, and keeps the gentle job when that has none (1). The
+    /// tilt's acceleration grows as the letter shrinks (a bowl's tilt turns
+    /// over a shorter path at the same speed): 0.3 leaves 6 ft's D, P, R, 3
+    /// and 5 NOT READY (B's bowls slowed to 1.41× film with the 509 tip),
+    /// 7 ft's B and 3 and 9 ft's B and P. Measured over every glyph alone
+    /// at 6, 7, 9 and 10 ft as the one share: 0.09, 0.10 and 0.11 paint the
+    /// same glyphs (all but 6 ft's B, C, G, J, Q and S); 0.12 loses 9 ft's
+    /// B, 0.132 7 ft's B and 9 ft's P, 0.15–0.2 6 ft's 3, 0.25 its P too;
+    /// as compile's second plan, 0.09 and 0.11 paint the same glyphs at 6,
+    /// 7 and 9 ft as 0.10. Not the default: at 8 ft it slows 6's and 9's tails to 1.27× film,
+    /// which 0.3 paints within 1.15×.
+    pub gentle_tilt_acc_share: f64,
     /// Rounds of smoothing of the tilt's spread change (count). assumed: 4
     /// round the corners over ≈ 3 knots either side.
     pub tilt_smoothing: usize,
@@ -271,6 +294,8 @@ impl Tuning {
             tilt_spread_share: 0.85,
             tilt_share: 0.8,
             tilt_acc_share: 0.3,
+            height_acc_share: 0.3,
+            gentle_tilt_acc_share: 0.1,
             tilt_smoothing: 4,
             tilt_inset_rad: 0.0044, // 0.25°
         },
@@ -328,6 +353,8 @@ impl Tuning {
                     tilt_spread_share,
                     tilt_share,
                     tilt_acc_share,
+                    height_acc_share,
+                    gentle_tilt_acc_share,
                     tilt_smoothing,
                     tilt_inset_rad,
                 },
@@ -375,6 +402,8 @@ impl Tuning {
             ("rates.tilt_spread_share", Real(tilt_spread_share)),
             ("rates.tilt_share", Real(tilt_share)),
             ("rates.tilt_acc_share", Real(tilt_acc_share)),
+            ("rates.height_acc_share", Real(height_acc_share)),
+            ("rates.gentle_tilt_acc_share", Real(gentle_tilt_acc_share)),
             ("rates.tilt_smoothing", Count(tilt_smoothing)),
             ("rates.tilt_inset_rad", Real(tilt_inset_rad)),
             ("narrow.max_turn_rad", Real(max_turn_rad)),
