@@ -86,16 +86,6 @@ fn compile_tips(
     robot: crate::robot::AnyRobot,
     strokes: &PlacedStrokes,
 ) -> Result<Job, CompileError> {
-    let tuned;
-    let req = if req.gentle_tilt {
-        tuned = CompileRequest {
-            tuning: req.planning_tuning(),
-            ..req.clone()
-        };
-        &tuned
-    } else {
-        req
-    };
     // A robot with its tip already mounted (a job's own, planned again by
     // `basr fit` or `preview --compare`) keeps that tip: the crew has it on
     // the gun, and the job's other stops were painted with it.
@@ -495,13 +485,15 @@ fn passes_on_road(
     robot: &crate::robot::AnyRobot,
     tilt: request::Tilt,
 ) -> Result<(passes::Passes, stations::StationPlan), CompileError> {
+    // the tilt's share of its joint's acceleration, gentle where asked
+    let tuning = req.planning_tuning();
     let plan_for = |planner: &crate::robot::AnyRobot| -> Result<passes::Passes, CompileError> {
         let rungs = rungs::rungs(
             strokes,
             req.rung_spacing_m,
-            Some(&passes::turn_budget(planner, &req.tuning)),
+            Some(&passes::turn_budget(planner, &tuning)),
         );
-        passes::passes(strokes, &rungs, planner, tilt.method(), &req.tuning)
+        passes::passes(strokes, &rungs, planner, tilt.method(), &tuning)
     };
     let stations_for = |passes: &passes::Passes| -> Result<stations::StationPlan, CompileError> {
         // at the site, the job's stops as it grouped them

@@ -120,14 +120,15 @@ pub fn job_stations(passes: &Passes, site: &Site, robot: &AnyRobot) -> Option<St
     let region = robot.reach();
     let margin = |x: f64, y: f64| region.margin(x, y);
     // each stop's worst margin over its passes' points, as the planner's
-    let mut margins = vec![f64::INFINITY; n];
+    let mut points = vec![Vec::new(); n];
     for (p, &si) in passes.passes.iter().zip(&station_of) {
-        let st = &site.stations[si];
-        for q in thin_tips(&p.knots) {
-            let b = st.road_to_base(q);
-            margins[si] = margins[si].min(margin(b[0], b[1]));
-        }
+        points[si].extend(thin_tips(&p.knots));
     }
+    let margins: Vec<f64> = points
+        .iter()
+        .zip(&site.stations)
+        .map(|(pts, st)| worst_reach(pts, st, &margin))
+        .collect();
     (margins[site.fitted] >= 0.0).then(|| StationPlan {
         stations: site.stations.clone(),
         station_of,
@@ -171,15 +172,7 @@ pub fn put_at_site(
         .filter(|(_, &s)| s == si)
         .flat_map(|(p, _)| thin_tips(&p.knots))
         .collect();
-    let worst = |s: &Station| {
-        points
-            .iter()
-            .map(|p| {
-                let b = s.road_to_base(*p);
-                margin(b[0], b[1])
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
+    let worst = |s: &Station| worst_reach(&points, s, &margin);
     let here = worst(&st);
     if let Some(m) = plan.margin_m.get_mut(si) {
         *m = here;
@@ -209,6 +202,18 @@ pub fn put_at_site(
         short_m: -here,
         advice,
     })
+}
+
+/// The worst reach margin (m) of road points `points` from a truck at
+/// `st` (negative: one lies out of reach).
+fn worst_reach(points: &[[f64; 2]], st: &Station, margin: &impl Fn(f64, f64) -> f64) -> f64 {
+    points
+        .iter()
+        .map(|p| {
+            let b = st.road_to_base(*p);
+            margin(b[0], b[1])
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// The smallest road-frame move of `st` (same heading) after which every

@@ -100,9 +100,9 @@ pub struct Rates {
     /// by up to ≈ 15 % where the rate changes; 0.8 leaves that room.
     pub tilt_share: f64,
     /// Share of the tilt joint's acceleration limit the knot-to-knot tilt
-    /// may take (1). assumed: the time law's
-    /// shape-preserving spline is flat at a local extremum of the knots'
-    /// values, which about doubles the curvature next to it, so under half,
+    /// may take (1). assumed: the time law's shape-preserving spline is
+    /// flat at a local extremum of the knots' values, which about doubles
+    /// the curvature next to it, so under half,
     /// and the time law's step bounds are conservative on top: measured on
     /// 8's waist, 0.4 left the tilt's acceleration slowing it to 1.16× film
     /// there, 0.3 to 1.08×. The nozzle height's joint keeps its own
@@ -127,8 +127,8 @@ pub struct Rates {
     /// same glyphs (all but 6 ft's B, C, G, J, Q and S); 0.12 loses 9 ft's
     /// B, 0.132 7 ft's B and 9 ft's P, 0.15–0.2 6 ft's 3, 0.25 its P too;
     /// as compile's second plan, 0.09 and 0.11 paint the same glyphs at 6,
-    /// 7 and 9 ft as 0.10. Not the default: at 8 ft it slows 6's and 9's tails to 1.27× film,
-    /// which 0.3 paints within 1.15×.
+    /// 7 and 9 ft as 0.10. Not the default: at 8 ft it slows 6's and 9's
+    /// tails to 1.27× film, which 0.3 paints within 1.15×.
     pub gentle_tilt_acc_share: f64,
     /// Rounds of smoothing of the tilt's spread change (count). assumed: 4
     /// round the corners over ≈ 3 knots either side.
