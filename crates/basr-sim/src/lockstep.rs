@@ -21,6 +21,9 @@ use std::sync::{Condvar, Mutex, PoisonError};
 pub(super) struct Group {
     state: Mutex<State>,
     moved: Condvar,
+    /// How far (s) the leader may run ahead of the slowest other run
+    /// (`leading_by`); unbounded unless set.
+    lead_s: f64,
 }
 
 struct State {
@@ -40,7 +43,20 @@ impl Group {
                 failed_at: None,
             }),
             moved: Condvar::new(),
+            lead_s: f64::INFINITY,
         }
+    }
+
+    /// The group with its leader held to at most `lead_s` ahead of the
+    /// slowest other run still going ([`Gate::go_on`]): a leader on a core
+    /// of its own while the others share the rest runs far ahead of them,
+    /// and all of that is lost when one of them then fails early (a
+    /// fitted STOP's description ran 88 s of simulated time while the
+    /// plant set reached its failure at 24 s). Held, it runs no further
+    /// than `lead_s` past the boundary after that failure, and the others
+    /// still never wait for it longer than they would.
+    pub(super) fn leading_by(self, lead_s: f64) -> Group {
+        Group { lead_s, ..self }
     }
 
     /// Run `index`'s gate (the others wait for it at each boundary from
@@ -127,10 +143,16 @@ impl Gate<'_> {
         g.moved.notify_all();
         // The leader runs on: the others wait for it at each boundary, so
         // they still know of its failures before it, and no core waits for
-        // the slowest of the others while the leader has work. It ends
-        // once it knows the others failed before here.
+        // the slowest of the others while the leader has work, up to its
+        // lead (`Group::leading_by`). It ends once it knows the others
+        // failed before here.
         if self.leader {
-            let go = !s.failed_at.is_some_and(|f| f < t_s);
+            let behind = t_s - g.lead_s;
+            let failed = |s: &State| s.failed_at.is_some_and(|f| f < t_s);
+            while !failed(&s) && s.at.iter().any(|&a| a < behind) {
+                s = g.moved.wait(s).unwrap_or_else(PoisonError::into_inner);
+            }
+            let go = !failed(&s);
             self.stopped = !go;
             return go;
         }
@@ -250,6 +272,26 @@ mod tests {
         }
     }
 
+    /// A leader held to a lead ends no later than that lead past the
+    /// boundary after the others' first failure, however far ahead the
+    /// threads' timing would let it run.
+    #[test]
+    fn a_held_leader_ends_within_its_lead_of_the_first_failure() {
+        let runs: &[(f64, Option<f64>)] = &[(40.0, None), (40.0, Some(2.5)), (40.0, None)];
+        for _ in 0..20 {
+            let got = ended_leading(runs, Some(0), 2.0);
+            assert_eq!(got[1..], [2.5, 3.0], "the others end as without a lead");
+            assert!(
+                got[0] >= 3.0 && got[0] <= 5.0,
+                "the leader ended at {}, not within 2 of boundary 3",
+                got[0]
+            );
+        }
+        // without a failure the lead changes nothing: every run ends at its end
+        let runs: &[(f64, Option<f64>)] = &[(12.0, None), (10.5, None), (12.0, Some(11.5))];
+        assert_eq!(ended_leading(runs, Some(0), 2.0), [12.0, 10.5, 11.5]);
+    }
+
     /// Making the leader's gate leaves it in the group: the others wait for
     /// it until it reaches a boundary or leaves.
     #[test]
@@ -266,7 +308,12 @@ mod tests {
     /// Where each run of `runs` (end, failure) ends, in step on threads,
     /// run `leader` with the leader's gate.
     fn ended(runs: &[(f64, Option<f64>)], leader: Option<usize>) -> Vec<f64> {
-        let group = Group::new(runs.len());
+        ended_leading(runs, leader, f64::INFINITY)
+    }
+
+    /// [`ended`] with the leader held to `lead_s` (`Group::leading_by`).
+    fn ended_leading(runs: &[(f64, Option<f64>)], leader: Option<usize>, lead_s: f64) -> Vec<f64> {
+        let group = Group::new(runs.len()).leading_by(lead_s);
         let gates = group.gates(leader);
         std::thread::scope(|sc| {
             let handles: Vec<_> = runs

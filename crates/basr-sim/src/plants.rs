@@ -390,6 +390,14 @@ pub struct Beside {
     pub plants: Result<Vec<(super::Report, Checkpoints)>, Vec<Checkpoints>>,
 }
 
+/// How many checkpoints' time the description's run may lead the plants
+/// in step beside it (`lockstep::Group::leading_by`). assumed: two keep a
+/// fitted STOP's description from running far past the plants' first
+/// failure (`benches/fit.rs`: the description had run to 88 s when a plant
+/// failed at 24 s; the fit simulated 214 300 ticks, held 210 300) and
+/// leave compile STOP's ticks as they were (205 352).
+const LEAD_CHECKPOINTS: f64 = 2.0;
+
 /// A run of a group in step, and whether the group ended it.
 type StepRun = (Result<(super::Outcome, Checkpoints), SimError>, bool);
 
@@ -414,7 +422,11 @@ fn in_step(
         runs.push((nominal, resume));
     }
     runs.extend(models.iter().zip(resumes));
-    let group = super::lockstep::Group::new(runs.len());
+    // The description leads by two checkpoints at most: a plant's failure
+    // then costs it at most that much more simulation than the plants, and
+    // the threads of the others still have its windows to catch up in.
+    let group = super::lockstep::Group::new(runs.len())
+        .leading_by(LEAD_CHECKPOINTS * super::run::CHECKPOINT_S);
     // Every gate before any thread (`Group::gates`).
     let gates = group.gates(led.then_some(0));
     std::thread::scope(|sc| {
