@@ -113,7 +113,7 @@ fn a_symbol_is_named_and_sized_and_a_not_ready_sheet_says_what_first() {
         d,
         &[
             "compile",
-            "BOB",
+            "BB",
             "--letter-height",
             "6ft",
             "-q",
@@ -121,9 +121,9 @@ fn a_symbol_is_named_and_sized_and_a_not_ready_sheet_says_what_first() {
         ],
     );
     assert_eq!(out.status.code(), Some(1));
-    let out = basr(d, &["report", "BOB.job.json", "--no-sim", "-q"]);
+    let out = basr(d, &["report", "BB.job.json", "--no-sim", "-q"]);
     assert_eq!(out.status.code(), Some(1));
-    let html = std::fs::read_to_string(d.join("BOB.sheet.html")).unwrap();
+    let html = std::fs::read_to_string(d.join("BB.sheet.html")).unwrap();
     let crew = html.split("id=\"appendix\"").next().unwrap();
     assert!(
         crew.contains("Do not paint this job. First fix: "),
@@ -133,7 +133,7 @@ fn a_symbol_is_named_and_sized_and_a_not_ready_sheet_says_what_first() {
     let groups = crew.split("id=\"groups\"").nth(1).unwrap();
     let lines = groups.matches("<li class=\"problem\">").count();
     let job: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(d.join("BOB.job.json")).unwrap()).unwrap();
+        serde_json::from_slice(&std::fs::read(d.join("BB.job.json")).unwrap()).unwrap();
     let problems = job["summary"]["warnings"]
         .as_array()
         .unwrap()

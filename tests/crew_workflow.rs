@@ -239,7 +239,7 @@ fn not_ready_exits_1_everywhere_and_says_so() {
         d,
         &[
             "compile",
-            "BOB",
+            "BB",
             "--letter-height",
             "6ft",
             "--json",
@@ -256,24 +256,24 @@ fn not_ready_exits_1_everywhere_and_says_so() {
         "{}",
         stderr(&out)
     );
-    let job = d.join("BOB.job.json");
+    let job = d.join("BB.job.json");
     assert!(job.exists(), "a NOT READY job is written all the same");
-    let out = expect(d, &["check", "BOB.job.json"], 1);
+    let out = expect(d, &["check", "BB.job.json"], 1);
     let err = stderr(&out);
     assert!(
-        err.contains("BOB.job.json: verdict NOT READY")
+        err.contains("BB.job.json: verdict NOT READY")
             && err.contains("do not load it on the truck"),
         "{err}"
     );
-    let out = expect(d, &["check", "--validate-only", "BOB.job.json"], 0);
+    let out = expect(d, &["check", "--validate-only", "BB.job.json"], 0);
     assert!(
         stderr(&out).contains("ok (verdict NOT READY)"),
         "{}",
         stderr(&out)
     );
-    let out = expect(d, &["report", "BOB.job.json", "--no-sim"], 1);
+    let out = expect(d, &["report", "BB.job.json", "--no-sim"], 1);
     let err = stderr(&out);
-    assert!(err.starts_with("NOT READY: wrote BOB.sheet.html"), "{err}");
+    assert!(err.starts_with("NOT READY: wrote BB.sheet.html"), "{err}");
 }
 
 /// A job compile planned with the gentle tilt says so in its summary (D
@@ -290,6 +290,72 @@ fn a_gently_planned_job_says_so() {
     );
     let out = expect(d, &["compile", "D"], 0);
     assert!(!stderr(&out).contains("planned gently"), "{}", stderr(&out));
+}
+
+/// Where the default quadrilateral tilt leaves problems and the trapezoid
+/// method's job has none, compile writes the trapezoid job and says so (Q
+/// at 6 ft: the tail's tight bowl); a tilt named with --tilt is kept.
+#[test]
+fn compile_paints_with_the_trapezoid_tilt_where_only_it_paints() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let tilt_of = |job: &str| {
+        let v: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(d.join(job)).unwrap()).unwrap();
+        v["layout"]["tilt_method"].as_str().unwrap().to_string()
+    };
+    let out = expect(
+        d,
+        &["compile", "Q", "--letter-height", "6ft", "-o", "q.job.json"],
+        0,
+    );
+    let err = stderr(&out);
+    assert!(err.contains("\n  tilt: trapezoid"), "{err}");
+    assert!(err.contains("verdict: READY"), "{err}");
+    assert_eq!(tilt_of("q.job.json"), "trapezoid");
+    // --json says the same; the job is the one the summary described
+    let out = expect(
+        d,
+        &[
+            "compile",
+            "Q",
+            "--letter-height",
+            "6ft",
+            "-o",
+            "q2.job.json",
+            "--json",
+        ],
+        0,
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["tilt"]["method"], "trapezoid", "{v}");
+    assert_eq!(
+        std::fs::read(d.join("q.job.json")).unwrap(),
+        std::fs::read(d.join("q2.job.json")).unwrap(),
+        "the same bytes"
+    );
+    let out = expect(
+        d,
+        &[
+            "compile",
+            "Q",
+            "--letter-height",
+            "6ft",
+            "--tilt",
+            "quadrilateral",
+            "--no-size-search",
+            "-o",
+            "named.job.json",
+        ],
+        1,
+    );
+    let err = stderr(&out);
+    assert!(err.contains("verdict: NOT READY"), "{err}");
+    assert!(!err.contains("tilt: trapezoid"), "{err}");
+    assert_eq!(tilt_of("named.job.json"), "quadrilateral");
+    // a job that paints with the default keeps it
+    expect(d, &["compile", "Q", "-o", "q8.job.json"], 0);
+    assert_eq!(tilt_of("q8.job.json"), "quadrilateral");
 }
 
 /// A scene measured with a tape in feet compiles to the job of its metric

@@ -15,7 +15,7 @@ fn compile_json(
         dir,
         &[
             "compile",
-            "BOB",
+            "BB",
             "--letter-height",
             height,
             "-o",
@@ -32,7 +32,7 @@ fn compile_json(
 fn a_not_ready_size_names_the_nearest_that_paint_and_they_do() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // BOB at 6 ft (MUTCD's minimum) is NOT READY on the default robot (its
+    // BB at 6 ft (MUTCD's minimum) is NOT READY on the default robot (its
     // B's bowls; STOP paints there since the gentle tilt, docs/planner.md).
     let (code, v) = compile_json(d, "6ft", "a.job.json");
     assert_eq!(code, Some(1), "{v}");

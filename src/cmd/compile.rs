@@ -36,7 +36,9 @@ pub enum TiltArg {
 /// has problems is planned again with each spray tip the robot lists and
 /// with a gentler tilt (a smaller share of the tilt joint's acceleration:
 /// small letters' bowls), and the first that paints is written; the
-/// summary names the tip to mount and says "tilt: planned gently".
+/// summary names the tip to mount and says "tilt: planned gently". Still
+/// with problems, it is planned with the trapezoid tilt method (unless
+/// --tilt names one): the summary then says "tilt: trapezoid".
 ///
 /// When a word marking (a message or a file of lines) is NOT READY, compile
 /// then compiles the quarter-foot letter heights around it, up to 2 ft each
@@ -112,9 +114,11 @@ pub struct Args {
     /// Robot description file [default: the embedded BASR].
     #[arg(long, value_name = "F")]
     pub robot: Option<PathBuf>,
-    /// Nozzle tilt method.
-    #[arg(long, value_enum, default_value_t = TiltArg::Quadrilateral)]
-    pub tilt: TiltArg,
+    /// Nozzle tilt method [default: quadrilateral; where its job has
+    /// problems and the trapezoid method's has none, trapezoid]. Named,
+    /// it is kept.
+    #[arg(long, value_enum)]
+    pub tilt: Option<TiltArg>,
     /// Letter height of the words, 0.3–10 m; metres unless a unit is
     /// written (8ft, 96in, 2440mm) [default: 2.44, or the marking file's].
     /// A symbol has no letters: with --symbol, or a scene without a word,
@@ -572,10 +576,11 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         font: args.font.clone(),
         robot: args.robot.clone(),
         tilt: match args.tilt {
-            TiltArg::None => Tilt::None,
-            TiltArg::Trapezoid => Tilt::Trapezoid,
-            TiltArg::Quadrilateral => Tilt::Quadrilateral,
+            Some(TiltArg::None) => Tilt::None,
+            Some(TiltArg::Trapezoid) => Tilt::Trapezoid,
+            Some(TiltArg::Quadrilateral) | None => Tilt::Quadrilateral,
         },
+        tilt_named: args.tilt.is_some(),
         rung_spacing_m: args.rung_spacing_mm * 1e-3,
         period_s: args.period_s,
         gun_lead_s: args.gun_lead_s,
@@ -714,6 +719,11 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
             "verdict": verdict,
             // the spray tip to mount (null for a robot that lists none)
             "tip": job.paint.tip,
+            // the tilt method painted with, and whether gently
+            "tilt": {
+                "method": job.layout.tilt_method,
+                "gentle": job.layout.options.as_ref().is_some_and(|o| o.gentle_tilt),
+            },
             "summary": s,
             "sha256": job.sha256,
             "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
@@ -904,12 +914,25 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
     if let Some(tip) = basr::report::tip_words(job) {
         lines.push(format!("  spray tip: {tip}"));
     }
-    if job.layout.options.as_ref().is_some_and(|o| o.gentle_tilt) {
-        lines.push(
-            "  tilt: planned gently (its first plan had problems; a smaller share of the tilt \
-             joint's acceleration paints it)"
-                .to_string(),
-        );
+    let gentle = job.layout.options.as_ref().is_some_and(|o| o.gentle_tilt);
+    let chose = args.tilt.is_none() && job.layout.tilt_method == Tilt::Trapezoid.name();
+    if gentle || chose {
+        let how = match (chose, gentle) {
+            (true, true) => "trapezoid, planned gently",
+            (true, false) => "trapezoid",
+            _ => "planned gently",
+        };
+        let why = match (chose, gentle) {
+            (true, _) => {
+                "the quadrilateral method's plan had problems; the trapezoid method's \
+                 has none"
+            }
+            _ => {
+                "its first plan had problems; a smaller share of the tilt joint's \
+                 acceleration paints it"
+            }
+        };
+        lines.push(format!("  tilt: {how} ({why})"));
     }
     if let Some(f) = &s.film {
         lines.push(film_line(f));

@@ -404,6 +404,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
         "trapezoid" => Tilt::Trapezoid,
         _ => Tilt::Quadrilateral,
     };
+    req.tilt_named = true;
     let mut stations = job.stations.clone();
     stations[si] = fitted.station.clone();
     let mut road: Road = job.road.clone();

@@ -282,6 +282,7 @@ impl Replan {
 pub fn replan(job: &Job, tilt: Tilt, r: &Replan) -> anyhow::Result<Job> {
     let mut req = r.req.clone();
     req.tilt = tilt;
+    req.tilt_named = true;
     // preview measures the re-planned job's film itself.
     req.film = false;
     compile_job(&req).with_context(|| {

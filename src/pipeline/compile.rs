@@ -46,7 +46,54 @@ pub fn compile_job(req: &CompileRequest) -> Result<Job, CompileError> {
 /// slowed nozzle lays a heavy film there; a job that paints with the
 /// default share keeps it (a gentler tilt slows some 8 ft tails instead).
 /// Not at the site: `basr fit` plans as the job being fitted was planned.
+///
+/// A job that still has problems, its tilt method not named
+/// (`CompileRequest::tilt_named`), is planned all over again with the
+/// trapezoid method on a robot that tilts, first without the closed loop;
+/// that job is kept when it has none (it records `layout.tilt_method`).
+/// The quadrilateral method leans the fan along a curve's rungs to match
+/// its inner and outer edges; on the smallest letters' tightest bowl that
+/// lean asks more of the tilt than the trapezoid's does (Q at 6 ft: cv
+/// 0.189 against 0.048, docs/planner.md).
 pub fn compile_strokes(
+    req: &CompileRequest,
+    marking: &layout::Marking,
+    font: &crate::font::Font,
+    robot: crate::robot::AnyRobot,
+    strokes: &PlacedStrokes,
+) -> Result<Job, CompileError> {
+    let job = compile_gently(req, marking, font, robot.clone(), strokes)?;
+    let other = match req.tilt {
+        Tilt::Quadrilateral => Tilt::Trapezoid,
+        _ => return Ok(job),
+    };
+    if req.tilt_named || req.site.is_some() || robot.tilt_limit().is_none() || problems(&job) == 0 {
+        return Ok(job);
+    }
+    let asked = CompileRequest {
+        tilt: other,
+        tilt_named: true,
+        ..req.clone()
+    };
+    let planned = CompileRequest {
+        verify: false,
+        ..asked.clone()
+    };
+    if req.verify
+        && !compile_gently(&planned, marking, font, robot.clone(), strokes)
+            .is_ok_and(|j| problems(&j) == 0)
+    {
+        return Ok(job);
+    }
+    match compile_gently(&asked, marking, font, robot, strokes) {
+        Ok(j) if problems(&j) == 0 => Ok(j),
+        _ => Ok(job),
+    }
+}
+
+/// [`compile_tips`], and again with a gentle tilt where that has problems
+/// ([`compile_strokes`]).
+fn compile_gently(
     req: &CompileRequest,
     marking: &layout::Marking,
     font: &crate::font::Font,

@@ -130,6 +130,12 @@ pub struct CompileRequest {
     /// records it (`options.gentle_tilt`), so that `basr fit` and
     /// `preview --compare` plan again as compile did.
     pub gentle_tilt: bool,
+    /// The tilt method was named (`--tilt`, or a job planned again with
+    /// its own): compile keeps it. Otherwise compile may paint with the
+    /// trapezoid method where the default quadrilateral one leaves
+    /// problems and it has none (`compile::compile_strokes`); the job
+    /// records the method it painted with (`layout.tilt_method`).
+    pub tilt_named: bool,
 }
 
 impl CompileRequest {
@@ -153,6 +159,7 @@ impl CompileRequest {
             site: None,
             tuning: crate::tuning::Tuning::DEFAULT,
             gentle_tilt: false,
+            tilt_named: false,
         }
     }
 }
