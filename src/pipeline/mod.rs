@@ -7,8 +7,10 @@
 //! This is the only place the planner meets the simulator and the
 //! previewer: `basr-plan` cannot see either.
 
+mod choice;
 pub mod compile;
 pub mod film;
 pub mod placed;
+mod planned_job;
 pub mod shapes;
 pub mod verify;
