@@ -13,7 +13,7 @@ use super::placed::PlacedStrokes;
 use super::rate;
 use super::rungs::StrokeRungs;
 use super::tuning::{Rates, Tuning};
-use super::warnings::Note;
+use super::warnings::{Note, OneSweep};
 
 /// Rounds of turn limiting and re-pacing per pass. assumed: the speeds
 /// settle in two; the third is slack.
@@ -352,9 +352,12 @@ fn stroke_passes(
             worst_ratio: worst,
             outside_share: 0.0,
             job_outside_share: 0.0,
-            one_sweep_scale: (split.abreast() > 1).then(|| {
+            one_sweep: (split.abreast() > 1).then(|| {
                 let widest = stroke_rungs.iter().map(Rung::width).fold(0.0, f64::max);
-                law.max_width_m() / widest
+                OneSweep {
+                    scale: law.max_width_m() / widest,
+                    letter_height_m: strokes.letter_height_m(sid),
+                }
             }),
         });
         kept_outside = Some(outside_m2);

@@ -22,6 +22,8 @@ const OUTLINE_STEP_M: f64 = 0.01;
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlacedItem {
     pub owner: Owner,
+    /// A letter's height (m); `None` for a symbol or a shape.
+    pub letter_height_m: Option<f64>,
 }
 
 /// One stroke in the road frame (left and right edges as the font or
@@ -63,6 +65,7 @@ impl PlacedStrokes {
                     label: mark.label.clone(),
                     line: mark.line,
                 },
+                letter_height_m: mark.letter_height_m,
             });
             out.strokes
                 .extend(mark.strokes.iter().map(|st| PlacedStroke {
@@ -97,6 +100,7 @@ impl PlacedStrokes {
                     label: letter.ch.to_string(),
                     line: letter.line,
                 },
+                letter_height_m: Some(s * basr_shape::font::GRID_HEIGHT),
             });
             out.strokes
                 .extend(glyph.strokes.iter().map(|st| PlacedStroke {
@@ -133,6 +137,12 @@ impl PlacedStrokes {
     /// Who stroke `i` belongs to.
     pub fn owner(&self, stroke: usize) -> &Owner {
         &self.items[self.strokes[stroke].item].owner
+    }
+
+    /// The height of the letter a stroke belongs to (m); `None` for a
+    /// symbol's or a shape's.
+    pub fn letter_height_m(&self, stroke: usize) -> Option<f64> {
+        self.items[self.strokes[stroke].item].letter_height_m
     }
 
     /// The job's `layout.glyphs`: each item's stroke outlines (edges sampled

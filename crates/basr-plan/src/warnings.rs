@@ -93,6 +93,52 @@ fn untilted_words(u: &Untilted) -> String {
     )
 }
 
+/// The size at which a stroke painted in side-by-side sweeps fits one
+/// sweep of the fan ([`Note::HeightClamped`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OneSweep {
+    /// Widest fan / widest rung: that size as a share of this one.
+    pub scale: f64,
+    /// The letter's height (m); `None` for a symbol or a shape.
+    pub letter_height_m: Option<f64>,
+}
+
+impl OneSweep {
+    /// What the crew can do: smaller letters, by how much, and never
+    /// larger ones; a letter size under MUTCD's minimum for word letters
+    /// is said to be so, as the layout says it (6 ft, 4.5 ft under 25 mph
+    /// with `--low-speed`, `basr_shape::layout::rules`).
+    pub fn advice(&self) -> String {
+        use basr_shape::layout::rules::{LOW_SPEED_FACTOR, MIN_LETTER_HEIGHT_M};
+        let pct = (self.scale * 100.0).floor();
+        let at = self.letter_height_m.map(|h| h * pct / 100.0);
+        let low = MIN_LETTER_HEIGHT_M * LOW_SPEED_FACTOR;
+        let size = |why: &str| {
+            at.map_or(String::new(), |m| {
+                format!(" ({m:.2} m, {:.1} ft{why})", m / basr_geom::units::M_PER_FT)
+            })
+        };
+        match at {
+            Some(m) if m < low * (1.0 - 1e-9) => format!(
+                "Only letters at most {pct:.0} % of this size{} paint this stroke in one \
+                 sweep; at every size MUTCD allows the seams stay, and larger letters do not \
+                 help.",
+                size(": smaller than MUTCD allows for word letters, 6 ft, 4.5 ft under 25 mph")
+            ),
+            Some(m) if m < MIN_LETTER_HEIGHT_M * (1.0 - 1e-9) => format!(
+                "Only letters at most {pct:.0} % of this size{} paint this stroke in one \
+                 sweep, without the narrow seams; larger letters do not help.",
+                size(": under MUTCD's 6 ft, allowed only under 25 mph with --low-speed")
+            ),
+            _ => format!(
+                "Letters at most {pct:.0} % of this size{} paint this stroke in one sweep, \
+                 without the narrow seams; larger letters do not help.",
+                size("")
+            ),
+        }
+    }
+}
+
 /// One note of the planner.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Note {
@@ -135,10 +181,10 @@ pub enum Note {
         job_outside_share: f64,
         /// Where the stroke is wider than one sweep of the fan and painted
         /// in side-by-side sweeps (whose seams leave these narrow bands):
-        /// widest fan / widest rung, the letter size (as a share of this
-        /// one) at which the whole stroke fits one sweep. Larger letters
-        /// only widen the bands' mismatch there, so the advice differs.
-        one_sweep_scale: Option<f64>,
+        /// the size at which the whole stroke fits one sweep. Larger
+        /// letters only widen the bands' mismatch there, so the advice
+        /// differs.
+        one_sweep: Option<OneSweep>,
     },
     /// A limit holds the nozzle below the painting speed over paint.
     Slowed {
@@ -259,17 +305,11 @@ impl Note {
             // stroke in one sweep; larger ones would make it worse.
             (
                 Note::HeightClamped {
-                    one_sweep_scale: Some(k),
+                    one_sweep: Some(one),
                     ..
                 },
                 _,
-            ) => {
-                return Cow::Owned(format!(
-                    "Letters at most {:.0} % of this size paint this stroke in one sweep, \
-                     without the narrow seams; larger letters do not help.",
-                    (k * 100.0).floor()
-                ))
-            }
+            ) => return Cow::Owned(one.advice()),
             (Note::Layout { .. }, _) => "Check that this is what was asked for.",
             (Note::Arm { .. }, _) => {
                 "The job passes on the robot as described; on an arm that differs from it \
@@ -637,22 +677,49 @@ mod tests {
             worst_ratio,
             outside_share: 0.004,
             job_outside_share,
-            one_sweep_scale: None,
+            one_sweep: None,
         };
         assert_eq!(clamped(1.009, 0.02).severity(), Severity::Info);
         assert_eq!(clamped(1.1, 0.02).severity(), Severity::Notice);
         assert_eq!(clamped(1.297, 0.02).severity(), Severity::Problem);
         // Seams of side-by-side sweeps: the advice is smaller letters,
         // by how much, and never larger ones.
-        let mut seams = clamped(1.297, 0.02);
-        if let Note::HeightClamped {
-            one_sweep_scale, ..
-        } = &mut seams
-        {
-            *one_sweep_scale = Some(0.893);
-        }
-        let m = seams.render().message;
-        assert!(m.contains("Letters at most 89 % of this size"), "{m}");
+        let seams = |letter_height_m: Option<f64>| {
+            let mut n = clamped(1.297, 0.02);
+            if let Note::HeightClamped { one_sweep, .. } = &mut n {
+                *one_sweep = Some(OneSweep {
+                    scale: 0.893,
+                    letter_height_m,
+                });
+            }
+            n.render().message
+        };
+        // 89 % of 8 ft is 7.1 ft: a size MUTCD allows
+        let m = seams(Some(8.0 * 0.3048));
+        assert!(
+            m.contains("Letters at most 89 % of this size (2.17 m, 7.1 ft) paint"),
+            "{m}"
+        );
+        // 89 % of 6 ft is under MUTCD's 6 ft; of 5 ft under its 4.5 ft too
+        let m = seams(Some(6.0 * 0.3048));
+        assert!(
+            m.contains(
+                "Only letters at most 89 % of this size (1.63 m, 5.3 ft: under MUTCD's 6 ft"
+            ),
+            "{m}"
+        );
+        let m = seams(Some(5.0 * 0.3048));
+        assert!(
+            m.contains("smaller than MUTCD allows for word letters"),
+            "{m}"
+        );
+        assert!(
+            m.contains("at every size MUTCD allows the seams stay"),
+            "{m}"
+        );
+        // a symbol's stroke has no letter size to name
+        let m = seams(None);
+        assert!(m.contains("Letters at most 89 % of this size paint"), "{m}");
         assert!(
             !m.to_lowercase()
                 .contains("larger letters (--letter-height)"),

@@ -29,6 +29,8 @@ pub struct PlacedMark {
     pub line: usize,
     /// A letter, a symbol or a shape, for messages.
     pub kind: OwnerKind,
+    /// A letter's height (m); `None` for a symbol or a shape.
+    pub letter_height_m: Option<f64>,
     /// Road frame, metres.
     pub strokes: Vec<Stroke>,
 }
@@ -62,6 +64,7 @@ pub fn lay_marking(m: &Marking, font: &Font, low_speed: bool) -> Result<Laid, La
             label: l.ch.to_string(),
             line: l.line,
             kind: OwnerKind::Letter,
+            letter_height_m: Some(m.letter_height_m),
             strokes: g
                 .strokes
                 .iter()
@@ -240,6 +243,7 @@ fn item_marks(
                 .into_iter()
                 .map(|mk| PlacedMark {
                     kind: OwnerKind::Letter,
+                    letter_height_m: Some(h),
                     line: i,
                     strokes: mk.strokes.iter().map(|s| s.transformed(&to_road)).collect(),
                     label: mk.label,
@@ -258,6 +262,7 @@ fn item_marks(
                 label: sym.name.clone(),
                 line: i,
                 kind: OwnerKind::Symbol,
+                letter_height_m: None,
                 strokes: sym.strokes.iter().map(|s| s.transformed(&m)).collect(),
             }])
         }
@@ -277,6 +282,7 @@ fn item_marks(
                 label,
                 line: i,
                 kind: OwnerKind::Shape,
+                letter_height_m: None,
                 strokes: s.strokes.iter().map(|st| st.transformed(&m)).collect(),
             }])
         }
