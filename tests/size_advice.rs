@@ -115,6 +115,49 @@ fn low_speed_letters_are_told_the_nearest_larger_size() {
     );
 }
 
+/// Letters asked under MUTCD's 6 ft (without --low-speed) are searched
+/// from 6 ft up: the range the line and --json give starts there, not at
+/// the asked height, whose neighbours under 6 ft were never tried.
+#[test]
+fn a_size_under_the_minimum_is_searched_from_the_minimum() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = basr(
+        dir.path(),
+        &[
+            "compile",
+            "STOP",
+            "--letter-height",
+            "5ft",
+            "-o",
+            "a.job.json",
+            "--json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let searched = &v["sizes"]["searched_m"];
+    let lo = searched[0].as_f64().unwrap_or_else(|| panic!("{searched}"));
+    assert!((lo - 6.0 * 0.3048).abs() < 1e-6, "{searched}");
+    assert!(
+        v["sizes"]["nearest_ready_smaller_m"].is_null(),
+        "{}",
+        v["sizes"]
+    );
+    let o = basr(
+        dir.path(),
+        &[
+            "compile",
+            "STOP",
+            "--letter-height",
+            "5ft",
+            "-o",
+            "b.job.json",
+        ],
+    );
+    let err = stderr(&o);
+    assert!(err.contains("searched 6ft (1.83 m) to"), "{err}");
+}
+
 /// The quarter-foot heights a `sizes:` line names (as `--letter-height`
 /// takes them): "10.75ft (3.28 m) smaller" → ("10.75ft", "smaller").
 fn named(line: &str) -> Vec<(String, String)> {

@@ -262,8 +262,8 @@ fn nearest_ready(
     };
     // (nearest that paints, the last height tried, whether the search
     // ended where the arm could not follow at any height of a pair: `None`
-    // when no height was tried that way)
-    let side = |sign: f64| -> (Option<f64>, f64, Option<bool>) {
+    // when no height was tried that way; the first height tried)
+    let side = |sign: f64| -> (Option<f64>, f64, Option<bool>, Option<f64>) {
         let first = if sign > 0.0 {
             (at + 1e-6).floor() + 1.0
         } else {
@@ -285,31 +285,38 @@ fn nearest_ready(
         for pair in heights.chunks(2) {
             let tried: Vec<Tried> = pair.par_iter().map(|&h| ready(h)).collect();
             let last = pair[pair.len() - 1];
+            let first = heights.first().copied();
             if let Some(i) = tried.iter().position(|&t| t == Tried::Paints) {
-                return (Some(pair[i]), last, Some(false));
+                return (Some(pair[i]), last, Some(false), first);
             }
             let all = tried.iter().all(|&t| t == Tried::Unfollowed);
             if all {
-                return (None, last, Some(unfollowed));
+                return (None, last, Some(unfollowed), first);
             }
             unfollowed = false;
         }
         match heights.last() {
-            Some(&h) => (None, h, Some(false)),
-            None => (None, asked_m, None),
+            Some(&h) => (None, h, Some(false), heights.first().copied()),
+            None => (None, asked_m, None, None),
         }
     };
-    let (smaller_m, lo, below) = side(-1.0);
-    let (larger_m, hi, above) = if larger {
+    let (smaller_m, lo, below, _) = side(-1.0);
+    let (larger_m, hi, above, first_up) = if larger {
         side(1.0)
     } else {
-        (None, asked_m, None)
+        (None, asked_m, None, None)
+    };
+    // An asked height under the floor was compiled, but the heights
+    // between it and the floor were not: the search begins at the floor.
+    let lo = match first_up {
+        Some(up) if asked_m < floor_m * (1.0 - 1e-9) => up,
+        _ => lo.min(asked_m),
     };
     SizeAdvice {
         asked_m,
         smaller_m,
         larger_m,
-        searched_m: [lo.min(asked_m), hi.max(asked_m)],
+        searched_m: [lo, hi.max(asked_m)],
         refused,
         // every way searched ended at heights the arm could not follow
         unfollowed: (below.is_some() || above.is_some())
