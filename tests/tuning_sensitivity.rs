@@ -269,6 +269,38 @@ fn the_surface_clamp_holds_at_ten_percent() {
     sweep(&of("surface"), &["arrow over a crown"]);
 }
 
+/// `pairing.end_hold` acts only on a job whose plans have problems
+/// without it (the reduced sweep leaves it idle): C, G and J at 6 ft,
+/// which compile paints only with the ends held in, paint at both ends of
+/// its ±10 % too, held.
+#[test]
+fn held_ends_paint_at_ten_percent() {
+    let mut failed = vec![];
+    for k in [0.9, 1.1] {
+        let tuning = Tuning::DEFAULT
+            .moved("pairing.end_hold", k)
+            .expect("a knob");
+        for g in ["C", "G", "J"] {
+            let req = CompileRequest {
+                overrides: Overrides {
+                    letter_height_m: Some(6.0 * 0.3048),
+                    ..Overrides::default()
+                },
+                tuning,
+                ..CompileRequest::message(g)
+            };
+            let job = compile_job(&req).expect("compiles");
+            let held = job.layout.options.as_ref().is_some_and(|o| o.hold_ends);
+            match judged(&job) {
+                Ok(f) if held => println!("end_hold × {k}, {g} at 6 ft: {}", f.line()),
+                Ok(_) => failed.push(format!("{g} × {k}: painted without holding its ends")),
+                Err(e) => failed.push(format!("{g} × {k}: {e}")),
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
+}
+
 /// Every knob is swept by one of the tests above, and docs/planner.md
 /// lists every one by name.
 #[test]

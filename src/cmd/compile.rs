@@ -38,7 +38,9 @@ pub enum TiltArg {
 /// small letters' bowls), and the first that paints is written; the
 /// summary names the tip to mount and says "tilt: planned gently". Still
 /// with problems, it is planned with the trapezoid tilt method (unless
-/// --tilt names one): the summary then says "tilt: trapezoid".
+/// --tilt names one): the summary then says "tilt: trapezoid"; then with
+/// the fan's ends held in where a stroke's edge runs oblique to it (small
+/// letters' curves lay paint across such edges): "ends: held in".
 ///
 /// When a word marking (a message or a file of lines) is NOT READY, compile
 /// then compiles the quarter-foot letter heights around it, up to 2 ft each
@@ -724,6 +726,8 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 "method": job.layout.tilt_method,
                 "gentle": job.layout.options.as_ref().is_some_and(|o| o.gentle_tilt),
             },
+            // the rungs' ends held in from oblique edges (options.hold_ends)
+            "ends_held": job.layout.options.as_ref().is_some_and(|o| o.hold_ends),
             "summary": s,
             "sha256": job.sha256,
             "signed_by": job.signature.as_ref().map(|s| s.key_id.clone()),
@@ -933,6 +937,13 @@ fn summary_text(job: &basr::job::Job, out: &Path, args: &Args) -> Vec<String> {
             }
         };
         lines.push(format!("  tilt: {how} ({why})"));
+    }
+    if job.layout.options.as_ref().is_some_and(|o| o.hold_ends) {
+        lines.push(
+            "  ends: held in where a stroke's edge runs oblique to the fan (the plans without \
+             had problems; the fan sheet's depth carried paint across those edges)"
+                .to_string(),
+        );
     }
     if let Some(f) = &s.film {
         lines.push(film_line(f));

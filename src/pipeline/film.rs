@@ -34,6 +34,34 @@ pub fn check(job: &Job, owners: &[Owner]) -> Result<FilmCheck, CompileError> {
     })
 }
 
+/// The items of `job` (letters, symbols, shapes) whose own film misses a
+/// bound of the preview's, by name (`layout.glyphs[].char`): the film as
+/// [`check`] measures it, each item's figures against the same bounds.
+/// compile takes a plan other than its first (another tip, the gentle
+/// tilt, the trapezoid method, ends held in) only where none is: a choice
+/// judged on the whole job's film alone let a message of letters that
+/// each fail alone paint (B C G J S at 6 ft, each over a bound alone, as
+/// a whole within them).
+pub fn items_over(job: &Job) -> Result<Vec<String>, CompileError> {
+    let mut options = FilmOptions::preview_defaults();
+    options.preview.profile = job_profile(job).map_err(|e| CompileError::Film(e.to_string()))?;
+    let measured =
+        film::film(job, &options, &|_, _| {}).map_err(|e| CompileError::Film(e.to_string()))?;
+    let t = &options.thresholds;
+    Ok(measured
+        .preview
+        .metrics
+        .glyphs
+        .iter()
+        .filter(|g| {
+            !crate::paint::verdict::glyph_checks(g, t)
+                .iter()
+                .all(|c| c.pass)
+        })
+        .map(|g| g.char.clone())
+        .collect())
+}
+
 /// The flux profile of the tip the job's robot describes (`paint.profile`,
 /// uniform when absent).
 pub fn job_profile(job: &Job) -> Result<Profile, crate::paint::PaintError> {

@@ -380,6 +380,13 @@ fn passes_on_road(
             req.rung_spacing_m,
             Some(&passes::turn_budget(planner, &tuning)),
         );
+        // ends held in from edges the rungs meet obliquely, where asked
+        let rungs = if req.hold_ends {
+            let sigma = crate::robot::paint_law::SHEET_DEPTH_SIGMA_M;
+            rungs::held(rungs, sigma * tuning.pairing.end_hold)
+        } else {
+            rungs
+        };
         passes::passes(strokes, &rungs, planner, tilt.method(), &tuning)
     };
     let stations_for = |passes: &passes::Passes| -> Result<stations::StationPlan, CompileError> {

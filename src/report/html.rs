@@ -203,65 +203,7 @@ fn film(out: &mut String, s: &Sheet) {
         "<figcaption>The film the plan lays (preview): colour by thickness against the \
          target, letter outlines in red, the nozzle's path.</figcaption></figure>\n",
     );
-    out.push_str(
-        "<table id=\"letters\"><tr><th>line</th><th>letter</th><th></th><th>mean film</th>\
-         <th>evenness (cv)</th><th>coverage</th><th>overspray</th><th>verdict</th></tr>\n",
-    );
-    // A figure past its bound in bold. A letter past a bound where the
-    // whole film is within them all is a notice, not a failure: the film's
-    // verdict (and the job's) judges the whole marking, and one letter's
-    // figures, over a few thousand cells, scatter more (SCHOOL at 6 ft:
-    // S and C at 3.0 and 3.3 % overspray, the word at 2.2 %).
-    let pct = |c: &crate::paint::verdict::Check| {
-        // two decimals where one would read as the limit itself (3.0 %
-        // over a 3 % limit, or 3.0 % within it)
-        let t = c.value.map_or("–".into(), |v| {
-            let short = format!("{:.1}", v * 100.0);
-            if short == format!("{:.1}", c.limit * 100.0) && v != c.limit {
-                format!("{:.2} %", v * 100.0)
-            } else {
-                format!("{short} %")
-            }
-        });
-        if c.pass {
-            format!("<td class=\"num\">{t}</td>")
-        } else {
-            format!("<td class=\"num\"><strong>{t}</strong></td>")
-        }
-    };
-    let film_passes = s.film_verdict.pass();
-    for l in &s.letters {
-        let _ = writeln!(
-            out,
-            "<tr><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>\
-             <td class=\"num\">{}</td>{}<td>{}</td></tr>",
-            l.line,
-            l.place,
-            escape(&l.char),
-            l.mean_film_m
-                .map_or("–".into(), |f| format!("{:.0} µm", f * 1e6)),
-            l.checks.iter().map(pct).collect::<String>(),
-            if !l.pass() && film_passes {
-                "<span class=\"notice\"><strong>OVER</strong></span>"
-            } else {
-                pass_fail(l.pass())
-            }
-        );
-    }
-    out.push_str("</table>\n");
-    if film_passes && s.letters.iter().any(|l| !l.pass()) {
-        let t = &s.film_verdict.thresholds;
-        let _ = writeln!(
-            out,
-            "<p class=\"notice\"><strong>OVER</strong>: that letter's own figure in bold is \
-             past the limit the whole film is judged by (cv ≤ {:.0} %, coverage ≥ {:.0} %, \
-             overspray ≤ {:.0} %); the film as a whole is within every limit, which is \
-             what the film's verdict judges. Expect that letter slightly off there.</p>",
-            t.cv_max * 100.0,
-            t.coverage_min * 100.0,
-            t.overspray_max * 100.0
-        );
-    }
+    out.push_str(&letters_table(&s.letters, &s.film_verdict));
     out.push_str("</section>\n");
 }
 
@@ -374,6 +316,75 @@ pub fn render(s: &Sheet) -> String {
     out
 }
 
+/// The letters' table of the sheet, each letter's figures against the
+/// bounds the whole film is judged by, and the line that explains OVER.
+fn letters_table(
+    letters: &[super::Letter],
+    film_verdict: &crate::paint::verdict::Verdict,
+) -> String {
+    let mut out = String::new();
+    out.push_str(
+        "<table id=\"letters\"><tr><th>line</th><th>letter</th><th></th><th>mean film</th>\
+         <th>evenness (cv)</th><th>coverage</th><th>overspray</th><th>verdict</th></tr>\n",
+    );
+    // A figure past its bound in bold. A letter past a bound where the
+    // whole film is within them all is a notice, not a failure: the film's
+    // verdict (and the job's) judges the whole marking, and one letter's
+    // figures, over a few thousand cells, scatter more (SCHOOL at 6 ft:
+    // S and C at 3.0 and 3.3 % overspray, the word at 2.2 %).
+    let pct = |c: &crate::paint::verdict::Check| {
+        // two decimals where one would read as the limit itself (3.0 %
+        // over a 3 % limit, or 3.0 % within it)
+        let t = c.value.map_or("–".into(), |v| {
+            let short = format!("{:.1}", v * 100.0);
+            if short == format!("{:.1}", c.limit * 100.0) && v != c.limit {
+                format!("{:.2} %", v * 100.0)
+            } else {
+                format!("{short} %")
+            }
+        });
+        if c.pass {
+            format!("<td class=\"num\">{t}</td>")
+        } else {
+            format!("<td class=\"num\"><strong>{t}</strong></td>")
+        }
+    };
+    let film_passes = film_verdict.pass();
+    for l in letters {
+        let _ = writeln!(
+            out,
+            "<tr><td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>\
+             <td class=\"num\">{}</td>{}<td>{}</td></tr>",
+            l.line,
+            l.place,
+            escape(&l.char),
+            l.mean_film_m
+                .map_or("–".into(), |f| format!("{:.0} µm", f * 1e6)),
+            l.checks.iter().map(pct).collect::<String>(),
+            if !l.pass() && film_passes {
+                "<span class=\"notice\"><strong>OVER</strong></span>"
+            } else {
+                pass_fail(l.pass())
+            }
+        );
+    }
+    out.push_str("</table>\n");
+    if film_passes && letters.iter().any(|l| !l.pass()) {
+        let t = &film_verdict.thresholds;
+        let _ = writeln!(
+            out,
+            "<p class=\"notice\"><strong>OVER</strong>: that letter's own figure in bold is \
+             past the limit the whole film is judged by (cv ≤ {:.0} %, coverage ≥ {:.0} %, \
+             overspray ≤ {:.0} %); the film as a whole is within every limit, which is \
+             what the film's verdict judges. Expect that letter slightly off there.</p>",
+            t.cv_max * 100.0,
+            t.coverage_min * 100.0,
+            t.overspray_max * 100.0
+        );
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -407,6 +418,58 @@ mod tests {
             let t = sim_text(Some(&v(on)));
             assert!(t.contains("FAIL</span>: nozzle within 4.30 mm"), "{t}");
         }
+    }
+
+    /// A letter whose own figure is past a bound while the whole film is
+    /// within them all is marked OVER, its figure in bold, with the line
+    /// saying what that means; on a film that fails it reads FAIL.
+    #[test]
+    fn a_letter_past_a_bound_of_a_passing_film_is_over_not_fail() {
+        use crate::paint::metrics::GlyphMetrics;
+        use crate::paint::verdict::{glyph_checks, Thresholds, Verdict};
+        let t = Thresholds::default();
+        let letter = |ch: &str, overspray: f64| {
+            let g = GlyphMetrics {
+                char: ch.into(),
+                line: 0,
+                area_m2: 0.3,
+                mean_film_m: Some(380e-6),
+                cv: Some(0.04),
+                coverage: Some(0.99),
+                overspray: Some(overspray),
+                u_min: None,
+                u_max: None,
+            };
+            super::super::Letter {
+                line: 1,
+                place: 1,
+                char: ch.into(),
+                mean_film_m: g.mean_film_m,
+                checks: glyph_checks(&g, &t),
+            }
+        };
+        let letters = [letter("S", 0.020), letter("C", 0.033)];
+        let verdict = |v| Verdict {
+            verdict: v,
+            thresholds: t,
+            checks: vec![],
+        };
+        let html = letters_table(&letters, &verdict("pass"));
+        let rows: Vec<&str> = html.split("<tr>").skip(2).collect();
+        assert!(
+            !rows[0].contains("OVER") && rows[0].contains("PASS"),
+            "{html}"
+        );
+        assert!(rows[1].contains("<strong>OVER</strong>"), "{html}");
+        assert!(rows[1].contains("<strong>3.3 %</strong>"), "{html}");
+        assert!(!html.contains("FAIL"), "{html}");
+        assert!(
+            html.contains("the film as a whole is within every limit"),
+            "{html}"
+        );
+        let html = letters_table(&letters, &verdict("fail"));
+        assert!(!html.contains("OVER"), "{html}");
+        assert!(html.contains("FAIL"), "{html}");
     }
 
     #[test]

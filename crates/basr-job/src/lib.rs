@@ -420,6 +420,11 @@ pub struct PlanOptions {
     /// problems. Absent when false.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub gentle_tilt: bool,
+    /// The rungs' ends were held in from edges they meet obliquely
+    /// (compile's plan of a job whose plans had problems otherwise).
+    /// Absent when false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub hold_ends: bool,
 }
 
 /// One control period's setpoint: a row of the CSV.

@@ -19,10 +19,9 @@ use super::PaintError;
 // assumed: 85°, far past the ±15° tilt range (SPEC §4) with the 63.5° fan.
 pub const MAX_RAY_ANGLE_RAD: f64 = 85.0 * std::f64::consts::PI / 180.0;
 
-/// Default standard deviation of the fan's depth on the road.
-// assumed: flat-fan sheets are roughly 1–2 cm thick where they meet the road
-// at 0.1–0.35 m stand-off; σ = 6 mm gives a 90 %→10 % cap edge of ≈ 15 mm.
-pub const DEFAULT_DEPTH_SIGMA_M: f64 = 0.006;
+/// Default standard deviation of the fan's depth on the road: the robot
+/// crate's assumed sheet depth, which the planner holds a fan's ends in by.
+pub const DEFAULT_DEPTH_SIGMA_M: f64 = basr_robot::paint_law::SHEET_DEPTH_SIGMA_M;
 /// Farthest the sheet may reach along the travel, either side (3σ or half
 /// the top hat), m. assumed: a flat fan's sheet is a centimetre or two deep
 /// (see `DEFAULT_DEPTH_SIGMA_M`); one

@@ -130,6 +130,11 @@ pub struct CompileRequest {
     /// records it (`options.gentle_tilt`), so that `basr fit` and
     /// `preview --compare` plan again as compile did.
     pub gentle_tilt: bool,
+    /// Hold the rungs' ends in from edges they meet obliquely (`rungs::
+    /// held`, by `tuning::Pairing::end_hold` of the sheet's depth): compile
+    /// sets it when a job's plans have problems otherwise and keeps that
+    /// job when it has none; the job records it (`options.hold_ends`).
+    pub hold_ends: bool,
     /// The tilt method was named (`--tilt`, or a job planned again with
     /// its own): compile keeps it. Otherwise compile may paint with the
     /// trapezoid method where the default quadrilateral one leaves
@@ -159,6 +164,7 @@ impl CompileRequest {
             site: None,
             tuning: crate::tuning::Tuning::DEFAULT,
             gentle_tilt: false,
+            hold_ends: false,
             tilt_named: false,
         }
     }
@@ -175,12 +181,14 @@ impl CompileRequest {
             gun_lag_s: self.gun_lag_s,
             reach_margin_m: self.reach_margin_m,
             gentle_tilt: self.gentle_tilt,
+            hold_ends: self.hold_ends,
         };
         let same = o.rung_spacing_m == d.rung_spacing_m
             && o.gun_lead_s == d.gun_lead_s
             && o.gun_lag_s == d.gun_lag_s
             && o.reach_margin_m == d.reach_margin_m
-            && o.gentle_tilt == d.gentle_tilt;
+            && o.gentle_tilt == d.gentle_tilt
+            && o.hold_ends == d.hold_ends;
         (!same).then_some(o)
     }
 
@@ -193,6 +201,7 @@ impl CompileRequest {
         self.gun_lag_s = o.map_or(d.gun_lag_s, |o| o.gun_lag_s);
         self.reach_margin_m = o.map_or(d.reach_margin_m, |o| o.reach_margin_m);
         self.gentle_tilt = o.is_some_and(|o| o.gentle_tilt);
+        self.hold_ends = o.is_some_and(|o| o.hold_ends);
         self
     }
 

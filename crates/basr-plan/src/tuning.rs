@@ -57,6 +57,16 @@ pub struct Pairing {
     /// Share of the turn budget a step may turn at before it costs (1).
     /// assumed: leaves the turn limit (`turn`) a margin.
     pub turn_free: f64,
+    /// Share of the sheet's depth (`basr_robot::paint_law::
+    /// SHEET_DEPTH_SIGMA_M`) by which a job planned with its ends held in
+    /// (`CompileRequest::hold_ends`, `rungs::held`) draws a rung's end in
+    /// from an edge it meets at right angles to the edge's normal: the end
+    /// moves by σ × this × |cos| of the angle between rung and edge (1).
+    /// assumed, measured on C, G and J at 6 ft with the 509 tip alone
+    /// (overspray 0.031–0.032, coverage 0.997): 0.15 and 0.25 paint all
+    /// three (overspray 0.027–0.030, coverage 0.986–0.991), 0.5 trades too
+    /// much coverage (0.976–0.980), 1.0 more (0.963–0.968).
+    pub end_hold: f64,
     /// Weight of a turn over budget (per metre of travel). assumed,
     /// measured on B, P, R, 3 (docs/planner.md): a turn over budget
     /// outweighs everything.
@@ -284,6 +294,7 @@ impl Tuning {
             max_step: 3,
             max_length_ratio: 2.5,
             turn_free: 0.8,
+            end_hold: 0.25,
             w_turn: 50.0,
             w_lean: 1.0,
             w_diag: 100.0,
@@ -342,6 +353,7 @@ impl Tuning {
                     max_step,
                     max_length_ratio,
                     turn_free,
+                    end_hold,
                     w_turn,
                     w_lean,
                     w_diag,
@@ -394,6 +406,7 @@ impl Tuning {
             ("pairing.max_step", Count(max_step)),
             ("pairing.max_length_ratio", Real(max_length_ratio)),
             ("pairing.turn_free", Real(turn_free)),
+            ("pairing.end_hold", Real(end_hold)),
             ("pairing.w_turn", Real(w_turn)),
             ("pairing.w_lean", Real(w_lean)),
             ("pairing.w_diag", Real(w_diag)),

@@ -8,6 +8,14 @@ use serde::{Deserialize, Serialize};
 
 use crate::{AnyRobot, Robot};
 
+/// Standard deviation of the fan sheet's depth where it meets the road
+/// (m), square to the fan's line: the preview lays the film with it
+/// (`basr preview --fan-depth`'s default) and the planner holds a fan's
+/// ends in by a share of it where a rung meets an edge obliquely.
+// assumed: flat-fan sheets are roughly 1–2 cm thick where they meet the road
+// at 0.1–0.35 m stand-off; σ = 6 mm gives a 90 %→10 % cap edge of ≈ 15 mm.
+pub const SHEET_DEPTH_SIGMA_M: f64 = 0.006;
+
 /// A paint law field out of its range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("paint law: {field} = {value} is invalid: it {why}")]
