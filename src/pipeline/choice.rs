@@ -37,8 +37,8 @@ use basr_plan::request::{CompileRequest, Tilt};
 /// that job is kept when it has none (it records `layout.tilt_method`).
 /// The quadrilateral method leans the fan along a curve's rungs to match
 /// its inner and outer edges; on the smallest letters' tightest bowl that
-/// lean asks more of the tilt than the trapezoid's does (Q at 6 ft: cv
-/// 0.189 against 0.048, docs/planner.md).
+/// lean asks more of the tilt than the trapezoid's does (Q at 6 ft with
+/// the 509 tip, gently: cv 0.098 against 0.048, docs/planner.md).
 ///
 /// A job that has problems still is planned once more with its rungs'
 /// ends held in from edges they meet obliquely (`CompileRequest::
