@@ -514,13 +514,21 @@ fn strokes_split_into_sweeps_are_advised_smaller_letters() {
         .as_str()
         .is_none_or(|t| t == "seed-63.5");
     for m in seams {
+        // "Letters at most 89 % of this size", or "Only letters at most
+        // 63 % of this size (…: under MUTCD's 6 ft, …)" where that size is
+        // under MUTCD's minimum for word letters
         let pct: u32 = m
-            .split("Letters at most ")
+            .split("etters at most ")
             .nth(1)
             .and_then(|r| r.split(' ').next())
             .and_then(|n| n.parse().ok())
             .unwrap_or_else(|| panic!("no smaller size advised: {m}"));
         assert!(pct < 100, "{m}");
+        assert_eq!(
+            9.0 * pct as f64 / 100.0 < 6.0,
+            m.contains("under MUTCD's 6 ft"),
+            "says whether the size it advises is one MUTCD allows: {m}"
+        );
         if seed_tip {
             // 9 ft × 0.89 = 8 ft, where STOP's widest stroke fits one
             // sweep of the seed's 63.5° fan.
