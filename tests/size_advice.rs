@@ -143,17 +143,7 @@ fn a_size_under_the_minimum_is_searched_from_the_minimum() {
         "{}",
         v["sizes"]
     );
-    let o = basr(
-        dir.path(),
-        &[
-            "compile",
-            "STOP",
-            "--letter-height",
-            "5ft",
-            "-o",
-            "b.job.json",
-        ],
-    );
+    // the summary line on stderr, written beside --json's
     let err = stderr(&o);
     assert!(err.contains("searched 6ft (1.83 m) to"), "{err}");
 }
