@@ -6,7 +6,7 @@
 use crate::job::Job;
 use crate::layout;
 
-use super::planned_job::{compile_for_tip, Placed};
+use super::planned_job::{compile_for_tip, Placed, PlannedJob};
 use basr_plan::error::CompileError;
 use basr_plan::placed::PlacedStrokes;
 use basr_plan::request::{CompileRequest, Tilt};
@@ -59,50 +59,79 @@ pub fn compile_strokes(
         font,
         strokes,
     };
-    let plan = |r: &CompileRequest| compile_gently(r, placed, &robot);
-    let trapezoid = (req.tilt == Tilt::Quadrilateral
-        && !req.tilt_named
-        && req.site.is_none()
-        && robot.tilt_limit().is_some())
-    .then(|| CompileRequest {
-        tilt: Tilt::Trapezoid,
-        tilt_named: true,
-        ..req.clone()
-    });
-    let job = or_one_that_paints(plan(req)?, trapezoid, plan);
-    let held = (!req.hold_ends && req.site.is_none()).then(|| CompileRequest {
+    let choices = choices(req, &robot);
+    // The request as it is, with the first tip: verified as asked (the
+    // job kept when no other paints), its error the compile's.
+    let Some(((first_req, first_robot), others)) = choices.split_first() else {
+        return compile_for_tip(req, placed, robot).map(|p| p.job);
+    };
+    let first = compile_for_tip(first_req, placed, first_robot.clone())?.job;
+    if problems(&first) == 0 {
+        return Ok(first);
+    }
+    Ok(others
+        .iter()
+        .find_map(|(r, robot)| if_it_paints(r, |r| compile_for_tip(r, placed, robot.clone())))
+        .unwrap_or(first))
+}
+
+/// The plans compile may choose among, in the order it prefers them
+/// ([`compile_strokes`]), each a request and the robot with its tip: the
+/// request itself, then the gentle tilt, then the trapezoid method (with
+/// and without the gentle tilt), then ends held in (likewise); within
+/// each, every tip the robot carries in its order. The first is always
+/// the request with the robot's first tip.
+fn choices(
+    req: &CompileRequest,
+    robot: &crate::robot::AnyRobot,
+) -> Vec<(CompileRequest, crate::robot::AnyRobot)> {
+    let at_site = req.site.is_some();
+    // The gentle tilt only where the robot tilts: it would plan the same
+    // job again on one that does not.
+    let tilts = robot.tilt_limit().is_some();
+    let gentle = |r: &CompileRequest| -> Vec<CompileRequest> {
+        let g = (!r.gentle_tilt && !at_site && tilts).then(|| CompileRequest {
+            gentle_tilt: true,
+            ..r.clone()
+        });
+        std::iter::once(r.clone()).chain(g).collect()
+    };
+    let trapezoid =
+        (req.tilt == Tilt::Quadrilateral && !req.tilt_named && !at_site && tilts).then(|| {
+            CompileRequest {
+                tilt: Tilt::Trapezoid,
+                tilt_named: true,
+                ..req.clone()
+            }
+        });
+    let held = (!req.hold_ends && !at_site).then(|| CompileRequest {
         hold_ends: true,
         ..req.clone()
     });
-    Ok(or_one_that_paints(job, held, plan))
-}
-
-/// [`compile_tips`], and again with a gentle tilt where that has problems
-/// ([`compile_strokes`]).
-fn compile_gently(
-    req: &CompileRequest,
-    placed: Placed,
-    robot: &crate::robot::AnyRobot,
-) -> Result<Job, CompileError> {
-    let plan = |r: &CompileRequest| compile_tips(r, placed, robot.clone());
-    let gentle = (!req.gentle_tilt && req.site.is_none()).then(|| CompileRequest {
-        gentle_tilt: true,
-        ..req.clone()
-    });
-    Ok(or_one_that_paints(plan(req)?, gentle, plan))
-}
-
-/// `job` when it has no problems; else the job `plan` makes of `other`
-/// when that has none (`if_it_paints`); else `job`.
-fn or_one_that_paints(
-    job: Job,
-    other: Option<CompileRequest>,
-    plan: impl Fn(&CompileRequest) -> Result<Job, CompileError>,
-) -> Job {
-    if problems(&job) == 0 {
-        return job;
-    }
-    other.and_then(|r| if_it_paints(&r, plan)).unwrap_or(job)
+    // A robot with its tip already mounted (a job's own, planned again by
+    // `basr fit` or `preview --compare`) keeps that tip: the crew has it on
+    // the gun, and the job's other stops were painted with it.
+    let tips: Vec<crate::robot::AnyRobot> = match &robot.paint().mounted {
+        Some(_) => vec![robot.clone()],
+        None if robot.paint().tips.is_empty() => vec![robot.clone()],
+        None => robot
+            .paint()
+            .tips
+            .iter()
+            .map(|tip| {
+                let mut r = robot.clone();
+                let p = r.paint_mut();
+                *p = p.with_tip(tip);
+                r
+            })
+            .collect(),
+    };
+    std::iter::once(req.clone())
+        .chain(trapezoid)
+        .chain(held)
+        .flat_map(|r| gentle(&r))
+        .flat_map(|r| tips.iter().map(move |t| (r.clone(), t.clone())))
+        .collect()
 }
 
 /// The job `plan` makes of `req` when it has no problems, else `None`.
@@ -116,13 +145,16 @@ fn or_one_that_paints(
 /// kept: the cautious side. A request that cannot be planned at all (a fan
 /// too wide for every stroke) is no choice either, nor is a job one of
 /// whose items (a letter, a symbol) misses a film bound on its own
-/// (`film::items_over`), where the request measures the film.
+/// (`film::FilmCheck::items_over`), where the request measures the film.
 fn if_it_paints(
     req: &CompileRequest,
-    plan: impl Fn(&CompileRequest) -> Result<Job, CompileError>,
+    plan: impl Fn(&CompileRequest) -> Result<PlannedJob, CompileError>,
 ) -> Option<Job> {
-    let each = |j: &Job| !req.film || super::film::items_over(j).is_ok_and(|o| o.is_empty());
-    let paints = |job: Result<Job, CompileError>| job.ok().filter(|j| problems(j) == 0 && each(j));
+    let paints = |p: Result<PlannedJob, CompileError>| {
+        p.ok()
+            .filter(|p| problems(&p.job) == 0 && p.items_over.is_empty())
+            .map(|p| p.job)
+    };
     if req.verify {
         let planned = CompileRequest {
             verify: false,
@@ -131,41 +163,6 @@ fn if_it_paints(
         paints(plan(&planned))?;
     }
     paints(plan(req))
-}
-
-/// [`compile_strokes`] with the request's tilt as it is: each tip the
-/// robot carries, in turn (below).
-fn compile_tips(
-    req: &CompileRequest,
-    placed: Placed,
-    robot: crate::robot::AnyRobot,
-) -> Result<Job, CompileError> {
-    // A robot with its tip already mounted (a job's own, planned again by
-    // `basr fit` or `preview --compare`) keeps that tip: the crew has it on
-    // the gun, and the job's other stops were painted with it.
-    let tips = match &robot.paint().mounted {
-        None => robot.paint().tips.clone(),
-        Some(_) => vec![],
-    };
-    let Some((first, others)) = tips.split_first() else {
-        return compile_for_tip(req, placed, robot);
-    };
-    let mounted = |tip: &crate::robot::Tip| {
-        let mut r = robot.clone();
-        let p = r.paint_mut();
-        *p = p.with_tip(tip);
-        r
-    };
-    let preferred = compile_for_tip(req, placed, mounted(first))?;
-    if problems(&preferred) == 0 {
-        return Ok(preferred);
-    }
-    // Another tip, each in turn (`if_it_paints`); the first that paints is
-    // chosen, else the preferred tip's job stands.
-    let other = others
-        .iter()
-        .find_map(|tip| if_it_paints(req, |r| compile_for_tip(r, placed, mounted(tip))));
-    Ok(other.unwrap_or(preferred))
 }
 
 /// The job's problems: what makes it NOT READY.

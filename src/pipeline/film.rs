@@ -17,6 +17,15 @@ use basr_plan::warnings::{HotSpot, Note, Owner, Untilted};
 pub struct FilmCheck {
     pub summary: FilmSummary,
     pub notes: Vec<Note>,
+    /// The items (letters, symbols, shapes) whose own film misses a bound
+    /// of the preview's, by name (`layout.glyphs[].char`): each item's
+    /// figures against the same bounds as the whole job's. compile takes
+    /// a plan other than its first (another tip, the gentle tilt, the
+    /// trapezoid method, ends held in) only where none is: a choice judged
+    /// on the whole job's film alone let a message of letters that each
+    /// fail alone paint (B C G J S at 6 ft, each over a bound alone, as a
+    /// whole within them).
+    pub items_over: Vec<String>,
 }
 
 /// The film stage of compile: `job`'s film as `basr preview JOB` measures
@@ -28,27 +37,8 @@ pub fn check(job: &Job, owners: &[Owner]) -> Result<FilmCheck, CompileError> {
     options.preview.profile = job_profile(job).map_err(|e| CompileError::Film(e.to_string()))?;
     let measured =
         film::film(job, &options, &|_, _| {}).map_err(|e| CompileError::Film(e.to_string()))?;
-    Ok(FilmCheck {
-        summary: measured.summary(),
-        notes: notes(&measured, job, owners),
-    })
-}
-
-/// The items of `job` (letters, symbols, shapes) whose own film misses a
-/// bound of the preview's, by name (`layout.glyphs[].char`): the film as
-/// [`check`] measures it, each item's figures against the same bounds.
-/// compile takes a plan other than its first (another tip, the gentle
-/// tilt, the trapezoid method, ends held in) only where none is: a choice
-/// judged on the whole job's film alone let a message of letters that
-/// each fail alone paint (B C G J S at 6 ft, each over a bound alone, as
-/// a whole within them).
-pub fn items_over(job: &Job) -> Result<Vec<String>, CompileError> {
-    let mut options = FilmOptions::preview_defaults();
-    options.preview.profile = job_profile(job).map_err(|e| CompileError::Film(e.to_string()))?;
-    let measured =
-        film::film(job, &options, &|_, _| {}).map_err(|e| CompileError::Film(e.to_string()))?;
     let t = &options.thresholds;
-    Ok(measured
+    let items_over = measured
         .preview
         .metrics
         .glyphs
@@ -59,7 +49,12 @@ pub fn items_over(job: &Job) -> Result<Vec<String>, CompileError> {
                 .all(|c| c.pass)
         })
         .map(|g| g.char.clone())
-        .collect())
+        .collect();
+    Ok(FilmCheck {
+        summary: measured.summary(),
+        notes: notes(&measured, job, owners),
+        items_over,
+    })
 }
 
 /// The flux profile of the tip the job's robot describes (`paint.profile`,

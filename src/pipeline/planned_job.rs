@@ -26,13 +26,22 @@ pub(super) struct Placed<'a> {
     pub strokes: &'a PlacedStrokes,
 }
 
+/// A job of one tip and one tilt, and what its film check found of each
+/// item: what `choice::compile_strokes` chooses among.
+pub(super) struct PlannedJob {
+    pub job: Job,
+    /// The items whose own film misses a bound (`film::FilmCheck::
+    /// items_over`); none where the request does not measure the film.
+    pub items_over: Vec<String>,
+}
+
 /// The planner for the robot's paint table as it is (one tip): the job
 /// of one tip and one tilt, which `choice::compile_strokes` chooses among.
 pub(super) fn compile_for_tip(
     req: &CompileRequest,
     placed: Placed,
     robot: crate::robot::AnyRobot,
-) -> Result<Job, CompileError> {
+) -> Result<PlannedJob, CompileError> {
     let Placed {
         marking,
         font,
@@ -851,7 +860,8 @@ fn with_film(
     req: &CompileRequest,
     mut job: Job,
     strokes: &PlacedStrokes,
-) -> Result<Job, CompileError> {
+) -> Result<PlannedJob, CompileError> {
+    let mut items_over = vec![];
     if req.film {
         let owners: Vec<_> = strokes.items.iter().map(|it| it.owner.clone()).collect();
         let checked = film::check(&job, &owners)?;
@@ -859,9 +869,10 @@ fn with_film(
             .warnings
             .extend(basr_plan::warnings::render_all(&checked.notes));
         job.summary.film = Some(checked.summary);
+        items_over = checked.items_over;
     }
     job.seal();
-    Ok(job)
+    Ok(PlannedJob { job, items_over })
 }
 
 /// When the gun opened for the pass of `stroke` that paints at `t_s` (a
