@@ -88,8 +88,10 @@ pub struct Args {
     #[arg(long, value_name = "PROFILE")]
     pub profile: Option<String>,
 
-    /// Depth of the fan sheet on the road along the travel direction:
-    /// `gauss:MM` (standard deviation) or `tophat:MM` (full width).
+    /// Depth of the fan sheet on the road, square to the fan's line (along
+    /// the travel where the fan stands square to it; across a skewed
+    /// rung's edges where it does not): `gauss:MM` (standard deviation) or
+    /// `tophat:MM` (full width).
     #[arg(long, value_name = "KIND:MM", default_value = "gauss:6")]
     pub fan_depth: String,
 

@@ -22,7 +22,7 @@ pub const MAX_RAY_ANGLE_RAD: f64 = 85.0 * std::f64::consts::PI / 180.0;
 /// Default standard deviation of the fan's depth on the road: the robot
 /// crate's assumed sheet depth, which the planner holds a fan's ends in by.
 pub const DEFAULT_DEPTH_SIGMA_M: f64 = basr_robot::paint_law::SHEET_DEPTH_SIGMA_M;
-/// Farthest the sheet may reach along the travel, either side (3σ or half
+/// Farthest the sheet may reach square to the fan's line, either side (3σ or half
 /// the top hat), m. assumed: a flat fan's sheet is a centimetre or two deep
 /// (see `DEFAULT_DEPTH_SIGMA_M`); one
 /// reaching farther than half the longest rung the default font paints
