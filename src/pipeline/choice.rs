@@ -70,17 +70,57 @@ pub fn compile_strokes(
     if problems(&first) == 0 {
         return Ok(first);
     }
+    // The tips (with their tilt method) whose fan is wider than the
+    // strokes it paints, a problem of the plan's geometry before any
+    // timing: gently planned the fan is as wide, and with ends held in the
+    // rungs are only shorter, so such a tip is not planned again under
+    // the same method (B at 6 ft: 15 plans instead of 23).
+    let mut too_wide: Vec<(Tilt, Option<String>)> = vec![];
+    let note_wide = |too_wide: &mut Vec<_>, r: &CompileRequest, job: &Job| {
+        if !r.hold_ends && fan_wider_than_strokes(job) {
+            too_wide.push(tip_key(r, &job.robot));
+        }
+    };
+    note_wide(&mut too_wide, first_req, &first);
     // Two plans at a time, in order, the first of a pair that paints
     // chosen: each plan's own stages keep two cores busy only in part (a
     // NOT READY B at 6 ft: 1.58 s of CPU in 1.10 s), and more at once
     // would only hold more jobs in memory where the first of them paints.
-    for pair in others.chunks(2) {
-        let open: Vec<Option<Job>> = pair
-            .par_iter()
-            .map(|(r, robot)| planned_evenly(r, |r| compile_for_tip(r, placed, robot.clone())))
+    let mut rest = others.iter();
+    loop {
+        let pair: Vec<&(CompileRequest, crate::robot::AnyRobot)> = rest
+            .by_ref()
+            .filter(|(r, robot)| !too_wide.contains(&tip_key(r, robot)))
+            .take(2)
             .collect();
-        for ((r, robot), job) in pair.iter().zip(open) {
-            let Some(job) = job else { continue };
+        if pair.is_empty() {
+            return Ok(first);
+        }
+        let open: Vec<Result<PlannedJob, CompileError>> = pair
+            .par_iter()
+            .map(|(r, robot)| {
+                let open_loop = CompileRequest {
+                    verify: false,
+                    ..r.clone()
+                };
+                compile_for_tip(&open_loop, placed, robot.clone())
+            })
+            .collect();
+        for ((r, robot), planned) in pair.into_iter().zip(open) {
+            if let Ok(p) = &planned {
+                note_wide(&mut too_wide, r, &p.job);
+            }
+            // A plan that already has problems (its film, its strokes
+            // against its fan) is no choice, and is not verified (STOP at
+            // 6 ft once verified all three tips it had: 3.4 s of a NOT
+            // READY compile). Verification only slows a job (gentler
+            // accelerations, and slower speeds where a joint's limit
+            // binds), and is taken not to take a planned problem away;
+            // were it ever to, a choice would be passed over that a
+            // verified compile would have kept: the cautious side. A
+            // request that cannot be planned at all (a fan too wide for
+            // every stroke) is no choice either.
+            let Some(job) = paints(planned) else { continue };
             if !r.verify {
                 return Ok(job);
             }
@@ -89,7 +129,21 @@ pub fn compile_strokes(
             }
         }
     }
-    Ok(first)
+}
+
+/// A plan's tilt method and its robot's tip: what [`compile_strokes`]
+/// skips once the tip's fan is wider than the strokes.
+fn tip_key(r: &CompileRequest, robot: &crate::robot::AnyRobot) -> (Tilt, Option<String>) {
+    (r.tilt, robot.paint().mounted.clone())
+}
+
+/// Whether `job` has a problem of a fan wider than its strokes
+/// (`height_clamped`, graded a problem).
+fn fan_wider_than_strokes(job: &Job) -> bool {
+    job.summary.warnings.iter().any(|w| {
+        w.kind == crate::job::WarningKind::HeightClamped
+            && w.graded() == crate::job::Severity::Problem
+    })
 }
 
 /// The plans compile may choose among, in the order it prefers them
@@ -149,27 +203,6 @@ fn choices(
         .flat_map(|r| gentle(&r))
         .flat_map(|r| tips.iter().map(move |t| (r.clone(), t.clone())))
         .collect()
-}
-
-/// The job `plan` makes of `req` without the closed loop when it has no
-/// problems, else `None`; [`compile_strokes`] verifies it where `req`
-/// verifies. A plan that already has problems (its film, its strokes
-/// against its fan) is no choice, and is not verified (STOP at 6 ft once
-/// verified all three tips it had: 3.4 s of a NOT READY compile).
-/// Verification only slows a job (gentler accelerations, and slower
-/// speeds where a joint's limit binds), and is taken not to take a planned
-/// problem away; were it ever to, a choice would be passed over that a
-/// verified compile would have kept: the cautious side. A request that
-/// cannot be planned at all (a fan too wide for every stroke) is no choice
-/// either.
-fn planned_evenly(
-    req: &CompileRequest,
-    plan: impl Fn(&CompileRequest) -> Result<PlannedJob, CompileError>,
-) -> Option<Job> {
-    paints(plan(&CompileRequest {
-        verify: false,
-        ..req.clone()
-    }))
 }
 
 /// The job planned when it has no problems and none of its items (a
