@@ -223,3 +223,94 @@ fn problems(job: &Job) -> usize {
         .filter(|w| w.graded() == crate::job::Severity::Problem)
         .count()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::robot::AnyRobot;
+
+    /// (tilt, gently, ends held, tip) of each choice.
+    fn listed(req: &CompileRequest, robot: &AnyRobot) -> Vec<(Tilt, bool, bool, String)> {
+        choices(req, robot)
+            .into_iter()
+            .map(|(r, robot)| {
+                let tip = robot.paint().mounted.clone().unwrap_or_default();
+                (r.tilt, r.gentle_tilt, r.hold_ends, tip)
+            })
+            .collect()
+    }
+
+    fn shipped(name: &str) -> AnyRobot {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("robots")
+            .join(name);
+        AnyRobot::load(&path).expect("a shipped robot loads")
+    }
+
+    #[test]
+    fn the_choices_go_gently_then_trapezoid_then_held_each_with_every_tip() {
+        let robot = AnyRobot::load_or_default(None).unwrap();
+        let tips: Vec<String> = robot.paint().tips.iter().map(|t| t.name.clone()).collect();
+        assert_eq!(tips.len(), 4, "{tips:?}");
+        let list = listed(&CompileRequest::message("B"), &robot);
+        let (q, t) = (Tilt::Quadrilateral, Tilt::Trapezoid);
+        let groups = [
+            (q, false, false),
+            (q, true, false),
+            (t, false, false),
+            (t, true, false),
+            (q, false, true),
+            (q, true, true),
+        ];
+        let want: Vec<_> = groups
+            .iter()
+            .flat_map(|&(tilt, g, h)| tips.iter().map(move |n| (tilt, g, h, n.clone())))
+            .collect();
+        assert_eq!(list, want);
+    }
+
+    #[test]
+    fn an_arm_that_does_not_tilt_is_not_planned_gently_or_trapezoid() {
+        let robot = shipped("articulated.toml");
+        assert!(robot.tilt_limit().is_none());
+        let list = listed(&CompileRequest::message("B"), &robot);
+        let n = robot.paint().tips.len();
+        assert_eq!(list.len(), 2 * n, "{list:?}");
+        assert!(list.iter().all(|c| !c.1 && c.0 == Tilt::Quadrilateral));
+        assert!(list[..n].iter().all(|c| !c.2) && list[n..].iter().all(|c| c.2));
+    }
+
+    #[test]
+    fn a_named_tilt_a_mounted_tip_and_the_site_narrow_the_choices() {
+        let robot = AnyRobot::load_or_default(None).unwrap();
+        // --tilt named: no trapezoid; gently and held with every tip
+        let named = CompileRequest {
+            tilt_named: true,
+            ..CompileRequest::message("B")
+        };
+        assert!(listed(&named, &robot)
+            .iter()
+            .all(|c| c.0 == Tilt::Quadrilateral));
+        assert_eq!(listed(&named, &robot).len(), 4 * 4);
+        // a job's own tip, mounted: that tip alone
+        let mut mounted = robot.clone();
+        let tip = robot.paint().tips[3].clone();
+        let p = mounted.paint_mut();
+        *p = p.with_tip(&tip);
+        let list = listed(&named, &mounted);
+        assert_eq!(list.len(), 4);
+        assert!(list.iter().all(|c| c.3 == tip.name));
+        // at the site: the job as it was planned, nothing else
+        let at_site = CompileRequest {
+            site: Some(basr_plan::site::Site {
+                stations: vec![],
+                fitted: 0,
+                road: Default::default(),
+                kept: vec![],
+                painted: vec![],
+            }),
+            ..CompileRequest::message("B")
+        };
+        assert_eq!(listed(&at_site, &mounted).len(), 1);
+    }
+}
