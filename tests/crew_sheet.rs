@@ -324,6 +324,16 @@ fn every_letter_of_a_small_word_that_paints_is_within_the_bounds() {
     );
     let html = std::fs::read_to_string(d.join("s.sheet.html")).unwrap();
     assert!(html.contains(">READY WITH NOTES<"), "the job paints");
+    // SCHOOL at 6 ft paints with its rungs' ends held in, at the default
+    // tilt share: the sheet says the one and not the other.
+    assert!(
+        html.contains(
+            "planned with: <strong>the rungs' ends held in from edges they meet \
+             obliquely</strong>"
+        ),
+        "the sheet says how the job was planned"
+    );
+    assert!(!html.contains("the tilt gently"));
     let letters = html
         .split("<table id=\"letters\">")
         .nth(1)

@@ -651,7 +651,7 @@ pub fn build(input: &Input) -> Sheet {
         ("coverage".into(), pct(m.coverage)),
         ("overspray".into(), pct(m.overspray)),
     ];
-    let facts = vec![
+    let mut facts = vec![
         ("job file".into(), input.job_name.to_string()),
         ("job sha256".into(), job.sha256.chars().take(16).collect()),
         ("signature".into(), input.signature.to_string()),
@@ -664,6 +664,25 @@ pub fn build(input: &Input) -> Sheet {
             ),
         ),
     ];
+    // How compile planned a job whose first plan had problems (the
+    // engineer's to know: `basr fit` plans it so again).
+    let options = job.layout.options.as_ref();
+    let planned: Vec<&str> = [
+        (
+            options.is_some_and(|o| o.gentle_tilt),
+            "the tilt gently (a smaller share of its joint's acceleration)",
+        ),
+        (
+            options.is_some_and(|o| o.hold_ends),
+            "the rungs' ends held in from edges they meet obliquely",
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(on, words)| on.then_some(words))
+    .collect();
+    if !planned.is_empty() {
+        facts.push(("planned with".into(), planned.join("; ")));
+    }
     let groups = groups(job);
     let tip = tip_words(job);
     // The job's tip when it is not the robot's first (the one compile
