@@ -93,7 +93,8 @@ fn an_electric_kinds_job_records_no_plant_set() {
 }
 
 /// A station compile keeps with a plant of the set over the bound (only a
-/// slower path for the whole station would help: glyph C at 2.5 m) says so
+/// slower path for the whole station would help: glyph C at 3.5 m, its
+/// join into stroke 0 already at the slowest re-timing) says so
 /// where the crew reads: an `arm` notice naming the stop and the plant,
 /// beside `summary.verified.over`.
 #[test]
@@ -101,7 +102,7 @@ fn a_plant_kept_over_the_bound_is_a_notice() {
     use basr::pipeline::compile::{compile_job, CompileRequest};
     let job = compile_job(&CompileRequest {
         overrides: basr::layout::Overrides {
-            letter_height_m: Some(2.5),
+            letter_height_m: Some(3.5),
             ..Default::default()
         },
         ..CompileRequest::message("C")
@@ -112,7 +113,7 @@ fn a_plant_kept_over_the_bound_is_a_notice() {
         .verified
         .as_ref()
         .and_then(|v| v.over.clone())
-        .expect("C at 2.5 m is kept with a plant over the bound");
+        .expect("C at 3.5 m is kept with a plant over the bound");
     let arm: Vec<&basr::job::Warning> = job
         .summary
         .warnings
@@ -131,4 +132,36 @@ fn a_plant_kept_over_the_bound_is_a_notice() {
         .warnings
         .iter()
         .all(|w| w.kind != basr::job::WarningKind::Arm));
+}
+
+/// Where the re-timing that would bring a plant of the set within the
+/// bound makes a motion the robot's own check refuses, compile keeps the
+/// last pace and says why (D at 12 ft: a join slowed to 8 % of the
+/// accelerations carried the tilt's ball nut past its speed, and the
+/// glyph was refused): the job is written, its `verified.over` names the
+/// limit.
+#[test]
+fn a_re_timing_that_breaks_a_limit_is_not_taken() {
+    use basr::pipeline::compile::{compile_job, CompileRequest};
+    let job = compile_job(&CompileRequest {
+        overrides: basr::layout::Overrides {
+            letter_height_m: Some(12.0 * 0.3048),
+            ..Default::default()
+        },
+        ..CompileRequest::message("D")
+    })
+    .expect("D at 12 ft compiles");
+    let over = job
+        .summary
+        .verified
+        .as_ref()
+        .and_then(|v| v.over.clone())
+        .expect("D at 12 ft is kept with a plant over the bound");
+    assert!(
+        over.contains("the slower motion that would help breaks a limit")
+            && over.contains("tilt_nut_m speed"),
+        "{over}"
+    );
+    // the description itself is within the bound
+    assert!(job.summary.verified_max_error_m.unwrap() <= SHARE * TOLERANCE_M);
 }

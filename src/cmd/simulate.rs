@@ -121,7 +121,8 @@ pub struct Args {
     #[arg(long, value_name = "KIND@T", value_parser = parse_fault)]
     pub fault: Vec<sim::fault::Fault>,
 
-    /// RK4 sub-steps per 5 ms control period (default: the model's, 1 ms steps), 1–100.
+    /// RK4 sub-steps per control period (default: as few as the plant's fastest mode allows; four
+    /// of 1.25 ms on the default robot), 1–100.
     #[arg(allow_hyphen_values = true, long, hide = true,
           value_parser = clap::value_parser!(u32).range(1..=100))]
     pub substeps: Option<u32>,

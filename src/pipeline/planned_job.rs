@@ -93,8 +93,16 @@ pub(super) fn compile_for_tip(
     if let Some((si, pace)) = warm_pace(req, &tours) {
         paces[si] = pace;
     }
+    // The paces of the last round whose motion met every limit, and, per
+    // station, why its next re-timing was not taken: a slower join can
+    // make a motion the robot's own check refuses (D at 12 ft: a join
+    // into a stroke at 8 % of the accelerations carried the tilt's ball
+    // nut 0.7 % past its speed). Such a station keeps its last pace, and
+    // its failure is then treated as at the slowest re-timing.
+    let mut good_paces: Option<Vec<trajectory::Pace>> = None;
+    let mut not_taken: Vec<Option<String>> = vec![None; n];
     loop {
-        let timed = trajectory::time_law_paced(
+        let timed_rows = trajectory::time_law_paced(
             strokes,
             &plan,
             &paths,
@@ -108,13 +116,34 @@ pub(super) fn compile_for_tip(
             },
             &paces,
             &mut cache,
-        )?;
+        )
+        .and_then(|timed| {
+            let rows = station_rows(&plan, &timed, &robot, req.period_s);
+            let notes = timed.notes.clone();
+            let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
+            Ok((notes, rows, samples))
+        });
+        let (timed_notes, rows, samples) = match (timed_rows, &good_paces) {
+            (Ok(t), _) => t,
+            (Err(e), Some(good)) if *good != paces => {
+                for si in 0..n {
+                    if paces[si] != good[si] {
+                        paces[si] = good[si].clone();
+                        not_taken[si] = Some(match &e {
+                            CompileError::Timing(why) => why.clone(),
+                            other => other.to_string(),
+                        });
+                    }
+                }
+                continue;
+            }
+            (Err(e), _) => return Err(e),
+        };
+        good_paces = Some(paces.clone());
         let mut notes = strokes.notes.clone();
         notes.extend(tilt_note.iter().cloned());
         notes.extend(passes.notes.iter().cloned());
-        notes.extend(timed.notes.iter().cloned());
-        let rows = station_rows(&plan, &timed, &robot, req.period_s);
-        let samples = samples::sample(&plan, &paths, timed, &robot, req.period_s)?;
+        notes.extend(timed_notes);
         let mut job = seal::assemble(Planned {
             marking,
             font,
@@ -226,6 +255,13 @@ pub(super) fn compile_for_tip(
                 if v.on_spread && !req.retime_on_spread {
                     return Ok((si, None));
                 }
+                if let Some(why) = &not_taken[si] {
+                    return if v.on_spread {
+                        Ok((si, None))
+                    } else {
+                        Err(CompileError::Timing(why.clone()))
+                    };
+                }
                 let range = rows[si].clone();
                 slower(
                     &paces[si],
@@ -263,16 +299,23 @@ pub(super) fn compile_for_tip(
                         }
                     }
                     if let Some((_, v)) = verdicts[si].as_mut() {
-                        kept_over[si] = Some(format!(
-                            "{}; not re-timed for it: only a slower path for the whole station would \
-                             help{}",
-                            v.why,
-                            if req.retime_on_spread {
-                                ""
-                            } else {
-                                " (an imported shape is not re-timed for the set)"
-                            }
-                        ));
+                        kept_over[si] = Some(match &not_taken[si] {
+                            Some(why) => format!(
+                                "{}; not re-timed for it: the slower motion that would help breaks \
+                                 a limit ({why})",
+                                v.why
+                            ),
+                            None => format!(
+                                "{}; not re-timed for it: only a slower path for the whole station \
+                                 would help{}",
+                                v.why,
+                                if req.retime_on_spread {
+                                    ""
+                                } else {
+                                    " (an imported shape is not re-timed for the set)"
+                                }
+                            ),
+                        });
                         v.ok = true;
                     }
                     // The set ran in step, its other plants ended at the
@@ -784,9 +827,12 @@ fn finish_description(
 }
 
 /// The station's pace after `verdict` (a failed one): slow where the arm
-/// fell behind: the move out of stow when the worst error is on the
-/// station's first stroke; else the join into the worst stroke alone where
-/// the arm arrives behind at its first rungs; else the strokes' path. A
+/// fell behind: the move out of stow when the worst error is in the
+/// station's first pass (the first stroke's, entered from stow); else the
+/// join into the worst stroke alone where the arm arrives behind at the
+/// first rungs of the pass it paints (a wide stroke's later pass is
+/// entered by a join, even on the station's first stroke); else the
+/// strokes' path. A
 /// plant of the spread set does not slow the whole path (`None`): on STOP
 /// at full reach and the arrow shape at 3 m that cost the film, turning
 /// an even job into a NOT READY one for a plant that strays by tenths of a
@@ -813,15 +859,23 @@ fn slower(
             .and_then(|r| r.first())
             .is_some_and(|r| r.stroke as i64 == stroke)
     };
-    let after_stow = first_of(si, stroke) && pace.air > min_pace;
+    // When the gun opened for the pass the worst error is in, and whether
+    // that is the station's first pass, the one flown into from stow.
+    let pass_start = paint_start(samples, rows.clone(), stroke, verdict.worst_t_s);
+    let first_pass = first_of(si, stroke)
+        && pass_start.is_some_and(|t0| {
+            rows.clone()
+                .find(|&i| samples.paint[i] == 1)
+                .is_some_and(|i| samples.t_s[i] == t0)
+        });
+    let after_stow = first_pass && pace.air > min_pace;
     let mut joins_slowed = false;
-    // The join into the worst stroke, where the arm arrives behind at its
-    // first rungs (a verification run ends at its first failure, so the
-    // worst is that one; a later stroke's is seen once it is fixed).
+    // The join into the worst stroke, where the arm arrives behind at the
+    // first rungs of a pass (a verification run ends at its first failure,
+    // so the worst is that one; a later stroke's is seen once it is fixed).
     let arrival = !after_stow
-        && !first_of(si, stroke)
-        && paint_start(samples, rows, stroke, verdict.worst_t_s)
-            .is_some_and(|t0| verdict.worst_t_s - t0 < arrival_s);
+        && !first_pass
+        && pass_start.is_some_and(|t0| verdict.worst_t_s - t0 < arrival_s);
     if arrival {
         match pace.joins.iter().position(|(s, _)| *s as i64 == stroke) {
             Some(k) if pace.joins[k].1 > min_pace => {

@@ -57,7 +57,8 @@ pub(crate) fn outside(ranges: Vec<Range>) -> Vec<(String, String)> {
 }
 
 const ARM: &str = "a road-marking arm of a few metres";
-const SIM_STEP: &str = "the simulator integrates at 1 ms and samples the controller at its period";
+const SIM_STEP: &str =
+    "the simulator samples the controller at its period and integrates in steps of about 1 ms";
 const HYD: &str = "industrial hydraulics: supply up to 42 MPa";
 const BULK: &str = "mineral oil with or without entrained air: 0.2–2.5 GPa (000 §II eq. 13)";
 const SERVO: &str = "a servo the 1 ms integrator can follow";

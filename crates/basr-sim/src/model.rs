@@ -268,6 +268,18 @@ pub struct SimModel {
     pub substeps: u32,
 }
 
+/// Largest h·ω of the plant's fastest mode per RK4 step. source: RK4 is
+/// stable for h·ω ≤ 2√2 ≈ 2.83 on an undamped mode; 2.4 leaves 15 % for
+/// what the bound does not see (a plant of the spread with its bulk modulus
+/// 20 % up rings 4 % faster, 50 % up, the most any spread draws, 11 %).
+/// The default robot gets 1.25 ms steps
+/// (h·ω = 2.26 on its bound): STOP, SCHOOL, STOP at full reach, the bike
+/// symbol and markings/turn_lane.toml on 40 plants (seed 1) then give p95
+/// within 0.12 mm of 0.25 ms steps, where 1 ms steps came within 0.21 mm
+/// (docs/simulate.md); 1.67 ms steps (h·ω = 3.0) went unstable at full
+/// reach (p95 10.1 mm).
+pub const RK4_H_OMEGA: f64 = 2.4;
+
 impl SimModel {
     /// The default BASR model: [`SimModel::from_robot`] of the embedded
     /// description (robots/basr.toml states every value's source).
@@ -317,7 +329,7 @@ impl SimModel {
             .iter()
             .copied()
             .fold(0.0, f64::max);
-        let m = SimModel {
+        let mut m = SimModel {
             arm: Arm {
                 k: arm.pantograph_ratio,
                 d_m: h.gravity_d_m,
@@ -445,14 +457,71 @@ impl SimModel {
                 period_s: robot.control.controller_sample_s,
                 lambda_s: robot.control.delay_estimate_s,
             },
-            // RK4 steps of at most 1 ms (5 in the seed's 5 ms period): 4×
-            // inside the valve's τ_s stability bound
-            substeps: (robot.control.controller_sample_s / 1.0e-3 - 1e-9)
-                .ceil()
-                .max(1.0) as u32,
+            // set from the model's fastest mode below
+            substeps: 1,
         };
+        m.substeps = m.stable_substeps()?;
         m.validate()?;
         Ok(m)
+    }
+
+    /// The fastest oscillation of the plant (rad/s), an upper bound: a
+    /// hose's inertance between its own compliance and its chamber's at
+    /// the chamber's smallest volume over the actuator's travel (the
+    /// piston's motion only adds compliance), the linkage mode, each
+    /// boom's bending mode, and the cylinder's end stop on the arm's
+    /// lightest extension mass. The default robot's hose–chamber bound,
+    /// 1809 rad/s (288 Hz, cylinder chamber A at its dead volume), is
+    /// within 2 % of the largest eigenvalue of the plant's Jacobian there
+    /// (1774 rad/s, computed numerically at rest and moving, over the reach).
+    pub fn fastest_mode_rad_s(&self) -> f64 {
+        let c = &self.circuit;
+        let k_line = c.line_bulk_pa / c.line_volume_m3;
+        let k_chamber = |act: &Actuator, lo: f64, hi: f64| {
+            let (a_lo, b_lo) = super::plant::volumes(act, lo);
+            let (a_hi, b_hi) = super::plant::volumes(act, hi);
+            self.hydraulics.bulk_modulus_pa / a_lo.min(b_lo).min(a_hi).min(b_hi)
+        };
+        let motor = k_chamber(&self.motor, self.arm.theta_min_rad, self.arm.theta_max_rad);
+        let cylinder = k_chamber(&self.cylinder, 0.0, self.arm.stroke_m);
+        let hose = ((k_line + motor.max(cylinder)) / c.line_inertance).sqrt();
+        // the end stop's spring (plant::END_STOP_N_PER_M) on the smallest
+        // A22 over the stroke (it grows towards either end)
+        let a22 = [0.0, 0.25, 0.5, 0.75, 1.0]
+            .map(|f| {
+                let x = self.arm.x_min_m + f * (self.arm.x_max_m() - self.arm.x_min_m);
+                super::plant::mass_matrix(self, x).a22
+            })
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
+        let end_stop = (super::plant::END_STOP_N_PER_M / a22).sqrt();
+        [
+            hose,
+            self.compliance.omega(),
+            self.boom.omega[0],
+            self.boom.omega[1],
+            end_stop,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
+
+    /// RK4 steps per control period: as few as keep h·ω of the fastest
+    /// mode within [`RK4_H_OMEGA`] and h within the valves' τ_s (RK4's
+    /// real-axis bound is 2.79·τ_s). Too many (over 100): the description's
+    /// hydraulics are too stiff to simulate at its control period.
+    pub fn stable_substeps(&self) -> Result<u32, ModelError> {
+        let omega = self.fastest_mode_rad_s();
+        let tau = self.motor.valve_tau_s.min(self.cylinder.valve_tau_s);
+        let h_max = (RK4_H_OMEGA / omega).min(tau);
+        let n = (self.control.period_s / h_max - 1e-9).ceil().max(1.0);
+        if !n.is_finite() || n > 100.0 {
+            return Err(ModelError::TooStiff {
+                hz: omega / std::f64::consts::TAU,
+                period_s: self.control.period_s,
+            });
+        }
+        Ok(n as u32)
     }
 
     /// Check every number is finite and in its physical range.
@@ -546,6 +615,12 @@ pub enum ModelError {
     OutOfRange { name: &'static str, value: f64 },
     #[error("substeps = {0} must be 1–100")]
     Substeps(u32),
+    #[error(
+        "the hydraulics ring at {hz:.0} Hz (a hose on its chamber, the linkage, a boom or the end \
+         stop): simulating them needs over 100 RK4 steps per {period_s} s control period; check \
+         the [dynamics] line and chamber volumes, or shorten controller_sample_s"
+    )]
+    TooStiff { hz: f64, period_s: f64 },
 }
 
 /// What a hydraulic model is built from: BASR's description, or a job's
@@ -574,6 +649,28 @@ mod tests {
     use super::*;
 
     const IN: f64 = 0.0254;
+
+    /// The default robot's fastest mode is a hose on the cylinder's chamber
+    /// A at its dead volume (1809 rad/s), and its 5 ms period takes four
+    /// RK4 steps of 1.25 ms; hoses ten times stiffer need more, and a
+    /// description too stiff for 100 steps is refused by name.
+    #[test]
+    fn the_integration_step_follows_the_fastest_mode() {
+        let m = SimModel::basr();
+        let w = m.fastest_mode_rad_s();
+        assert!((w - 1809.0).abs() < 5.0, "{w}");
+        assert_eq!(m.substeps, 4);
+        assert!(m.control.period_s / m.substeps as f64 * w <= RK4_H_OMEGA);
+        let mut stiff = m.clone();
+        stiff.circuit.line_inertance /= 10.0;
+        let n = stiff.stable_substeps().unwrap();
+        assert!(
+            n > 4 && stiff.control.period_s / n as f64 * stiff.fastest_mode_rad_s() <= RK4_H_OMEGA
+        );
+        stiff.circuit.line_inertance /= 1.0e4;
+        let e = stiff.stable_substeps().unwrap_err().to_string();
+        assert!(e.contains("Hz") && e.contains("controller_sample_s"), "{e}");
+    }
 
     #[test]
     fn link_masses_reproduce_the_holding_force() {
