@@ -199,12 +199,23 @@ fn b_matches_appendix_a() {
         }));
         reference.push(line(flag((3.0, 19.0)), flag((3.0, 18.0))));
     }
-    // pathB.c primitive2: the stem, x = 0.5 ± 0.5 from y = 0 to 25.
-    reference.push(line((0.0, 0.0), (0.0, 25.0)));
-    reference.push(line((1.0, 0.0), (1.0, 25.0)));
-    // The font's own additions: the cut and the piece joining flags 3 and 4.
-    reference.push(line((1.0, 13.0), (x_cut, 13.0)));
+    // pathB.c primitive2: the stem, x = 0.5 ± 0.5 from y = 0 to 25. The
+    // font paints the bars through it (docs/font.md "B's bars through the
+    // stem"), so its sides are edges only between the bars, y = 4..11 and
+    // 15..21; beside the bars x = 0 is the bars' caps (rungs, not edges:
+    // `font::tests::b_through_its_stem_keeps_the_seed_outline` checks the
+    // outline's area) and x = 1 lies inside them.
+    for (y0, y1) in [(4.0, 11.0), (15.0, 21.0)] {
+        reference.push(line((0.0, y0), (0.0, y1)));
+        reference.push(line((1.0, y0), (1.0, y1)));
+    }
+    // The font's own additions: the cut, the piece joining flags 3 and 4,
+    // and the bars' edges carried on over the stem's width.
+    reference.push(line((0.0, 13.0), (x_cut, 13.0)));
     reference.push(line((3.0, 7.0), (3.0, 8.0)));
     reference.push(line((4.0, 7.0), (4.0, 8.0)));
+    for y in [0.0, 4.0, 11.0, 15.0, 21.0, 25.0] {
+        reference.push(line((0.0, y), (1.0, y)));
+    }
     assert_coincide('B', &reference);
 }

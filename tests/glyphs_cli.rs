@@ -95,7 +95,7 @@ fn listing_counts_and_ranges() {
     );
     assert!(err.contains("\nI  1 stroke  rungs 1.00 units\n"), "{err}");
     assert!(
-        err.contains("\nB  6 strokes  rungs 1.00–4.00 units\n"),
+        err.contains("\nB  7 strokes  rungs 1.00–4.03 units\n"),
         "{err}"
     );
     // No glyph is thinner than the font's 1-unit weight (the 8 was 0.67),
