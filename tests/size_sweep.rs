@@ -207,8 +207,7 @@ fn twelve_feet() {
 /// is NOT READY for its film and, where the arm lacks a degree of freedom
 /// (the articulated arm's lean along the fan), the film problem names the
 /// glyph and that degree of freedom. The telescopic arm paints every
-/// glyph (J with the 511 tip); its B is NOT READY at the default 2.44 m
-/// (cv 0.051), 1.6 mm taller than 8 ft.
+/// glyph (J with the 511 tip), and its B at the default 2.44 m too.
 #[test]
 fn every_glyph_at_eight_feet_on_the_telescopic_arm() {
     eight_feet_on("robots/telescopic.toml", "", None);

@@ -50,8 +50,8 @@ pub enum TiltArg {
 /// `sizes` in --json). A word refused for its size (out of the arm's reach,
 /// carried past a joint's range, too fast to follow, or too wide for the
 /// lane: then from the height it fits at, downwards) gets the same line
-/// under the reason. That takes seconds more on the default robot (BB at
-/// 6 ft: 4 s in all), up to a minute on the telescopic arm (BOB at 6 ft);
+/// under the reason. That takes seconds more on the default robot (QP at
+/// 6 ft: 3.3 s in all), up to a minute on the telescopic arm;
 /// --no-size-search skips it.
 #[derive(clap::Args)]
 #[command(after_help = "\
