@@ -457,11 +457,12 @@ impl SimModel {
                 period_s: robot.control.controller_sample_s,
                 lambda_s: robot.control.delay_estimate_s,
             },
-            // set from the model's fastest mode below
+            // set from the model's fastest mode below, once every number
+            // it is derived from is known to be finite and in range
             substeps: 1,
         };
-        m.substeps = m.stable_substeps()?;
         m.validate()?;
+        m.substeps = m.stable_substeps()?;
         Ok(m)
     }
 
