@@ -426,11 +426,15 @@ fn passes_on_road(
 ) -> Result<(passes::Passes, stations::StationPlan), CompileError> {
     // the tilt's share of its joint's acceleration, gentle where asked
     let tuning = req.planning_tuning();
-    let plan_for = |planner: &crate::robot::AnyRobot| -> Result<passes::Passes, CompileError> {
-        let rungs = rungs::rungs(
+    // the passes of the strokes `only` names under `planner`'s paint law
+    let plan_for = |planner: &crate::robot::AnyRobot,
+                    only: &(dyn Fn(usize) -> bool + Sync)|
+     -> Result<passes::Passes, CompileError> {
+        let rungs = rungs::rungs_of(
             strokes,
             req.rung_spacing_m,
             Some(&passes::turn_budget(planner, &tuning)),
+            only,
         );
         // ends held in from edges the rungs meet obliquely, where asked
         let rungs = if req.hold_ends {
@@ -439,7 +443,7 @@ fn passes_on_road(
         } else {
             rungs
         };
-        passes::passes(strokes, &rungs, planner, tilt.method(), &tuning)
+        passes::passes_of(strokes, &rungs, planner, tilt.method(), &tuning, only)
     };
     let stations_for = |passes: &passes::Passes| -> Result<stations::StationPlan, CompileError> {
         // at the site, the job's stops as it grouped them
@@ -457,7 +461,7 @@ fn passes_on_road(
         }
         Ok(plan)
     };
-    let flat = plan_for(robot)?;
+    let flat = plan_for(robot, &|_| true)?;
     let mut passes = flat.clone();
     let mut plan = stations_for(&passes)?;
     // Heights kept clear below and above, and the strokes they apply to:
@@ -497,9 +501,11 @@ fn passes_on_road(
                 seen[1] * 1e3
             )));
         }
+        // only the strokes over the uneven road are planned again
+        let over = |s: usize| uneven.contains(&s);
         passes = flat
             .clone()
-            .with_strokes_from(plan_for(&planner)?, |s| uneven.contains(&s));
+            .with_strokes_from(plan_for(&planner, &over)?, over);
         plan = stations_for(&passes)?;
     }
     if kept != [0.0, 0.0] {

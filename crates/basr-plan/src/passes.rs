@@ -34,6 +34,20 @@ pub struct Passes {
     pub passes: Vec<Pass>,
     pub balance: Vec<StrokeBalance>,
     pub notes: Vec<Note>,
+    /// Each planned stroke's painted area and the area its clamped knots
+    /// paint outside it (m²), in stroke order: the shares in the notes
+    /// (`Note::HeightClamped`) are of their sum over the job.
+    pub(crate) areas: Vec<StrokeArea>,
+}
+
+/// One stroke's painted area, pass by pass, and the area its clamped knots
+/// paint outside it (m², none when it has no clamped knots).
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct StrokeArea {
+    stroke: usize,
+    /// Each pass's, in order.
+    painted_m2: Vec<f64>,
+    outside_m2: Option<f64>,
 }
 
 impl Passes {
@@ -84,26 +98,62 @@ impl Passes {
             )
             .collect();
         notes.sort_by_key(|n| stroke_of(n).unwrap_or(usize::MAX));
-        let job: f64 = notes
-            .iter()
-            .map(|n| match n {
-                Note::HeightClamped { outside_share, .. } => *outside_share,
-                _ => 0.0,
-            })
-            .sum();
-        for n in &mut notes {
-            if let Note::HeightClamped {
-                job_outside_share, ..
-            } = n
-            {
-                *job_outside_share = job;
-            }
-        }
+        let areas = pick(self.areas, other.areas, |a: &StrokeArea| a.stroke, &take);
         Passes {
             passes,
             balance,
             notes,
+            areas,
         }
+        .with_shares()
+    }
+
+    /// The notes' shares of the job's paint laid outside the strokes, from
+    /// the strokes' areas: each clamped stroke's own and their sum.
+    fn with_shares(mut self) -> Passes {
+        let painted_m2 = self
+            .areas
+            .iter()
+            .flat_map(|a| &a.painted_m2)
+            .fold(0.0, |sum, p| sum + p);
+        let share = |a: f64| {
+            if painted_m2 > 0.0 {
+                a / painted_m2
+            } else {
+                0.0
+            }
+        };
+        let outside = |stroke: usize| {
+            self.areas
+                .iter()
+                .find(|a| a.stroke == stroke)
+                .and_then(|a| a.outside_m2)
+                .unwrap_or(0.0)
+        };
+        let job = share(self.areas.iter().filter_map(|a| a.outside_m2).sum());
+        let shares: Vec<Option<f64>> = self
+            .notes
+            .iter()
+            .map(|n| match n {
+                Note::HeightClamped { stroke, .. } => Some(share(outside(*stroke))),
+                _ => None,
+            })
+            .collect();
+        for (n, s) in self.notes.iter_mut().zip(shares) {
+            if let (
+                Note::HeightClamped {
+                    outside_share,
+                    job_outside_share,
+                    ..
+                },
+                Some(s),
+            ) = (n, s)
+            {
+                *outside_share = s;
+                *job_outside_share = job;
+            }
+        }
+        self
     }
 }
 
@@ -114,6 +164,21 @@ pub fn passes(
     robot: &AnyRobot,
     method: TiltMethod,
     tuning: &Tuning,
+) -> Result<Passes, CompileError> {
+    passes_of(strokes, rungs, robot, method, tuning, &|_| true)
+}
+
+/// [`passes`] of the strokes `only` names (their rungs from
+/// `rungs::rungs_of`), none of the others: some strokes planned again
+/// under another paint law, to be taken into the whole plan with
+/// [`Passes::with_strokes_from`] (the strokes over an uneven road).
+pub fn passes_of(
+    strokes: &PlacedStrokes,
+    rungs: &StrokeRungs,
+    robot: &AnyRobot,
+    method: TiltMethod,
+    tuning: &Tuning,
+    only: &(dyn Fn(usize) -> bool + Sync),
 ) -> Result<Passes, CompileError> {
     let rates = &tuning.rates;
     let law = paint_law(robot);
@@ -130,13 +195,16 @@ pub fn passes(
     };
     // Each stroke's passes are its own: planned in parallel, gathered in
     // the strokes' order (the first error, and the sums, as one by one).
-    let per_stroke: Vec<Result<StrokePasses, CompileError>> = {
+    let per_stroke: Vec<Result<Option<StrokePasses>, CompileError>> = {
         use rayon::prelude::*;
         rungs
             .rungs
             .par_iter()
             .enumerate()
             .map(|(sid, stroke_rungs)| {
+                if !only(sid) {
+                    return Ok(None);
+                }
                 stroke_passes(
                     strokes,
                     sid,
@@ -147,44 +215,24 @@ pub fn passes(
                     tuning,
                     limits,
                 )
+                .map(Some)
             })
             .collect()
     };
     let mut out = Passes::default();
-    let mut painted_m2 = 0.0;
-    let mut outside = vec![];
-    for stroke in per_stroke {
-        let stroke = stroke?;
-        for p in &stroke.painted_m2 {
-            painted_m2 += p;
-        }
+    for (sid, stroke) in per_stroke.into_iter().enumerate() {
+        let Some(stroke) = stroke? else { continue };
+        out.areas.push(StrokeArea {
+            stroke: sid,
+            painted_m2: stroke.painted_m2,
+            outside_m2: stroke.outside_m2,
+        });
         out.passes.extend(stroke.passes);
         out.balance.extend(stroke.balance);
         out.notes.extend(stroke.notes);
-        outside.extend(stroke.outside_m2);
     }
     // Shares of the whole job's paint, known once every pass is.
-    let job: f64 = outside.iter().sum();
-    let share = |a: f64| {
-        if painted_m2 > 0.0 {
-            a / painted_m2
-        } else {
-            0.0
-        }
-    };
-    let clamps = out.notes.iter_mut().filter_map(|n| match n {
-        Note::HeightClamped {
-            outside_share,
-            job_outside_share,
-            ..
-        } => Some((outside_share, job_outside_share)),
-        _ => None,
-    });
-    for ((o, j), &a) in clamps.zip(&outside) {
-        *o = share(a);
-        *j = share(job);
-    }
-    Ok(out)
+    Ok(out.with_shares())
 }
 
 /// The limits a stroke's passes are planned within (`passes`).

@@ -44,13 +44,29 @@ pub struct StrokeRungs {
 /// the height or the tilt to change faster than their joints follow
 /// (the budget's `tuning::Pairing::max_follow`).
 pub fn rungs(strokes: &PlacedStrokes, spacing_m: f64, budget: Option<&TurnBudget>) -> StrokeRungs {
+    rungs_of(strokes, spacing_m, budget, &|_| true)
+}
+
+/// [`rungs`] of the strokes `only` names, none for the others: some
+/// strokes planned again under another paint law (the strokes over an
+/// uneven road, `passes::passes_of`) without the rest.
+pub fn rungs_of(
+    strokes: &PlacedStrokes,
+    spacing_m: f64,
+    budget: Option<&TurnBudget>,
+    only: &(dyn Fn(usize) -> bool + Sync),
+) -> StrokeRungs {
     use rayon::prelude::*;
     StrokeRungs {
         // each stroke's rungs are its own: found in parallel, in order
         rungs: strokes
             .strokes
             .par_iter()
-            .map(|ps| {
+            .enumerate()
+            .map(|(sid, ps)| {
+                if !only(sid) {
+                    return vec![];
+                }
                 let st = &ps.stroke;
                 let len = st.left.length().max(st.right.length());
                 let n = ((len / spacing_m).ceil() as usize).max(1);

@@ -394,8 +394,9 @@ pub struct Beside {
 /// in step beside it (`lockstep::Group::leading_by`). assumed: two keep a
 /// fitted STOP's description from running far past the plants' first
 /// failure (`benches/fit.rs`: the description had run to 88 s when a plant
-/// failed at 24 s; the fit simulated 214 300 ticks, held 210 300) and
-/// leave compile STOP's ticks as they were (205 352).
+/// failed at 24 s; the fit simulated 214 300 ticks, held 210 300 with 5 s
+/// checkpoints, 204 998 with 1 s ones) and leave compile STOP's ticks as
+/// they were (205 352 with 5 s checkpoints, 204 152 with 1 s).
 const LEAD_CHECKPOINTS: f64 = 2.0;
 
 /// A run of a group in step, and whether the group ended it.

@@ -255,8 +255,13 @@ impl Arm {
 
 /// Simulated time between checkpoints of a resumable run (s). assumed: a
 /// resumed run repeats at most this much of what it already knew, and a
-/// station of STOP (144 s) keeps 29 copies of the run's state.
-pub(crate) const CHECKPOINT_S: f64 = 5.0;
+/// station of STOP (144 s) keeps 145 copies of the run's state. Measured
+/// (control ticks of all seven runs, 2026-12-06): `basr fit`'s re-plan of
+/// STOP in `benches/fit.rs`, whose plants fail once at 24.2 s, 204 998
+/// ticks at 1 s and 209 198 at 5 s; compile STOP 204 152 and 205 352. A
+/// resumed run's report is the same at any spacing (`Checkpoints`), so
+/// the spacing changes no job's bytes.
+pub(crate) const CHECKPOINT_S: f64 = 1.0;
 
 /// A run's state at points along it, kept so that a run of the same job
 /// whose rows changed only from some row on resumes at the last point
