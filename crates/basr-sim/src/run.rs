@@ -253,15 +253,27 @@ impl Arm {
     }
 }
 
-/// Simulated time between checkpoints of a resumable run (s). assumed: a
-/// resumed run repeats at most this much of what it already knew, and a
-/// station of STOP (144 s) keeps 145 copies of the run's state. Measured
-/// (control ticks of all seven runs, 2026-12-06): `basr fit`'s re-plan of
-/// STOP in `benches/fit.rs`, whose plants fail once at 24.2 s, 204 998
-/// ticks at 1 s and 209 198 at 5 s; compile STOP 204 152 and 205 352. A
-/// resumed run's report is the same at any spacing (`Checkpoints`), so
-/// the spacing changes no job's bytes.
+/// Simulated time between checkpoints of a resumable run (s), over its
+/// last [`COARSE_CHECKPOINT_S`]; before that only every
+/// `COARSE_CHECKPOINT_S` is kept. assumed: a failed run is re-timed for
+/// a join or move just before its failure, so a resumed run starts from
+/// at most this much before the first changed row, and a station of STOP
+/// (144 s) keeps 33 copies of the run's state at most. Measured (control
+/// ticks of all seven runs, 2026-12-06): `basr fit`'s re-plan of STOP in
+/// `benches/fit.rs`, whose plants fail once at 24.2 s, 204 998 ticks with
+/// this and 209 198 with every 5 s alone; compile STOP 204 152 and
+/// 205 352. Every second kept all along raised the 200-letter compile's
+/// peak memory from 1.35× to 1.69× its job file (the failed runs'
+/// checkpoints wait for their next round). A resumed run's report is the
+/// same at any spacing (`Checkpoints`), so the spacing changes no job's
+/// bytes.
 pub(crate) const CHECKPOINT_S: f64 = 1.0;
+
+/// Simulated time between the checkpoints a run keeps further back than
+/// this from its newest (s): a multiple of [`CHECKPOINT_S`]. assumed: the
+/// spacing every checkpoint had before the finer one, whose memory the
+/// 200-letter compile was measured with.
+const COARSE_CHECKPOINT_S: f64 = 5.0;
 
 /// A run's state at points along it, kept so that a run of the same job
 /// whose rows changed only from some row on resumes at the last point
@@ -381,6 +393,7 @@ pub(super) fn run_resumable(
         .unwrap_or_default();
     marks.retain(|m| m.tick < ticks);
     let every = ((CHECKPOINT_S / period).round() as u64).max(1);
+    let coarse = every * ((COARSE_CHECKPOINT_S / CHECKPOINT_S).round() as u64).max(1);
     let (start, mut arm, mut ctrl, mut tally, mut monitor) = match marks.last() {
         Some(m) => (
             m.tick,
@@ -418,6 +431,8 @@ pub(super) fn run_resumable(
                 logged,
                 monitor: monitor.clone(),
             });
+            // further back, the coarse ones only
+            marks.retain(|m| m.tick % coarse == 0 || m.tick + coarse > k);
         }
         // In step with the other runs of its group (`lockstep`): at each
         // checkpoint it waits for them, and ends once one has failed. The
@@ -570,6 +585,34 @@ mod tests {
         let (resumed3, _) =
             simulate_resumable(&third, &model, &opts, Some((again, row3.min(row)))).unwrap();
         assert_eq!(resumed3.report, whole3.report);
+    }
+
+    /// A run keeps a checkpoint every second over its last five seconds,
+    /// where a re-timed join before its failure changes its rows, and one
+    /// every five seconds further back.
+    #[test]
+    fn checkpoints_are_fine_near_the_run_s_end_and_coarse_behind() {
+        use super::{CHECKPOINT_S, COARSE_CHECKPOINT_S};
+        let model = SimModel::basr();
+        let (job, _) = bumped(0.0, 0.0);
+        let (_, kept) = simulate_resumable(&job, &model, &Options::default(), None).unwrap();
+        let period = model.control.period_s;
+        let [fine, coarse] =
+            [CHECKPOINT_S, COARSE_CHECKPOINT_S].map(|s| (s / period).round() as u64);
+        let ticks: Vec<u64> = kept.marks.iter().map(|m| m.tick).collect();
+        let last = *ticks.last().expect("checkpoints");
+        assert!(last > 3 * coarse, "a run of {last} ticks");
+        let (behind, near): (Vec<u64>, Vec<u64>) = ticks.iter().partition(|&&t| t + coarse <= last);
+        let want_behind: Vec<u64> = (0..)
+            .map(|i| i * coarse)
+            .take_while(|&t| t + coarse <= last)
+            .collect();
+        assert_eq!(behind, want_behind, "every {coarse} ticks further back");
+        let want_near: Vec<u64> = (0..=last / fine)
+            .map(|i| i * fine)
+            .filter(|&t| t + coarse > last)
+            .collect();
+        assert_eq!(near, want_near, "every {fine} ticks over the last {coarse}");
     }
 
     /// A run reads row i at i × the control period, never the row's clock:
