@@ -405,21 +405,67 @@ fn a_fitted_job_is_fitted_again_at_its_next_stop() {
     ));
     let twice = Job::read(&d.join("f.job.json")).unwrap();
     assert_eq!(twice.stations[0], once.stations[0]);
-    let rows = |j: &Job| -> Vec<Vec<String>> {
-        let s = &j.samples;
-        (0..s.len())
-            .filter(|&i| s.station[i] == 0)
-            .map(|i| s.csv_fields(i).into_iter().skip(1).collect())
-            .collect()
-    };
     assert_eq!(
-        rows(&twice),
-        rows(&once),
+        station_rows(&twice, 0),
+        station_rows(&once, 0),
         "the first fitted stop moves as it did"
     );
     for k in [0, 1] {
         same_runs(&twice, &job, k);
     }
+}
+
+/// Station `si`'s setpoint rows of `j`, without their clock.
+fn station_rows(j: &Job, si: u32) -> Vec<Vec<String>> {
+    let s = &j.samples;
+    (0..s.len())
+        .filter(|&i| s.station[i] == si)
+        .map(|i| s.csv_fields(i).into_iter().skip(1).collect())
+        .collect()
+}
+
+/// A word's stops fitted one after the other, each on a road of its own:
+/// stop 2's lies lower under the arm than stop 1's, so its strokes keep a
+/// wider band of heights clear. Stop 1, fitted first, still moves as it
+/// did: each stroke is planned with its own stop's band (with one band
+/// for the job, stop 1's strokes were planned again with stop 2's and fit
+/// refused the job as not its own).
+#[test]
+fn a_word_is_fitted_stop_by_stop_on_roads_of_their_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    succeeded(basr(d, &["compile", "STOP AHEAD", "-o", "j.job.json"]));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    assert_eq!(
+        job.stations.len(),
+        2,
+        "STOP AHEAD is painted from two stops"
+    );
+    // both under the 3 mm the joints' clamp takes (`surface.clamp_free_m`)
+    let low = StopPlane {
+        z_m: -0.005,
+        ..level(1)
+    };
+    let first = moved(&job, 1, MOVE, low);
+    succeeded(fit(d, &points_file(&job, 1, &first, 0.002, 3), &[]));
+    let once = Job::read(&d.join("f.job.json")).unwrap();
+    std::fs::rename(d.join("f.job.json"), d.join("j.job.json")).unwrap();
+    let lower = StopPlane {
+        z_m: -0.008,
+        ..level(2)
+    };
+    let second = moved(&once, 2, [-0.10, 0.20, -1.5], lower);
+    succeeded(fit(d, &points_file(&once, 2, &second, 0.002, 4), &[]));
+    let twice = Job::read(&d.join("f.job.json")).unwrap();
+    assert_eq!(twice.stations[0], once.stations[0]);
+    assert_eq!(
+        station_rows(&twice, 0),
+        station_rows(&once, 0),
+        "the first fitted stop moves as it did"
+    );
+    let (off, dh) = run_from_truth(&twice, 2, &second);
+    assert!(off <= 0.005, "paint lands {:.1} mm off the plan", off * 1e3);
+    assert!(dh <= 0.003, "nozzle height {:.1} mm off the plan", dh * 1e3);
 }
 
 /// A stop beside a bicycle: the wheels are closed passes, whose runs start

@@ -464,24 +464,32 @@ fn passes_on_road(
     let flat = plan_for(robot, &|_| true)?;
     let mut passes = flat.clone();
     let mut plan = stations_for(&passes)?;
-    // Heights kept clear below and above, and the strokes they apply to:
-    // those over a surface that asks for it (the others keep the flat
-    // plan, so a fitted stop leaves the other stops as they were).
-    let mut kept = [0.0f64; 2];
+    // Heights kept clear below and above at each station, and the strokes
+    // they apply to: those over a surface that asks for it (the others
+    // keep the flat plan). Each stroke is planned with its own stations'
+    // band, so a fitted stop leaves the other stops as they were, however
+    // its surface differs from theirs (STOP AHEAD: stop 2 fitted after
+    // stop 1 planned stop 1's strokes again with stop 2's wider band).
+    let mut kept: std::collections::BTreeMap<usize, [f64; 2]> = Default::default();
     // The largest excursions met, for the note.
     let mut seen = [0.0f64; 2];
     let mut uneven: std::collections::BTreeSet<usize> = Default::default();
     // the excursion left to the joints' clamp (`tuning::Surface`)
     let free = req.tuning.surface.clamp_free_m;
+    let widest = |a: [f64; 2], b: [f64; 2]| [a[0].max(b[0]), a[1].max(b[1])];
     for _ in 0..SURFACE_ROUNDS {
         let need = surface_excursion(&plan, &passes, robot);
+        let stations_of = stroke_stations(&plan, &passes);
         let mut grew = false;
         for (&stroke, &[below, above]) in &need {
-            seen = [seen[0].max(below), seen[1].max(above)];
+            seen = widest(seen, [below, above]);
             let n = [below, above].map(|n| if n - free < 1e-6 { 0.0 } else { n - free });
-            if n[0] > kept[0] || n[1] > kept[1] {
-                kept = [kept[0].max(n[0]), kept[1].max(n[1])];
-                grew = true;
+            for &si in stations_of.get(&stroke).into_iter().flatten() {
+                let k = kept.entry(si).or_default();
+                if n[0] > k[0] || n[1] > k[1] {
+                    *k = widest(*k, n);
+                    grew = true;
+                }
             }
             if n != [0.0, 0.0] {
                 grew |= uneven.insert(stroke);
@@ -490,24 +498,42 @@ fn passes_on_road(
         if !grew {
             break;
         }
-        let planner = robot.on_uneven_road(kept[0], kept[1]);
-        let law = basr_robot::paint_law::paint_law(&planner);
-        if law.max_height_m <= law.min_height_m {
-            return Err(CompileError::Road(format!(
-                "the road under the marking lies up to {:.0} mm below and {:.0} mm above the \
-                 plane the truck stands on: the vertical joint has no painting height left \
-                 that reaches all of it; check the [road] crown line or the fitted points",
-                seen[0] * 1e3,
-                seen[1] * 1e3
-            )));
+        // the uneven strokes by the band their stations keep clear
+        let mut by_band: std::collections::BTreeMap<(u64, u64), Vec<usize>> = Default::default();
+        for &stroke in &uneven {
+            let band = stations_of
+                .get(&stroke)
+                .into_iter()
+                .flatten()
+                .filter_map(|si| kept.get(si))
+                .fold([0.0; 2], |a, &b| widest(a, b));
+            by_band
+                .entry((band[0].to_bits(), band[1].to_bits()))
+                .or_default()
+                .push(stroke);
         }
-        // only the strokes over the uneven road are planned again
-        let over = |s: usize| uneven.contains(&s);
-        passes = flat
-            .clone()
-            .with_strokes_from(plan_for(&planner, &over)?, over);
+        let mut next = flat.clone();
+        for ((below, above), strokes_over) in &by_band {
+            let planner = robot.on_uneven_road(f64::from_bits(*below), f64::from_bits(*above));
+            let law = basr_robot::paint_law::paint_law(&planner);
+            if law.max_height_m <= law.min_height_m {
+                return Err(CompileError::Road(format!(
+                    "the road under the marking lies up to {:.0} mm below and {:.0} mm above \
+                     the plane the truck stands on: the vertical joint has no painting height \
+                     left that reaches all of it; check the [road] crown line or the fitted \
+                     points",
+                    seen[0] * 1e3,
+                    seen[1] * 1e3
+                )));
+            }
+            // only these strokes are planned again
+            let over = |s: usize| strokes_over.contains(&s);
+            next = next.with_strokes_from(plan_for(&planner, &over)?, over);
+        }
+        passes = next;
         plan = stations_for(&passes)?;
     }
+    let kept = kept.values().fold([0.0; 2], |a, &b| widest(a, b));
     if kept != [0.0, 0.0] {
         let flat_law = basr_robot::paint_law::paint_law(robot);
         let law = basr_robot::paint_law::paint_law(&robot.on_uneven_road(kept[0], kept[1]));
@@ -530,6 +556,19 @@ fn passes_on_road(
         });
     }
     Ok((passes, plan))
+}
+
+/// The stations that paint each stroke's passes.
+fn stroke_stations(
+    plan: &stations::StationPlan,
+    passes: &passes::Passes,
+) -> std::collections::BTreeMap<usize, std::collections::BTreeSet<usize>> {
+    let mut out: std::collections::BTreeMap<usize, std::collections::BTreeSet<usize>> =
+        Default::default();
+    for (pass, &si) in passes.passes.iter().zip(&plan.station_of) {
+        out.entry(pass.stroke).or_default().insert(si);
+    }
+    out
 }
 
 /// How far (m) the surface under each stroke lies below and above the base
