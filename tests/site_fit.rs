@@ -424,6 +424,27 @@ fn station_rows(j: &Job, si: u32) -> Vec<Vec<String>> {
         .collect()
 }
 
+/// A crew fits a stop again (the truck moved, or a point was misread):
+/// the fitted job's stop takes the points the crew chalked for it, though
+/// as the job now places the stop, turned, one of its corners is past the
+/// arm's reach (which stop a point belongs to is read from the marking).
+#[test]
+fn a_fitted_stop_is_fitted_again_from_its_own_points() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    succeeded(basr(d, &["compile", "SCHOOL XING", "-o", "j.job.json"]));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let truth = moved(&job, 1, MOVE, level(1));
+    let points = points_file(&job, 1, &truth, 0.002, 7);
+    succeeded(fit(d, &points, &[]));
+    std::fs::rename(d.join("f.job.json"), d.join("j.job.json")).unwrap();
+    succeeded(fit(d, &points, &[]));
+    let again = Job::read(&d.join("f.job.json")).unwrap();
+    let st = &again.stations[0];
+    let off = (st.x_m - truth.station.x_m).hypot(st.y_m - truth.station.y_m);
+    assert!(off <= 0.005, "fitted again {:.1} mm off", off * 1e3);
+}
+
 /// A word's stops fitted one after the other, each on a road of its own:
 /// stop 2's lies lower under the arm than stop 1's, so its strokes keep a
 /// wider band of heights clear. Stop 1, fitted first, still moves as it

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::Context;
-use basr::job::{Job, Road, Station};
+use basr::job::{Job, Road};
 use basr::pipeline::compile::{compile_job, Tilt};
 use basr::plan::fit::{self, Measured};
 use basr::plan::site::Site;
@@ -262,19 +262,28 @@ fn read_points(
     Ok((stop - 1, out))
 }
 
-/// Refuse points that cannot belong to stop `si`: a marking point the
-/// job's stop does not reach (saying which stop does), or a road height
+/// How far (m) from the outline of a stop's strokes a measured point may
+/// lie and still be one of that stop's. assumed: a crew chalks the job
+/// sheet's corners or other corners of the same strokes (on the outline);
+/// a quarter metre takes one chalked a little beside its corner. A point
+/// that near two stops' strokes is taken as the stop's the file names.
+const ON_MARKING_M: f64 = 0.25;
+
+/// Refuse points that cannot belong to stop `si`: a point off the marking
+/// the job's stop paints (saying which stop paints it), or a road height
 /// that is no road under the arm. (A measurement outside the arm's reach
 /// as planned is a truck that stopped off: the fit says where to move.)
+/// Which stop's a point is comes from the marking, not from the reach of
+/// the stop as the job places it: a stop fitted with a turn may no longer
+/// reach, as placed, a corner the crew chalked for it, and fitting it
+/// again refused that point (the issue-29 audit).
 fn check_frames(job: &Job, si: usize, points: &[Measured], origin: &str) -> anyhow::Result<()> {
-    let region = job.robot.reach();
-    let reaches = |st: &Station, p: [f64; 2]| {
-        let b = st.road_to_base(p);
-        region.margin(b[0], b[1]) >= 0.0
+    let on = |k: usize, p: [f64; 2]| {
+        basr::job::reference::distance_to_stop(job, k, p).is_some_and(|d| d <= ON_MARKING_M)
     };
     for p in points {
-        if !reaches(&job.stations[si], p.road) {
-            let other = (0..job.stations.len()).find(|&k| reaches(&job.stations[k], p.road));
+        if !on(si, p.road) {
+            let other = (0..job.stations.len()).find(|&k| on(k, p.road));
             match other {
                 Some(k) => anyhow::bail!(
                     "{origin}: point {:?} at road ({:.3}, {:.3}) m is on stop {}'s part of the \

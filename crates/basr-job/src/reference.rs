@@ -42,6 +42,48 @@ pub fn stop_strokes(job: &Job, index: usize) -> Vec<&PlacedStroke> {
         .collect()
 }
 
+/// How far (m) road point `p` lies from the strokes the job paints from
+/// stop `index` (counted from 0): none inside one, else the distance to the
+/// nearest point of their outlines; `None` when the stop paints nothing.
+/// Whether a measured point is one of that stop's does not depend on
+/// where the truck stood (a fitted stop paints the same marking).
+pub fn distance_to_stop(job: &Job, index: usize, p: [f64; 2]) -> Option<f64> {
+    let strokes = stop_strokes(job, index);
+    let dist = |a: [f64; 2]| (a[0] - p[0]).hypot(a[1] - p[1]);
+    strokes
+        .iter()
+        .map(|st| {
+            // the outline: one edge out, the other back
+            let ring: Vec<[f64; 2]> = st
+                .left
+                .iter()
+                .chain(st.right.iter().rev())
+                .copied()
+                .collect();
+            if inside(&ring, p) {
+                0.0
+            } else {
+                ring.iter().map(|&a| dist(a)).fold(f64::INFINITY, f64::min)
+            }
+        })
+        .reduce(f64::min)
+}
+
+/// Whether `p` lies inside the closed polygon `ring` (even–odd rule).
+fn inside(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
+    let mut c = false;
+    for (i, a) in ring.iter().enumerate() {
+        let b = ring[(i + 1) % ring.len()];
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+            if p[0] < x {
+                c = !c;
+            }
+        }
+    }
+    c
+}
+
 /// The reference points of stop `index` (counted from 0): among the
 /// outline points of the strokes painted from it, the two furthest apart
 /// and the furthest from the line through them on each side, so the
@@ -111,4 +153,32 @@ pub fn reference_points(job: &Job, index: usize) -> Vec<ReferencePoint> {
         })
         .collect();
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::inside;
+
+    /// The even–odd test over a square and a concave outline (a U, as a
+    /// bowl's stroke is), points inside, outside and in the notch.
+    #[test]
+    fn inside_tells_the_outline_s_inside_from_its_notch() {
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        assert!(inside(&square, [0.5, 0.5]));
+        assert!(!inside(&square, [1.5, 0.5]));
+        assert!(!inside(&square, [0.5, -0.1]));
+        let u = [
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 3.0],
+            [2.0, 3.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 3.0],
+            [0.0, 3.0],
+        ];
+        assert!(inside(&u, [0.5, 2.0]));
+        assert!(inside(&u, [1.5, 0.5]));
+        assert!(!inside(&u, [1.5, 2.0]), "the notch is outside");
+    }
 }
