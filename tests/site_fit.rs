@@ -569,6 +569,22 @@ fn a_truck_far_off_is_told_where_to_move() {
             "then chalk",
         ],
     );
+    // Just past the edge of reach (0.68 m short of the planned place):
+    // the leaned nozzle of the O's knots is what falls short, and the crew
+    // is told where to move, not compile's advice on letter sizes.
+    for back in [-0.68, -0.685] {
+        let truth = moved(&job, 1, [0.0, back, 0.0], level(1));
+        refused(
+            dir.path(),
+            &points_file(&job, 1, &truth, 0.002, 3),
+            &[
+                "cannot reach the marking from where the truck stopped",
+                "forward",
+            ],
+        );
+        let out = fit(dir.path(), &points_file(&job, 1, &truth, 0.002, 3), &[]);
+        assert!(!stderr(&out).contains("letter-height"), "{}", stderr(&out));
+    }
 }
 
 #[test]

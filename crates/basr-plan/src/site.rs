@@ -129,12 +129,45 @@ pub fn job_stations(passes: &Passes, site: &Site, robot: &AnyRobot) -> Option<St
         .zip(&site.stations)
         .map(|(pts, st)| worst_reach(pts, st, &margin))
         .collect();
-    (margins[site.fitted] >= 0.0).then(|| StationPlan {
+    (margins[site.fitted] >= tilt_slack_m(robot)).then(|| StationPlan {
         stations: site.stations.clone(),
         station_of,
         margin_m: margins,
         road: site.road.clone(),
     })
+}
+
+/// How far (m) the nozzle's tip moves across the road as the tilt joint
+/// leans it over its range, the other joints held (BASR's four-bar: 3.7 mm
+/// at 15°). The reach region is the tip's at no tilt, so a fitted stop
+/// must reach its points by this much more: a truck 0.68 m back from
+/// STOP's stop reached the region by 8 mm and the leaned knots of its O
+/// then asked the extension 1.5 mm below its range, an error that told
+/// the crew to compile smaller letters instead of where to move (the
+/// issue-29 audit).
+fn tilt_slack_m(robot: &AnyRobot) -> f64 {
+    let Some(tl) = robot.tilt_limit() else {
+        return 0.0;
+    };
+    let mut q = super::stow::stow_joints(robot);
+    let l = robot.limits();
+    // mid-reach, the other joints at their stow
+    q[1] = 0.5 * (l[1].min + l[1].max);
+    q[4] = 0.0;
+    let at = |tilt: f64| {
+        let mut q = q;
+        q[4] = tilt;
+        let p = robot.fk(&q);
+        [p.x_m, p.y_m]
+    };
+    let o = at(0.0);
+    (0..=8)
+        .map(|i| tl.min + (tl.max - tl.min) * i as f64 / 8.0)
+        .map(|t| {
+            let p = at(t);
+            (p[0] - o[0]).hypot(p[1] - o[1])
+        })
+        .fold(0.0, f64::max)
 }
 
 /// `plan` with the site's stations and road: the stations compile planned
@@ -178,12 +211,14 @@ pub fn put_at_site(
         *m = here;
     }
     // The arm reaches every point (the planning margin is for the
-    // controller's overshoot; simulation judges whether this stop keeps it).
-    if here >= 0.0 {
+    // controller's overshoot; simulation judges whether this stop keeps it),
+    // the nozzle leaned as its knots ask.
+    let slack = tilt_slack_m(robot);
+    if here >= slack {
         return Ok(());
     }
     let (px, py) = worst_point(&points, &st, &margin);
-    let advice = match nearest_reaching(&st, margin_m, &worst) {
+    let advice = match nearest_reaching(&st, margin_m.max(slack), &worst) {
         Some(d) => move_words(&st, d),
         // Far off: back to where the job planned the stop, which reaches it.
         None => format!(
@@ -199,7 +234,7 @@ pub fn put_at_site(
         turned_deg: turned_deg(st.heading_rad),
         px,
         py,
-        short_m: -here,
+        short_m: slack - here,
         advice,
     })
 }
