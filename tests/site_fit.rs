@@ -977,3 +977,48 @@ fn fitting_over_a_fitted_job_says_its_csv_is_left_behind() {
         "{err}"
     );
 }
+
+/// What fit cannot check, it says: two points cannot check each other,
+/// and a plane measured under a stop replaces the job's crown line
+/// through its marking, which one plane cannot follow.
+#[test]
+fn fit_says_what_its_points_cannot_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let job = stop_job(d);
+    let truth = moved(&job, 1, MOVE, level(1));
+    let points = points_file(&job, 1, &truth, 0.002, 7);
+    // the file's first two points
+    let two: String = points
+        .split("[[point]]")
+        .take(3)
+        .collect::<Vec<_>>()
+        .join("[[point]]");
+    let out = fit(d, &two, &[]);
+    succeeded(out.clone());
+    assert!(stderr(&out).contains("two points fix the stop but cannot check each other"));
+    let out = fit(d, &points, &[]);
+    assert!(!stderr(&out).contains("two points"), "{}", stderr(&out));
+    // STOP with a crown line 0.3 m right of its centre
+    std::fs::write(
+        d.join("m.toml"),
+        "[[item]]\nword = \"STOP\"\nat_m = [0.0, 0.0]\n[road]\ncross_slope_pct = 2.0\ncrown_x_m = 0.3\n",
+    )
+    .unwrap();
+    succeeded(basr(
+        d,
+        &["compile", "--marking", "m.toml", "-o", "j.job.json"],
+    ));
+    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let truth = moved(&job, 1, MOVE, level(1));
+    let out = fit(
+        d,
+        &points_file(&job, 1, &truth, 0.002, 7),
+        &["--marking", "m.toml"],
+    );
+    assert!(
+        stderr(&out).contains("crown line at x = 0.30 m through this stop's marking"),
+        "{}",
+        stderr(&out)
+    );
+}

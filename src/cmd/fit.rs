@@ -543,6 +543,30 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                 None => note!("  {:<12} off by {:.1} mm on the road", r.name, r.xy_m * 1e3),
             }
         }
+        if let (Some(c), Some(_)) = (job.road.crown_x_m, &fitted.plane) {
+            let s = &job.samples;
+            let xs = (0..s.len())
+                .filter(|&i| s.station[i] as usize == si && s.paint[i] == 1)
+                .map(|i| s.x_m[i]);
+            let (lo, hi) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x), b.max(x))
+            });
+            if lo < c && c < hi {
+                note!(
+                    "note: the job's road has a crown line at x = {c:.2} m through this stop's \
+                     marking; the plane the points measure replaces it under this stop, and \
+                     one plane cannot follow a crown: check the fitted job's preview, or fit \
+                     from two points to keep the job's crown under this stop"
+                );
+            }
+        }
+        if fitted.residuals.len() == 2 {
+            note!(
+                "note: two points fix the stop but cannot check each other: a point misread \
+                 across the line between them moves the fit and shows in neither residual; \
+                 chalk and measure a third (the job sheet lists three or four)"
+            );
+        }
         if job.signature.is_some() && key.is_none() {
             note!(
                 "note: {origin} was signed; the fitted job is not (a truck that trusts only \

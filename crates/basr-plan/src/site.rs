@@ -231,7 +231,8 @@ pub fn put_at_site(
         stop: si + 1,
         x: st.x_m,
         y: st.y_m,
-        turned_deg: turned_deg(st.heading_rad),
+        // to the tenth it is printed with, without a "-0.0"
+        turned_deg: (turned_deg(st.heading_rad) * 10.0).round() / 10.0 + 0.0,
         px,
         py,
         short_m: slack - here,
