@@ -615,6 +615,21 @@ fn bad_point_files_are_refused() {
     );
     // No stop.
     refused(d, &good.replace("stop = 1\n", ""), &["which stop"]);
+    // A name with a terminal's escape in it, and one far too long.
+    refused(
+        d,
+        &good.replacen("name = \"A\"", "name = \"A\\u001b[31m\"", 1),
+        &["control characters"],
+    );
+    refused(
+        d,
+        &good.replacen(
+            "name = \"A\"",
+            &format!("name = \"{}\"", "A".repeat(500)),
+            1,
+        ),
+        &["over 40 characters"],
+    );
     // Not a points file.
     refused(d, "[[point]]\nroad = [0, 0]\n", &["points file"]);
     // The job given as the points: named as such, nothing written.

@@ -185,6 +185,10 @@ fn base_of(
     }
 }
 
+/// Longest point name read (characters). assumed: the job sheet names
+/// points A to D; a crew's own names are words, not paragraphs.
+const MAX_NAME_CHARS: usize = 40;
+
 /// The points file read and checked: the stop (from 0) and its points.
 fn read_points(
     path: &Path,
@@ -228,6 +232,15 @@ fn read_points(
             "{origin}: point {} has an empty name; name it as the job sheet does, or leave \
              name out",
             i + 1
+        );
+        // A name goes into messages and the job's notes: printable, and
+        // short enough to read (the sheet's are one letter).
+        anyhow::ensure!(
+            !name.chars().any(char::is_control) && name.chars().count() <= MAX_NAME_CHARS,
+            "{origin}: point {}'s name {:?} has control characters or is over \
+             {MAX_NAME_CHARS} characters; name it as the job sheet does (A, B, C, D)",
+            i + 1,
+            name.chars().take(MAX_NAME_CHARS).collect::<String>()
         );
         let road: [f64; 2] = match p.road_m[..] {
             [x, y] => [x, y],
