@@ -291,8 +291,11 @@ const ON_MARKING_M: f64 = 0.25;
 /// reach, as placed, a corner the crew chalked for it, and fitting it
 /// again refused that point (the issue-29 audit).
 fn check_frames(job: &Job, si: usize, points: &[Measured], origin: &str) -> anyhow::Result<()> {
+    let parts = basr::job::reference::strokes_by_stop(job);
     let on = |k: usize, p: [f64; 2]| {
-        basr::job::reference::distance_to_stop(job, k, p).is_some_and(|d| d <= ON_MARKING_M)
+        parts.get(k).is_some_and(|strokes| {
+            basr::job::reference::distance_to_strokes(strokes, p).is_some_and(|d| d <= ON_MARKING_M)
+        })
     };
     for p in points {
         if !on(si, p.road) {

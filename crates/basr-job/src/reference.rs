@@ -25,30 +25,36 @@ pub struct ReferencePoint {
 /// The outlines (`layout.glyphs`' strokes) of the strokes the job paints
 /// from stop `index` (counted from 0), in stroke order.
 pub fn stop_strokes(job: &Job, index: usize) -> Vec<&PlacedStroke> {
+    strokes_by_stop(job)
+        .into_iter()
+        .nth(index)
+        .unwrap_or_default()
+}
+
+/// [`stop_strokes`] of every stop, from one pass over the job's rows.
+pub fn strokes_by_stop(job: &Job) -> Vec<Vec<&PlacedStroke>> {
     let s = &job.samples;
-    let mut painted = std::collections::BTreeSet::new();
+    let mut painted = vec![std::collections::BTreeSet::new(); job.stations.len()];
     for i in 0..s.len() {
-        if s.station[i] as usize == index && s.paint[i] == 1 && s.stroke[i] >= 0 {
-            painted.insert(s.stroke[i] as usize);
+        if s.paint[i] == 1 && s.stroke[i] >= 0 {
+            if let Some(set) = painted.get_mut(s.station[i] as usize) {
+                set.insert(s.stroke[i] as usize);
+            }
         }
     }
-    job.layout
-        .glyphs
+    let all: Vec<&PlacedStroke> = job.layout.glyphs.iter().flat_map(|g| &g.strokes).collect();
+    painted
         .iter()
-        .flat_map(|g| &g.strokes)
-        .enumerate()
-        .filter(|(k, _)| painted.contains(k))
-        .map(|(_, st)| st)
+        .map(|set| set.iter().filter_map(|&k| all.get(k).copied()).collect())
         .collect()
 }
 
-/// How far (m) road point `p` lies from the strokes the job paints from
-/// stop `index` (counted from 0): none inside one, else the distance to the
-/// nearest point of their outlines; `None` when the stop paints nothing.
-/// Whether a measured point is one of that stop's does not depend on
-/// where the truck stood (a fitted stop paints the same marking).
-pub fn distance_to_stop(job: &Job, index: usize, p: [f64; 2]) -> Option<f64> {
-    let strokes = stop_strokes(job, index);
+/// How far (m) road point `p` lies from `strokes` (a stop's, from
+/// [`strokes_by_stop`]): none inside one, else the distance to the nearest
+/// point of their outlines; `None` for no strokes. Whether a measured point
+/// is one of a stop's does not depend on where the truck stood (a fitted
+/// stop paints the same marking).
+pub fn distance_to_strokes(strokes: &[&PlacedStroke], p: [f64; 2]) -> Option<f64> {
     let dist = |a: [f64; 2]| (a[0] - p[0]).hypot(a[1] - p[1]);
     strokes
         .iter()

@@ -246,8 +246,7 @@ pub fn fit(stop: usize, points: &[Measured], tolerance_m: f64) -> Result<Fitted,
     let worst = if all.len() >= 3 {
         (0..all.len())
             .map(|k| {
-                let rest: Vec<&Measured> =
-                    (0..all.len()).filter(|&i| i != k).map(|i| all[i]).collect();
+                let rest = others(&all, k);
                 miss(&pose_of(&rest), all[k])
             })
             .fold(0.0, f64::max)
@@ -311,7 +310,7 @@ fn height_outlier(all: &[&Measured], tolerance_m: f64) -> Option<FitError> {
     // height off that plane
     let off: Vec<(usize, f64, f64)> = (0..all.len())
         .filter_map(|k| {
-            let rest: Vec<&Measured> = (0..all.len()).filter(|&i| i != k).map(|i| all[i]).collect();
+            let rest = others(all, k);
             let pl = plane_of(0, &rest)?;
             let dz = |p: &Measured| (p.base[2] - pl.z_at([p.base[0], p.base[1]])).abs();
             let agree = rest.iter().map(|p| dz(p)).fold(0.0, f64::max);
@@ -341,6 +340,11 @@ fn height_outlier(all: &[&Measured], tolerance_m: f64) -> Option<FitError> {
         residual_mm: worst * 1e3,
         tolerance_mm: tolerance_m * 1e3,
     })
+}
+
+/// Every point of `all` but the `k`th.
+fn others<'a>(all: &[&'a Measured], k: usize) -> Vec<&'a Measured> {
+    (0..all.len()).filter(|&i| i != k).map(|i| all[i]).collect()
 }
 
 /// The two points furthest apart (indices) and their base-frame distance.
@@ -378,7 +382,7 @@ fn culprit(all: &[&Measured], tolerance_m: f64) -> FitError {
     }
     let mut best: Option<(f64, usize, f64)> = None;
     for k in 0..all.len() {
-        let rest: Vec<&Measured> = (0..all.len()).filter(|&i| i != k).map(|i| all[i]).collect();
+        let rest = others(all, k);
         let st = pose_of(&rest);
         let agree = rest.iter().map(|p| miss(&st, p)).fold(0.0, f64::max);
         if best.is_none_or(|(a, _, _)| agree < a) {

@@ -123,33 +123,21 @@ impl Passes {
                 0.0
             }
         };
-        let outside = |stroke: usize| {
-            self.areas
-                .iter()
-                .find(|a| a.stroke == stroke)
-                .and_then(|a| a.outside_m2)
-                .unwrap_or(0.0)
-        };
-        let job = share(self.areas.iter().filter_map(|a| a.outside_m2).sum());
-        let shares: Vec<Option<f64>> = self
-            .notes
+        let outside: std::collections::BTreeMap<usize, f64> = self
+            .areas
             .iter()
-            .map(|n| match n {
-                Note::HeightClamped { stroke, .. } => Some(share(outside(*stroke))),
-                _ => None,
-            })
+            .filter_map(|a| a.outside_m2.map(|o| (a.stroke, o)))
             .collect();
-        for (n, s) in self.notes.iter_mut().zip(shares) {
-            if let (
-                Note::HeightClamped {
-                    outside_share,
-                    job_outside_share,
-                    ..
-                },
-                Some(s),
-            ) = (n, s)
+        let job = share(self.areas.iter().filter_map(|a| a.outside_m2).sum());
+        for n in &mut self.notes {
+            if let Note::HeightClamped {
+                stroke,
+                outside_share,
+                job_outside_share,
+                ..
+            } = n
             {
-                *outside_share = s;
+                *outside_share = share(outside.get(stroke).copied().unwrap_or(0.0));
                 *job_outside_share = job;
             }
         }

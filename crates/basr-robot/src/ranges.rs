@@ -61,7 +61,7 @@ const SIM_STEP: &str =
     "the simulator samples the controller at its period and integrates in steps of about 1 ms";
 const HYD: &str = "industrial hydraulics: supply up to 42 MPa";
 const BULK: &str = "mineral oil with or without entrained air: 0.2–2.5 GPa (000 §II eq. 13)";
-const SERVO: &str = "a servo the 1 ms integrator can follow";
+const SERVO: &str = "a servo the simulator's integration step can follow";
 const ENC: &str = "an encoder or transducer of a real arm";
 const PAINT: &str = "airless road paint (docs/robot.md)";
 const LIM: &str = "a joint of a truck-mounted arm";

@@ -287,14 +287,13 @@ pub const END_STOP_N_PER_M: f64 = 2.0e7;
 /// End-stop force of the cylinder (N): a stiff spring-damper past either end.
 #[inline]
 fn end_stop(m: &SimModel, x: f64, xd: f64) -> f64 {
-    const K: f64 = END_STOP_N_PER_M;
     const C: f64 = 2.0e5; // N·s/m
     let lo = m.arm.x_min_m - x;
     let hi = x - m.arm.x_max_m();
     if lo > 0.0 {
-        K * lo - C * xd.min(0.0)
+        END_STOP_N_PER_M * lo - C * xd.min(0.0)
     } else if hi > 0.0 {
-        -K * hi - C * xd.max(0.0)
+        -END_STOP_N_PER_M * hi - C * xd.max(0.0)
     } else {
         0.0
     }
