@@ -1017,4 +1017,100 @@ mod tests {
         assert_eq!(verified_on(&[Some(a), None]), None);
         assert_eq!(verified_on(&[]), None);
     }
+
+    /// `req` as `job` was planned: its robot with the tip compile chose,
+    /// its tilt method and options.
+    fn as_planned(req: &CompileRequest, job: &Job) -> CompileRequest {
+        let mut r = req.clone().with_options(job.layout.options.as_ref());
+        r.tilt = match job.layout.tilt_method.as_str() {
+            "none" => request::Tilt::None,
+            "trapezoid" => request::Tilt::Trapezoid,
+            _ => request::Tilt::Quadrilateral,
+        };
+        r.tilt_named = true;
+        r.robot_description = Some(job.robot.clone());
+        r
+    }
+
+    /// The least air time each stop of `job` could be flown in
+    /// (`joints::air_floor`), its passes planned as the job's were from
+    /// `req`, and the passes per stop.
+    fn air_floors(req: &CompileRequest, job: &Job) -> (Vec<usize>, Vec<joints::AirFloor>) {
+        let r = as_planned(req, job);
+        let inputs = basr_plan::inputs::read(&r).expect("inputs");
+        let (marking, strokes) = super::super::placed::lay_out(&r, &inputs.font).expect("laid out");
+        let robot = inputs.robot;
+        assert_eq!(
+            robot.paint().mounted,
+            job.paint.tip,
+            "the job's robot carries its tip"
+        );
+        let (tilt, _) = request::tilt_for(r.tilt, &robot);
+        let (passes, plan) = passes_on_road(&r, &marking, &strokes, &robot, tilt).expect("passes");
+        let tours = tours::tours(&passes, &plan, &robot, &[], r.gun_lead_s.max(r.gun_lag_s));
+        let floors = joints::air_floor(&strokes, &passes, &plan, &tours, &robot, &r.tuning.joins)
+            .expect("solved");
+        (tours.stations.iter().map(|t| t.len()).collect(), floors)
+    }
+
+    /// How far words' air moves are from the least the arm's limits allow
+    /// (docs/planner.md, "How far the air time is from its floor"), and
+    /// how much of them the verification's re-timing adds (the same plan
+    /// compiled without it). An experiment, not a check of compile: each
+    /// stop's floor is a search over the orders of its passes (seconds in
+    /// a release build).
+    /// `cargo test --release -p basr --lib -- --ignored air_floor --nocapture`
+    #[test]
+    #[ignore = "an experiment, seconds per word in release: run with --ignored"]
+    fn air_floor_of_stop_and_school() {
+        const FT: f64 = 0.3048;
+        for (text, ft, lane_ft) in [
+            ("STOP", 6.0, None),
+            ("STOP", 8.0, None),
+            ("STOP", 10.0, None),
+            ("SCHOOL", 6.0, None),
+            ("SCHOOL", 8.0, None),
+            ("SCHOOL", 10.0, Some(24.0)),
+            ("SCHOOL XING", 6.0, None),
+            ("SCHOOL XING", 8.0, None),
+            ("SCHOOL XING", 10.0, Some(24.0)),
+        ] {
+            let mut req = CompileRequest::message(text);
+            req.overrides.letter_height_m = Some(ft * FT);
+            req.overrides.lane_width_m = lane_ft.map(|w: f64| w * FT);
+            let job = super::super::compile::compile_job(&req).expect("compiles");
+            let (counts, floors) = air_floors(&req, &job);
+            let unverified = super::super::compile::compile_job(&CompileRequest {
+                verify: false,
+                ..as_planned(&req, &job)
+            })
+            .expect("compiles");
+            let s = &job.summary;
+            let truck: f64 = s
+                .truck_moves_m
+                .iter()
+                .filter(|d| **d > 0.0)
+                .map(|d| d / job.robot.truck().speed_mps + job.robot.truck().settle_s)
+                .fold(0.0, |a, t| a + t);
+            let floor: f64 = floors.iter().map(|f| f.s).sum();
+            let least = (s.paint_time_s + floor + truck) / s.lower_bound_s;
+            let each: Vec<String> = floors
+                .iter()
+                .zip(&counts)
+                .map(|(f, n)| {
+                    let how = if f.exact { "" } else { " (assignment)" };
+                    format!("{:.2} s over {n} passes{how}", f.s)
+                })
+                .collect();
+            println!(
+                "{text} at {ft} ft, tip {}: air {:.2} s ({:.2} s unverified), of it truck \
+                 {truck:.2} s; air floor {}; bound ratio {:.3}, at the floor {least:.3}",
+                job.paint.tip.as_deref().unwrap_or("-"),
+                s.air_time_s,
+                unverified.summary.air_time_s,
+                each.join("; "),
+                s.bound_ratio,
+            );
+        }
+    }
 }

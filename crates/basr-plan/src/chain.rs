@@ -322,6 +322,33 @@ pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side, joins: &Joins) -> Op
     .filter(|t| t.is_finite())
 }
 
+/// Least time (s) any move takes from `a` to `b`, each a rung's state at
+/// its painting speed or, where `None`, `rest` at rest: the slowest joint
+/// alone at `limits` in full, with no jerk limit, so no move the arm can
+/// fly between them is shorter (`joints::air_floor`). None where a rung
+/// has no painting speed.
+pub fn least_time(
+    limits: &JointLimits<5>,
+    a: Option<Side>,
+    b: Option<Side>,
+    rest: &Q,
+) -> Option<f64> {
+    let state = |s: Option<Side>| match s {
+        Some(s) => s.state().map(|(_, p, v)| (p, v)),
+        None => Some((*rest, [0.0; 5])),
+    };
+    let ((p0, v0), (p1, v1)) = (state(a)?, state(b)?);
+    Some(
+        (0..5)
+            .map(|j| {
+                let acc = [limits.acc[j]; 2];
+                min_time((p0[j], v0[j]), (p1[j], v1[j]), limits.vel[j], acc)
+            })
+            .fold(0.0, f64::max),
+    )
+    .filter(|t| t.is_finite())
+}
+
 /// The join flown from run a's last rung at its painting speed into run
 /// b's first at its own: every joint from its rate there to its rate at
 /// the other end in the same time, the shortest the slowest joint allows

@@ -200,37 +200,7 @@ fn station_runs(
     tour: &[super::order::Visit],
     kept: bool,
 ) -> Result<Vec<Run>, CompileError> {
-    use rayon::prelude::*;
-    let at = Stop::new(si, &plan.stations[si], &plan.road, robot);
-    // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
-    let ways: Vec<Result<[Option<Candidates>; 2], CompileError>> = tour
-        .par_iter()
-        .enumerate()
-        .map(|(k, v)| {
-            let pass = &passes.passes[v.item];
-            let id = 2 * k;
-            let fwd = candidates(robot, &at, &pass.knots, false, pass.stroke, joins)
-                .map(|c| Candidates { id, ..c });
-            let rev = candidates(robot, &at, &pass.knots, true, pass.stroke, joins)
-                .map(|c| Candidates { id: id + 1, ..c });
-            match (fwd, rev) {
-                (Err((k, e)), Err(_)) => {
-                    let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
-                    Err(CompileError::Unreachable(format!(
-                        "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
-                         m: {e}; use a smaller --letter-height or check the robot description",
-                        pass.stroke,
-                        strokes.owner(pass.stroke),
-                        si + 1,
-                        tip.x,
-                        tip.y
-                    )))
-                }
-                (f, r) => Ok([f.ok(), r.ok()]),
-            }
-        })
-        .collect();
-    let ways: Vec<[Option<Candidates>; 2]> = ways.into_iter().collect::<Result<_, _>>()?;
+    let ways = station_ways(strokes, passes, plan, robot, joins, si, tour)?;
     // The tour as (index into ways, reversed), each way one that exists.
     let mut seq: Vec<(usize, bool)> = tour
         .iter()
@@ -264,6 +234,255 @@ fn station_runs(
             paint_last: c.paint_last,
         })
         .collect())
+}
+
+/// Every pass of station `si`'s `tour` solved both ways round (forward,
+/// reversed), with the longest leads the arm reaches and every fan branch;
+/// a way out of reach is None, a pass out of reach both ways an error.
+fn station_ways(
+    strokes: &PlacedStrokes,
+    passes: &Passes,
+    plan: &StationPlan,
+    robot: &AnyRobot,
+    joins: &Joins,
+    si: usize,
+    tour: &[super::order::Visit],
+) -> Result<Vec<[Option<Candidates>; 2]>, CompileError> {
+    use rayon::prelude::*;
+    let at = Stop::new(si, &plan.stations[si], &plan.road, robot);
+    // ways[k] = (forward, reversed) candidates of the tour's k-th pass.
+    let ways: Vec<Result<[Option<Candidates>; 2], CompileError>> = tour
+        .par_iter()
+        .enumerate()
+        .map(|(k, v)| {
+            let pass = &passes.passes[v.item];
+            let id = 2 * k;
+            let fwd = candidates(robot, &at, &pass.knots, false, pass.stroke, joins)
+                .map(|c| Candidates { id, ..c });
+            let rev = candidates(robot, &at, &pass.knots, true, pass.stroke, joins)
+                .map(|c| Candidates { id: id + 1, ..c });
+            match (fwd, rev) {
+                (Err((k, e)), Err(_)) => {
+                    let tip = pass.knots[k.min(pass.knots.len() - 1)].tip;
+                    Err(CompileError::Unreachable(format!(
+                        "stroke {} ({}) cannot be painted from station {} at ({:.3}, {:.3}) \
+                         m: {e}; use a smaller --letter-height or check the robot description",
+                        pass.stroke,
+                        strokes.owner(pass.stroke),
+                        si + 1,
+                        tip.x,
+                        tip.y
+                    )))
+                }
+                (f, r) => Ok([f.ok(), r.ok()]),
+            }
+        })
+        .collect();
+    ways.into_iter().collect()
+}
+
+/// Most passes a station may have for [`air_floor`] to search every
+/// order: its table holds 2^n subsets × every way and branch of a pass.
+pub const AIR_FLOOR_MAX_PASSES: usize = 16;
+
+/// A station's least air time ([`air_floor`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AirFloor {
+    /// Seconds no job of the station's passes flies its air moves in less.
+    pub s: f64,
+    /// Found over every order (the least such time); else a floor under
+    /// it, the least assignment of a next pass to every pass.
+    pub exact: bool,
+}
+
+/// The least air time (s) each station's passes could be painted in, in
+/// any order, each either way round and on any fan branch: out of stow,
+/// every join and back, each move no shorter than its slowest joint alone
+/// takes at the robot's full speed and acceleration limits from one
+/// rung's state at painting speed to the next (`chain::least_time`; no
+/// jerk limit, no margin, no drive's speed cap). A station of up to
+/// [`AIR_FLOOR_MAX_PASSES`] passes is searched over every order (a dynamic
+/// program over the subsets of its passes): the least such time. A larger
+/// one gets a floor under that: every pass (and the stow pose) given the
+/// next it is cheapest to fly to such that each is flown into once (an
+/// assignment, which may close in several loops; each pass's way and
+/// branch chosen apart at its two ends). It measures how far a job's air
+/// moves are from what the arm's limits allow (docs/planner.md, "How far
+/// the air time is from its floor"); compile does not call it.
+pub fn air_floor(
+    strokes: &PlacedStrokes,
+    passes: &Passes,
+    plan: &StationPlan,
+    tours: &Tours,
+    robot: &AnyRobot,
+    joins: &Joins,
+) -> Result<Vec<AirFloor>, CompileError> {
+    let stow = stow_joints(robot);
+    let limits = super::timing::JointLimits {
+        vel: std::array::from_fn(|j| robot.limits()[j].max_vel),
+        acc: std::array::from_fn(|j| robot.limits()[j].max_acc),
+        jerk: [f64::INFINITY; 5],
+    };
+    let n = plan.stations.len().min(tours.stations.len());
+    (0..n)
+        .map(|si| {
+            let ways = station_ways(strokes, passes, plan, robot, joins, si, &tours.stations[si])?;
+            Ok(least_air(&ways, &limits, &stow, AIR_FLOOR_MAX_PASSES))
+        })
+        .collect()
+}
+
+/// [`air_floor`] of one station's passes, searched over every order where
+/// there are at most `max_exact` of them.
+fn least_air(
+    ways: &[[Option<Candidates>; 2]],
+    limits: &super::timing::JointLimits<5>,
+    stow: &Q,
+    max_exact: usize,
+) -> AirFloor {
+    // nodes: (pass, its way and branch) with the rungs painting starts and
+    // ends at
+    let mut nodes: Vec<(usize, Side, Side)> = vec![];
+    for (k, w) in ways.iter().enumerate() {
+        for c in w.iter().flatten() {
+            for (_, js) in &c.branches {
+                let at = |i: usize, leaving: bool| Side::new((&c.knots, js, &c.arcs), i, leaving);
+                nodes.push((k, at(c.paint_first, false), at(c.paint_last, true)));
+            }
+        }
+    }
+    let time = |a: Option<Side>, b: Option<Side>| {
+        super::chain::least_time(limits, a, b, stow).unwrap_or(f64::INFINITY)
+    };
+    let m = nodes.len();
+    let out: Vec<f64> = nodes.iter().map(|n| time(None, Some(n.1))).collect();
+    let back: Vec<f64> = nodes.iter().map(|n| time(Some(n.2), None)).collect();
+    let join: Vec<f64> = (0..m * m)
+        .map(|i| time(Some(nodes[i / m].2), Some(nodes[i % m].1)))
+        .collect();
+    let passes = ways.len();
+    if passes > max_exact {
+        // cost[a][b], 0 the stow pose, pass k node k + 1: the cheapest
+        // way and branch of each
+        let side = passes + 1;
+        let mut cost = vec![f64::INFINITY; side * side];
+        for (v, nv) in nodes.iter().enumerate() {
+            let (a, b) = (nv.0 + 1, nv.0 + 1);
+            cost[b] = cost[b].min(out[v]);
+            cost[a * side] = cost[a * side].min(back[v]);
+            for (w, nw) in nodes.iter().enumerate() {
+                if nw.0 != nv.0 {
+                    let c = &mut cost[a * side + nw.0 + 1];
+                    *c = c.min(join[v * m + w]);
+                }
+            }
+        }
+        return AirFloor {
+            s: least_assignment(&cost, side),
+            exact: false,
+        };
+    }
+    let full = (1usize << passes) - 1;
+    // best[mask · m + v]: least air having painted the passes of mask,
+    // node v last
+    let mut best = vec![f64::INFINITY; (full + 1) * m];
+    for v in 0..m {
+        best[(1 << nodes[v].0) * m + v] = out[v];
+    }
+    for mask in 1..=full {
+        for v in 0..m {
+            let here = best[mask * m + v];
+            if !here.is_finite() || mask & (1 << nodes[v].0) == 0 {
+                continue;
+            }
+            for w in 0..m {
+                let bit = 1 << nodes[w].0;
+                if mask & bit != 0 {
+                    continue;
+                }
+                let t = here + join[v * m + w];
+                let slot = &mut best[(mask | bit) * m + w];
+                if t < *slot {
+                    *slot = t;
+                }
+            }
+        }
+    }
+    AirFloor {
+        s: (0..m)
+            .map(|v| best[full * m + v] + back[v])
+            .fold(f64::INFINITY, f64::min),
+        exact: true,
+    }
+}
+
+/// The least total of an assignment of one column to every row of the
+/// `n` × `n` matrix `cost` (row-major, each column once; infinite entries
+/// forbidden): the Hungarian method with potentials, O(n³).
+fn least_assignment(cost: &[f64], n: usize) -> f64 {
+    // Kuhn–Munkres with row and column potentials u, v (1-based, column 0
+    // a sentinel); way[j]: the column before j on the augmenting path.
+    let big = cost
+        .iter()
+        .copied()
+        .filter(|c| c.is_finite())
+        .fold(0.0, f64::max)
+        * (n as f64 + 1.0)
+        + 1.0;
+    let at = |i: usize, j: usize| {
+        let c = cost[(i - 1) * n + j - 1];
+        if c.is_finite() {
+            c
+        } else {
+            big
+        }
+    };
+    let (mut u, mut v) = (vec![0.0; n + 1], vec![0.0; n + 1]);
+    let (mut row_of, mut way) = (vec![0usize; n + 1], vec![0usize; n + 1]);
+    for i in 1..=n {
+        row_of[0] = i;
+        let mut j0 = 0;
+        let mut min_to = vec![f64::INFINITY; n + 1];
+        let mut used = vec![false; n + 1];
+        loop {
+            used[j0] = true;
+            let (i0, mut delta, mut j1) = (row_of[j0], f64::INFINITY, 0);
+            for j in 1..=n {
+                if !used[j] {
+                    let reduced = at(i0, j) - u[i0] - v[j];
+                    if reduced < min_to[j] {
+                        min_to[j] = reduced;
+                        way[j] = j0;
+                    }
+                    if min_to[j] < delta {
+                        delta = min_to[j];
+                        j1 = j;
+                    }
+                }
+            }
+            for j in 0..=n {
+                if used[j] {
+                    u[row_of[j]] += delta;
+                    v[j] -= delta;
+                } else {
+                    min_to[j] -= delta;
+                }
+            }
+            j0 = j1;
+            if row_of[j0] == 0 {
+                break;
+            }
+        }
+        loop {
+            let j1 = way[j0];
+            row_of[j0] = row_of[j1];
+            j0 = j1;
+            if j0 == 0 {
+                break;
+            }
+        }
+    }
+    (1..=n).map(|j| at(row_of[j], j)).sum()
 }
 
 /// Most improvement sweeps over a station's order (each strictly lowers the
@@ -714,6 +933,150 @@ mod tests {
         keys.dedup();
         assert_eq!(keys.len(), n * b * n * b);
         assert!(keys.iter().all(|&k| k < n * b * n * b));
+    }
+
+    /// A station's air floor searched over every order is the least of
+    /// every order, way round and branch of its passes (tried one by one
+    /// here), and the assignment floor is no more than it.
+    #[test]
+    fn the_air_floor_is_the_least_of_every_order() {
+        let robot = AnyRobot::Basr(Robot::basr());
+        let joins = crate::tuning::Tuning::DEFAULT.joins;
+        let station = Station {
+            x_m: 0.0,
+            y_m: 4.6,
+            heading_rad: -FRAC_PI_2,
+        };
+        let road = Road::default();
+        let at = Stop::new(0, &station, &road, &robot);
+        let ways: Vec<[Option<Candidates>; 2]> = [
+            (-0.6, 1.2, 0.2),
+            (0.4, 0.9, 1.0),
+            (-0.2, 2.0, -0.5),
+            (0.7, 1.6, 0.4),
+        ]
+        .iter()
+        .enumerate()
+        .map(|(k, &(x, y, yaw))| {
+            let knots: Vec<Knot> = (0..6)
+                .map(|i| knot(x + 0.04 * i as f64, y + 0.05 * i as f64, 0.15, yaw, 0.0))
+                .collect();
+            let way = |rev: bool, id: usize| {
+                candidates(&robot, &at, &knots, rev, k, &joins)
+                    .ok()
+                    .map(|c| Candidates { id, ..c })
+            };
+            [way(false, 2 * k), way(true, 2 * k + 1)]
+        })
+        .collect();
+        let limits = crate::timing::JointLimits {
+            vel: std::array::from_fn(|j| robot.limits()[j].max_vel),
+            acc: std::array::from_fn(|j| robot.limits()[j].max_acc),
+            jerk: [f64::INFINITY; 5],
+        };
+        let stow = stow_joints(&robot);
+        let time = |a: Option<Side>, b: Option<Side>| {
+            crate::chain::least_time(&limits, a, b, &stow).unwrap_or(f64::INFINITY)
+        };
+        // every pass's (first rung, last rung) on each way and branch
+        let ends: Vec<Vec<(Side, Side)>> = ways
+            .iter()
+            .map(|w| {
+                w.iter()
+                    .flatten()
+                    .flat_map(|c| {
+                        c.branches.iter().map(|(_, js)| {
+                            let at = |i, leaving| Side::new((&c.knots, js, &c.arcs), i, leaving);
+                            (at(c.paint_first, false), at(c.paint_last, true))
+                        })
+                    })
+                    .collect()
+            })
+            .collect();
+        assert!(ends.iter().all(|e| e.len() >= 2), "both ways round");
+        // the least over the passes left, arriving from `from`
+        fn least(
+            left: &mut Vec<usize>,
+            from: Option<Side>,
+            ends: &[Vec<(Side, Side)>],
+            time: &dyn Fn(Option<Side>, Option<Side>) -> f64,
+        ) -> f64 {
+            if left.is_empty() {
+                return time(from, None);
+            }
+            let mut best = f64::INFINITY;
+            for k in 0..left.len() {
+                let p = left.remove(k);
+                for &(first, last) in &ends[p] {
+                    best = best.min(time(from, Some(first)) + least(left, Some(last), ends, time));
+                }
+                left.insert(k, p);
+            }
+            best
+        }
+        let brute = least(&mut (0..ways.len()).collect(), None, &ends, &time);
+        let exact = least_air(&ways, &limits, &stow, AIR_FLOOR_MAX_PASSES);
+        assert!(exact.exact && brute.is_finite());
+        assert!((exact.s - brute).abs() < 1e-9, "{} vs {brute}", exact.s);
+        let assigned = least_air(&ways, &limits, &stow, 0);
+        assert!(!assigned.exact);
+        assert!(
+            assigned.s > 0.0 && assigned.s <= exact.s + 1e-9,
+            "{} vs {}",
+            assigned.s,
+            exact.s
+        );
+    }
+
+    /// The assignment floor is the least of every assignment, found by
+    /// trying them all on small matrices (forbidden entries avoided).
+    #[test]
+    fn least_assignment_is_the_least_of_all() {
+        fn permutations(n: usize) -> Vec<Vec<usize>> {
+            if n == 0 {
+                return vec![vec![]];
+            }
+            let mut all = vec![];
+            for p in permutations(n - 1) {
+                for k in 0..n {
+                    let mut q = p.clone();
+                    q.insert(k, n - 1);
+                    all.push(q);
+                }
+            }
+            all
+        }
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as f64 / (1u64 << 31) as f64
+        };
+        for n in 1..=6 {
+            for _ in 0..40 {
+                let cost: Vec<f64> = (0..n * n)
+                    .map(|k| {
+                        if n > 1 && k % (n + 1) == 0 {
+                            f64::INFINITY
+                        } else {
+                            3.0 * next()
+                        }
+                    })
+                    .collect();
+                let brute = permutations(n)
+                    .iter()
+                    .map(|p| {
+                        p.iter()
+                            .enumerate()
+                            .map(|(i, &j)| cost[i * n + j])
+                            .sum::<f64>()
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                let found = least_assignment(&cost, n);
+                assert!((found - brute).abs() < 1e-9, "n {n}: {found} vs {brute}");
+            }
+        }
     }
 
     /// A knot placed on a fitted plane reads back, as the film sees it
