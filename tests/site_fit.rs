@@ -569,6 +569,13 @@ fn a_truck_far_off_is_told_where_to_move() {
             "then chalk",
         ],
     );
+    // the stop is named once
+    let out = fit(dir.path(), &points_file(&job, 1, &truth, 0.0, 1), &[]);
+    let err = stderr(&out);
+    assert!(
+        err.contains("re-planning: stop 1: the arm cannot reach"),
+        "{err}"
+    );
     // Just past the edge of reach (0.68 m short of the planned place):
     // the leaned nozzle of the O's knots is what falls short, and the crew
     // is told where to move, not compile's advice on letter sizes.
@@ -632,6 +639,18 @@ fn bad_point_files_are_refused() {
     );
     // Not a points file.
     refused(d, "[[point]]\nroad = [0, 0]\n", &["points file"]);
+    // A setpoint CSV or a job given as the points: said what it reads as.
+    refused(
+        d,
+        "t_s,station,stroke,paint\n0.000,0,-1,0\n",
+        &["reads as CSV", "a points file is TOML"],
+    );
+    let job_text = std::fs::read_to_string(d.join("j.job.json")).unwrap();
+    refused(
+        d,
+        &job_text,
+        &["reads as JSON (a job?)", "a points file is TOML"],
+    );
     // The job given as the points: named as such, nothing written.
     let out = basr(
         d,
@@ -739,6 +758,14 @@ fn points_may_be_encoder_counts() {
     std::fs::remove_file(d.join("f.job.json")).unwrap();
     let bad = text.replacen("enc_base", "enc_basse", 1);
     refused(d, &bad, &["encoders lacks enc_base"]);
+    // Counts without the tip's height over the road: the road is not
+    // taken to be at the tip.
+    let bad = text.replacen("tip_gap_m = 0.1\n", "", 1);
+    refused(
+        d,
+        &bad,
+        &["encoders need tip_gap_m", "measure it with a rule"],
+    );
 }
 
 /// A job compiled with its own options is fitted with them (the job

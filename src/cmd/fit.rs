@@ -4,7 +4,6 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use basr::job::{Job, Road};
 use basr::pipeline::compile::{compile_job, Tilt};
 use basr::plan::fit::{self, Measured};
@@ -48,7 +47,7 @@ The points file (TOML; lengths in metres):
   # enc_ columns) and the tip's height over the road when read:
   # encoders = { enc_base = 21500, enc_extension = 1234, enc_vertical = 800,
   #              enc_yaw = 0, enc_tilt = 0 }
-  # tip_gap_m = 0.01
+  # tip_gap_m = 0.10             # (required with encoders)
 
 JSON (--json): {\"job\", \"stop\", \"station\", \"planned_station\", \"moved\",
 \"plane\", \"points\": [{\"name\", \"xy_m\", \"z_m\"}], \"verdict\", \"summary\",
@@ -163,7 +162,15 @@ fn base_of(
                     names.join(", ")
                 );
             }
-            let gap = p.tip_gap_m.unwrap_or(0.0);
+            // a default would put the road at the tip: a nozzle that cannot
+            // come within 78 mm of the road (BASR) would read it that high
+            let gap = p.tip_gap_m.ok_or_else(|| {
+                anyhow::anyhow!(
+                    "{origin}: point {name:?}: encoders need tip_gap_m, the tip's height over \
+                     the road when the counts were read (m; measure it with a rule, 0 where \
+                     the tip touched the road)"
+                )
+            })?;
             anyhow::ensure!(
                 gap.is_finite() && (0.0..=0.5).contains(&gap),
                 "{origin}: point {name:?}: tip_gap_m {gap} m must be between 0 (touching) and \
@@ -199,10 +206,23 @@ fn read_points(
     let origin = path.display().to_string();
     let text = basr::io::read_text(path)?;
     let file: PointsFile = toml::from_str(&text).map_err(|e| {
-        anyhow::anyhow!(
-            "{origin}: {}; a points file is `stop = 1` and [[point]] tables with road_m = [x, y] \
-             and base_m = [x, y, z] (see basr fit --help)",
+        // what the file is, where it is plainly not TOML: the parser's own
+        // words would point at a character
+        let first = text
+            .lines()
+            .map(str::trim)
+            .find(|l| !l.is_empty())
+            .unwrap_or("");
+        let what = if first.starts_with('{') {
+            "it reads as JSON (a job?), not a points file".to_string()
+        } else if first.contains(',') && !first.contains('=') {
+            "it reads as CSV (the setpoint CSV?), not a points file".to_string()
+        } else {
             basr::io::one_line(e.message())
+        };
+        anyhow::anyhow!(
+            "{origin}: {what}; a points file is TOML: `stop = 1` and [[point]] tables with \
+             road_m = [x, y] and base_m = [x, y, z] (see basr fit --help)"
         )
     })?;
     let stop = match (stop_arg, file.stop) {
@@ -449,7 +469,18 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     );
     let planned = compile_job(&req);
     spin.finish_and_clear();
-    let mut new = planned.with_context(|| format!("{origin}: re-planning stop {}", si + 1))?;
+    let mut new = planned.map_err(|e| {
+        // an error of the fitted stop's reach names the stop itself
+        let what = match e {
+            basr::pipeline::compile::CompileError::Stations(
+                basr::plan::error::StationError::SiteOutOfReach { .. },
+            ) => {
+                format!("{origin}: re-planning")
+            }
+            _ => format!("{origin}: re-planning stop {}", si + 1),
+        };
+        anyhow::Error::new(e).context(what)
+    })?;
     for k in (0..job.stations.len()).filter(|&k| k != si) {
         anyhow::ensure!(
             station_motion(&new, k) == station_motion(&job, k),

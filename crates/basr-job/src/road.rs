@@ -215,14 +215,15 @@ impl Road {
             return Some(format!(
                 "cross slope {} % is outside ±{} % (a road's cross slope is 1.5–2 %, a \
                  superelevated curve's at most about 12 %)",
-                self.cross_slope * 100.0,
+                basr_io::show_num(self.cross_slope * 100.0),
                 MAX_CROSS_SLOPE * 100.0
             ));
         }
         if let Some(c) = self.crown_x_m {
             if !c.is_finite() || c.abs() > MAX_CROWN_X_M {
                 return Some(format!(
-                    "crown line x {c} m is not within ±{MAX_CROWN_X_M} m of the lane centre"
+                    "crown line x {} m is not within ±{MAX_CROWN_X_M} m of the lane centre",
+                    basr_io::show_num(c)
                 ));
             }
         }
@@ -247,9 +248,9 @@ impl Road {
                      the arm (within ±{MAX_PLANE_OFFSET_M} m of its base and sloped at most \
                      {} %)",
                     p.stop,
-                    p.z_m,
-                    p.dz_dx,
-                    p.dz_dy,
+                    basr_io::show_num(p.z_m),
+                    basr_io::show_num(p.dz_dx),
+                    basr_io::show_num(p.dz_dy),
                     MAX_CROSS_SLOPE * 100.0
                 ));
             }
@@ -292,6 +293,36 @@ mod tests {
             y_m: 4.6,
             heading_rad: -std::f64::consts::FRAC_PI_2 + 0.04,
         }
+    }
+
+    /// A road out of range is told with its number as a person writes it,
+    /// not every digit of a huge one.
+    #[test]
+    fn a_road_out_of_range_is_told_shortly() {
+        let steep = Road {
+            cross_slope: 1e306,
+            ..Road::default()
+        };
+        let p = steep.problem(0).unwrap();
+        assert!(p.starts_with("cross slope 1e308 % is outside ±12 %"), "{p}");
+        let crowned = Road {
+            crown_x_m: Some(-1e300),
+            ..Road::default()
+        };
+        let p = crowned.problem(0).unwrap();
+        assert!(p.starts_with("crown line x -1e300 m is not within"), "{p}");
+        let fitted = Road {
+            planes: vec![StopPlane {
+                stop: 1,
+                z_m: 1e200,
+                dz_dx: 0.5,
+                dz_dy: 0.0,
+            }],
+            ..Road::default()
+        };
+        let p = fitted.problem(1).unwrap();
+        assert!(p.contains("(z 1e200 m, slopes 0.5 and 0)"), "{p}");
+        assert!(p.len() < 200, "{p}");
     }
 
     #[test]
