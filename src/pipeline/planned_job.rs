@@ -379,7 +379,7 @@ fn kept_stops(
 fn pace_of(k: &crate::job::StopTiming) -> Option<trajectory::Pace> {
     [k.air_pace, k.path_pace]
         .into_iter()
-        .chain(k.join_paces.iter().map(|j| j.1))
+        .chain(k.join_paces.iter().map(|j| j.share))
         .all(|p| p > 0.0 && p <= 1.0)
         .then(|| trajectory::Pace {
             air: k.air_pace,
@@ -874,11 +874,11 @@ fn finish_description(
 /// The station's pace after `verdict` (a failed one): slow where the arm
 /// fell behind: the move out of stow when the worst error is in the
 /// station's first pass (the first stroke's, entered from stow); else the
-/// join into the worst stroke alone where the arm arrives behind at the
-/// first rungs of the pass it paints (a wide stroke's later pass is
-/// entered by a join, even on the station's first stroke); else the
-/// strokes' path. A
-/// plant of the spread set does not slow the whole path (`None`): on STOP
+/// join into the pass of the worst stroke where the arm arrives behind at
+/// its first rungs (a wide stroke's later pass is entered by a join, even
+/// on the station's first stroke; every pass of the stroke where the rows
+/// do not tell which, `late_pass`); else the strokes' path. A plant of
+/// the spread set does not slow the whole path (`None`): on STOP
 /// at full reach and the arrow shape at 3 m that cost the film, turning
 /// an even job into a NOT READY one for a plant that strays by tenths of a
 /// millimetre. `rows`: the station's rows in `samples`.
@@ -922,14 +922,24 @@ fn slower(
         && !first_pass
         && pass_start.is_some_and(|t0| verdict.worst_t_s - t0 < arrival_s);
     if arrival {
-        match pace.joins.iter().position(|(s, _)| *s as i64 == stroke) {
-            Some(k) if pace.joins[k].1 > min_pace => {
-                pace.joins[k].1 *= pace_step;
+        // that pass's join alone where the rows tell which pass it is
+        let pass = pass_start.and_then(|t0| {
+            let runs = paths.stations.get(si as usize)?;
+            late_pass(samples, rows.clone(), stroke, t0, runs)
+        });
+        let named = |j: &basr_job::JoinPace| j.stroke as i64 == stroke && j.pass == pass;
+        match pace.joins.iter().position(named) {
+            Some(k) if pace.joins[k].share > min_pace => {
+                pace.joins[k].share *= pace_step;
                 joins_slowed = true;
             }
             Some(_) => {}
             None => {
-                pace.joins.push((stroke as usize, pace_step));
+                pace.joins.push(basr_job::JoinPace {
+                    stroke: stroke as usize,
+                    share: pace_step,
+                    pass,
+                });
                 joins_slowed = true;
             }
         }
@@ -950,6 +960,31 @@ fn slower(
         });
     }
     Ok(Some(pace))
+}
+
+/// Which pass of `stroke` (0 the first painted) the gun opened for at
+/// `t0_s` in the station's `rows`, where the stroke has more than one of
+/// the station's `runs` and its rows' painting stretches are its runs, one
+/// each (a pass painted on from the last without closing the gun, or one
+/// the gun closes within, leaves it unknown: None, as for a stroke of one
+/// pass, whose joins are all its).
+fn late_pass(
+    s: &crate::job::Samples,
+    rows: std::ops::Range<usize>,
+    stroke: i64,
+    t0_s: f64,
+    runs: &[joints::Run],
+) -> Option<usize> {
+    let passes = runs.iter().filter(|r| r.stroke as i64 == stroke).count();
+    let painting = |i: usize| s.stroke[i] == stroke && s.paint[i] == 1;
+    let starts: Vec<f64> = rows
+        .clone()
+        .filter(|&i| painting(i) && (i == rows.start || !painting(i - 1)))
+        .map(|i| s.t_s[i])
+        .collect();
+    (passes > 1 && starts.len() == passes)
+        .then(|| starts.iter().position(|&t| t == t0_s))
+        .flatten()
 }
 
 /// The job with its film measured (`plan::film`, when `req.film`): the
@@ -1016,6 +1051,58 @@ mod tests {
         // a station not run on the set (an electric kind) records none
         assert_eq!(verified_on(&[Some(a), None]), None);
         assert_eq!(verified_on(&[]), None);
+    }
+
+    /// The pass the arm arrived late at is told by the gun's openings of
+    /// its stroke, where they are its runs one each; else none is named
+    /// (the verification then slows every join into the stroke).
+    #[test]
+    fn the_late_pass_is_the_gun_s_opening_for_it() {
+        use crate::job::{SampleRow, Samples};
+        // (stroke, paint) per row, 0.1 s apart: stroke 3 in three stretches
+        // with stroke 5 between, the station's rows from row 1
+        let rows = [
+            (-1, 0),
+            (3, 1),
+            (3, 1),
+            (3, 0),
+            (5, 1),
+            (3, 1),
+            (3, 0),
+            (3, 1),
+            (3, 1),
+            (-1, 0),
+        ];
+        let mut s = Samples::default();
+        for (i, &(stroke, paint)) in rows.iter().enumerate() {
+            s.push(&SampleRow {
+                t_s: 0.1 * i as f64,
+                stroke,
+                paint,
+                ..Default::default()
+            });
+        }
+        let run = |stroke| joints::Run {
+            stroke,
+            knots: vec![],
+            joints: vec![],
+            paint_first: 0,
+            paint_last: 0,
+        };
+        let runs = [run(3), run(5), run(3), run(3)];
+        // the pass whose stretch starts at row i
+        let at = |i: usize, runs: &[joints::Run]| late_pass(&s, 1..rows.len(), 3, s.t_s[i], runs);
+        assert_eq!(at(1, &runs), Some(0));
+        assert_eq!(at(5, &runs), Some(1));
+        assert_eq!(at(7, &runs), Some(2));
+        // not a time the gun opened for stroke 3
+        assert_eq!(at(2, &runs), None);
+        // two runs painted in three stretches, or four in three: unknown
+        assert_eq!(at(5, &runs[..3]), None);
+        assert_eq!(at(5, &[run(3), run(3), run(3), run(3)]), None);
+        // a stroke of one pass: its joins are all its
+        let one = late_pass(&s, 4..6, 5, s.t_s[4], &runs);
+        assert_eq!(one, None);
     }
 
     /// `req` as `job` was planned: its robot with the tip compile chose,

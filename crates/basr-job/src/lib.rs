@@ -222,9 +222,11 @@ pub struct StopTiming {
     pub air_pace: f64,
     /// The painting path.
     pub path_pace: f64,
-    /// The joins slowed, each `[stroke, share]`.
+    /// The joins slowed, each `[stroke, share]` (every join into the
+    /// stroke at this stop) or `[stroke, share, pass]` (the join into its
+    /// pass-th pass here, 0 the first painted).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub join_paces: Vec<(usize, f64)>,
+    pub join_paces: Vec<JoinPace>,
     /// The move out of stow flies into the first stroke without resting.
     pub fly_in: bool,
     /// The largest painting error on the robot description, m.
@@ -236,6 +238,60 @@ pub struct StopTiming {
     /// A plant's failure compile kept the station with, in words.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub over: Option<String>,
+}
+
+/// A join the verification slowed: the joins into `stroke` at a stop, or
+/// only the one into its `pass`-th pass there (0 the first painted), flown
+/// at `share` of the joints' accelerations. In a job, `[stroke, share]` or
+/// `[stroke, share, pass]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(from = "JoinPaceArray", into = "JoinPaceArray")]
+pub struct JoinPace {
+    pub stroke: usize,
+    pub share: f64,
+    pub pass: Option<usize>,
+}
+
+impl JoinPace {
+    /// Whether it slows the join into pass `pass` (0 the first painted)
+    /// of `stroke`.
+    pub fn slows(&self, stroke: usize, pass: usize) -> bool {
+        self.stroke == stroke && self.pass.is_none_or(|p| p == pass)
+    }
+}
+
+/// [`JoinPace`] as a job writes it.
+#[derive(Clone, Copy, Serialize, Deserialize)]
+#[serde(untagged)]
+enum JoinPaceArray {
+    Pass(usize, f64, usize),
+    Stroke(usize, f64),
+}
+
+impl From<JoinPaceArray> for JoinPace {
+    fn from(a: JoinPaceArray) -> Self {
+        match a {
+            JoinPaceArray::Pass(stroke, share, pass) => JoinPace {
+                stroke,
+                share,
+                pass: Some(pass),
+            },
+            JoinPaceArray::Stroke(stroke, share) => JoinPace {
+                stroke,
+                share,
+                pass: None,
+            },
+        }
+    }
+}
+
+impl From<JoinPace> for JoinPaceArray {
+    fn from(j: JoinPace) -> Self {
+        match j.pass {
+            Some(pass) => JoinPaceArray::Pass(j.stroke, j.share, pass),
+            None => JoinPaceArray::Stroke(j.stroke, j.share),
+        }
+    }
 }
 
 impl Summary {
@@ -923,6 +979,24 @@ impl Job {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A slowed join reads and writes as `[stroke, share]` (every join into
+    /// the stroke, as jobs wrote it before passes were named) or `[stroke,
+    /// share, pass]`, and slows just the joins it names.
+    #[test]
+    fn a_join_pace_is_a_stroke_s_or_one_pass_s() {
+        let all: JoinPace = serde_json::from_str("[9, 0.6]").unwrap();
+        let one: JoinPace = serde_json::from_str("[9, 0.36, 2]").unwrap();
+        assert_eq!((all.stroke, all.share, all.pass), (9, 0.6, None));
+        assert_eq!((one.stroke, one.share, one.pass), (9, 0.36, Some(2)));
+        assert_eq!(serde_json::to_string(&all).unwrap(), "[9,0.6]");
+        assert_eq!(serde_json::to_string(&one).unwrap(), "[9,0.36,2]");
+        assert!(all.slows(9, 0) && all.slows(9, 3) && !all.slows(8, 0));
+        assert!(one.slows(9, 2) && !one.slows(9, 1) && !one.slows(2, 2));
+        for bad in ["[9]", "[9, 0.5, 1, 2]", "[-1, 0.5]", "[9, 0.5, -1]", "{}"] {
+            assert!(serde_json::from_str::<JoinPace>(bad).is_err(), "{bad}");
+        }
+    }
 
     /// A row is finite exactly when its CSV fields hold no `NaN` or `inf`
     /// (what `basr check` refused rows for before it read the numbers):

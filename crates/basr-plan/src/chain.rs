@@ -12,6 +12,7 @@
 //! joint's range is flattened (tangents scaled down, at worst to zero: the
 //! arm then stops at the seam, and the stop is reported with its reason).
 
+use basr_job::JoinPace;
 use basr_robot::AnyRobot;
 
 use super::joints::Run;
@@ -100,15 +101,15 @@ impl Chain {
 /// from each stroke's last rung straight into the next one's first where
 /// they stay in the joints' ranges, else the leads and a blend.
 ///
-/// `slow_joins` (stroke entered, share): the joins into those strokes are
-/// designed to that share of the accelerations (and its square root of the
-/// speeds) and flown no faster, where the verification found the arm
-/// arriving behind.
+/// `slow_joins`: the joins into those strokes, or into one pass of one
+/// (`join_share`), are designed to their share of the accelerations (and
+/// its square root of the speeds) and flown no faster, where the
+/// verification found the arm arriving behind.
 pub fn chain(
     robot: &AnyRobot,
     runs: &[Run],
     limits: &JointLimits<5>,
-    slow_joins: &[(usize, f64)],
+    slow_joins: &[JoinPace],
     joins: &Joins,
 ) -> Chain {
     let mut out = Chain {
@@ -122,10 +123,7 @@ pub fn chain(
     // flown[i]: the join from run i's last rung into run i + 1's first.
     let mut flown: Vec<Option<Blend>> = (1..runs.len())
         .map(|ri| {
-            let share = slow_joins
-                .iter()
-                .find(|(st, _)| *st == runs[ri].stroke)
-                .map_or(1.0, |&(_, f)| f);
+            let share = join_share(slow_joins, runs, ri);
             let design = JointLimits {
                 vel: limits.vel.map(|v| v * share.sqrt()),
                 acc: limits.acc.map(|v| v * share),
@@ -320,6 +318,20 @@ pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side, joins: &Joins) -> Op
             .fold(0.0, f64::max),
     )
     .filter(|t| t.is_finite())
+}
+
+/// The share of the accelerations (1 where not slowed) the join into run
+/// `ri` of a station's `runs` is flown at: the least of the slowed joins
+/// that name it, by its stroke or by its stroke and its pass (how many
+/// runs of that stroke come before it).
+pub fn join_share(slow_joins: &[JoinPace], runs: &[Run], ri: usize) -> f64 {
+    let stroke = runs[ri].stroke;
+    let pass = runs[..ri].iter().filter(|r| r.stroke == stroke).count();
+    slow_joins
+        .iter()
+        .filter(|j| j.slows(stroke, pass))
+        .map(|j| j.share)
+        .fold(1.0, f64::min)
 }
 
 /// Least time (s) any move takes from `a` to `b`, each a rung's state at
@@ -550,4 +562,47 @@ fn blend(
         },
         stop,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A slowed join names a stroke (every join into it) or one pass of
+    /// it (counted in the station's painting order); a join named twice
+    /// takes the slower share.
+    #[test]
+    fn a_slowed_join_is_the_pass_it_names() {
+        let run = |stroke| Run {
+            stroke,
+            knots: vec![],
+            joints: vec![],
+            paint_first: 0,
+            paint_last: 0,
+        };
+        // stroke 3's passes 0, 1, 2 are runs 0, 2, 3
+        let runs = [run(3), run(5), run(3), run(3), run(7)];
+        let pace = |stroke, share, pass| JoinPace {
+            stroke,
+            share,
+            pass,
+        };
+        let slow = [
+            pace(3, 0.6, Some(1)),
+            pace(5, 0.36, None),
+            pace(7, 0.6, None),
+            pace(7, 0.36, Some(0)),
+        ];
+        let shares: Vec<f64> = (0..runs.len())
+            .map(|ri| join_share(&slow, &runs, ri))
+            .collect();
+        assert_eq!(shares, [1.0, 0.36, 0.6, 1.0, 0.36]);
+        assert_eq!(join_share(&[], &runs, 2), 1.0);
+        // a stroke-wide entry slows every pass of it
+        let all = [pace(3, 0.6, None)];
+        let shares: Vec<f64> = (0..runs.len())
+            .map(|ri| join_share(&all, &runs, ri))
+            .collect();
+        assert_eq!(shares, [0.6, 1.0, 0.6, 0.6, 1.0]);
+    }
 }

@@ -27,9 +27,9 @@ pub struct Limits<'a> {
     /// For the move back to it (no painting follows, so it is never
     /// slowed by the verification).
     pub back: &'a JointLimits<5>,
-    /// (stroke entered, share): joins into those strokes at that share of
-    /// the accelerations (`join_limits`).
-    pub joins: &'a [(usize, f64)],
+    /// The joins slowed, each at its share of the accelerations
+    /// (`chain::join_share`, `join_limits`).
+    pub joins: &'a [basr_job::JoinPace],
     /// Fly out of stow into the first rung at speed (else rest at the lead).
     pub fly_in: bool,
     /// Share of the limits the jerk-limited moves hold back
@@ -139,11 +139,7 @@ pub fn fly(
                 }
             } else {
                 let c = cuts[k - 1];
-                let share = lim
-                    .joins
-                    .iter()
-                    .find(|(st, _)| *st == runs[c.0 + 1].stroke)
-                    .map_or(1.0, |&(_, f)| f);
+                let share = super::chain::join_share(lim.joins, runs, c.0 + 1);
                 let from = pieces
                     .last()
                     .and_then(|p| p.path_end(true))

@@ -869,12 +869,9 @@ mod tests {
         }
     }
 
-    /// The station's order search chooses the same order, directions and
-    /// branches whether its join durations are kept in a table or, for a
-    /// station too large for one, a map.
-    #[test]
-    fn join_costs_in_a_table_or_a_map_choose_alike() {
-        let robot = AnyRobot::Basr(Robot::basr());
+    /// Passes of six knots 64 mm apart from (x, y) with the fan at yaw,
+    /// solved both ways round from a station 4.6 m up the lane.
+    fn short_passes(robot: &AnyRobot, starts: &[(f64, f64, f64)]) -> Vec<[Option<Candidates>; 2]> {
         let joins = crate::tuning::Tuning::DEFAULT.joins;
         let station = Station {
             x_m: 0.0,
@@ -882,22 +879,40 @@ mod tests {
             heading_rad: -FRAC_PI_2,
         };
         let road = Road::default();
-        let at = Stop::new(0, &station, &road, &robot);
-        let ways: Vec<[Option<Candidates>; 2]> = [(-0.6, 1.2), (0.4, 0.9), (-0.2, 2.0), (0.7, 1.6)]
+        let at = Stop::new(0, &station, &road, robot);
+        starts
             .iter()
             .enumerate()
-            .map(|(k, &(x, y))| {
+            .map(|(k, &(x, y, yaw))| {
                 let knots: Vec<Knot> = (0..6)
-                    .map(|i| knot(x + 0.04 * i as f64, y + 0.05 * i as f64, 0.15, 0.2, 0.0))
+                    .map(|i| knot(x + 0.04 * i as f64, y + 0.05 * i as f64, 0.15, yaw, 0.0))
                     .collect();
                 let way = |rev: bool, id: usize| {
-                    candidates(&robot, &at, &knots, rev, k, &joins)
+                    candidates(robot, &at, &knots, rev, k, &joins)
                         .ok()
                         .map(|c| Candidates { id, ..c })
                 };
                 [way(false, 2 * k), way(true, 2 * k + 1)]
             })
-            .collect();
+            .collect()
+    }
+
+    /// The station's order search chooses the same order, directions and
+    /// branches whether its join durations are kept in a table or, for a
+    /// station too large for one, a map.
+    #[test]
+    fn join_costs_in_a_table_or_a_map_choose_alike() {
+        let robot = AnyRobot::Basr(Robot::basr());
+        let joins = crate::tuning::Tuning::DEFAULT.joins;
+        let ways = short_passes(
+            &robot,
+            &[
+                (-0.6, 1.2, 0.2),
+                (0.4, 0.9, 0.2),
+                (-0.2, 2.0, 0.2),
+                (0.7, 1.6, 0.2),
+            ],
+        );
         assert!(ways.iter().all(|w| w[0].is_some() && w[1].is_some()));
         let stow = stow_joints(&robot);
         let chosen = |table_max: usize| {
@@ -941,34 +956,15 @@ mod tests {
     #[test]
     fn the_air_floor_is_the_least_of_every_order() {
         let robot = AnyRobot::Basr(Robot::basr());
-        let joins = crate::tuning::Tuning::DEFAULT.joins;
-        let station = Station {
-            x_m: 0.0,
-            y_m: 4.6,
-            heading_rad: -FRAC_PI_2,
-        };
-        let road = Road::default();
-        let at = Stop::new(0, &station, &road, &robot);
-        let ways: Vec<[Option<Candidates>; 2]> = [
-            (-0.6, 1.2, 0.2),
-            (0.4, 0.9, 1.0),
-            (-0.2, 2.0, -0.5),
-            (0.7, 1.6, 0.4),
-        ]
-        .iter()
-        .enumerate()
-        .map(|(k, &(x, y, yaw))| {
-            let knots: Vec<Knot> = (0..6)
-                .map(|i| knot(x + 0.04 * i as f64, y + 0.05 * i as f64, 0.15, yaw, 0.0))
-                .collect();
-            let way = |rev: bool, id: usize| {
-                candidates(&robot, &at, &knots, rev, k, &joins)
-                    .ok()
-                    .map(|c| Candidates { id, ..c })
-            };
-            [way(false, 2 * k), way(true, 2 * k + 1)]
-        })
-        .collect();
+        let ways = short_passes(
+            &robot,
+            &[
+                (-0.6, 1.2, 0.2),
+                (0.4, 0.9, 1.0),
+                (-0.2, 2.0, -0.5),
+                (0.7, 1.6, 0.4),
+            ],
+        );
         let limits = crate::timing::JointLimits {
             vel: std::array::from_fn(|j| robot.limits()[j].max_vel),
             acc: std::array::from_fn(|j| robot.limits()[j].max_acc),

@@ -167,8 +167,9 @@ pub use basr_robot::Q;
 /// by the verification where the arm falls behind: `air` for the moves
 /// from and to the stow pose (the arm arrives at its first stroke ringing
 /// after a long fast move), `path` for the chained path through the strokes.
-/// `joins`: (stroke entered, share) for the flown joins into those
-/// strokes alone (the arm arrived behind at the stroke's first rungs).
+/// `joins`: the flown joins into those strokes, or into one pass of one,
+/// at a share of the accelerations (the arm arrived behind at the pass's
+/// first rungs).
 /// `fly_in`: the move out of stow flies into the first stroke's first rung
 /// at painting speed; else it comes to rest at the start of the stroke's
 /// lead and the time law runs up from there (the first thing the
@@ -177,7 +178,7 @@ pub use basr_robot::Q;
 pub struct Pace {
     pub air: f64,
     pub path: f64,
-    pub joins: Vec<(usize, f64)>,
+    pub joins: Vec<basr_job::JoinPace>,
     pub fly_in: bool,
 }
 
