@@ -170,7 +170,7 @@ fn bad_road_tables_are_refused() {
     for (road, says) in [
         ("crown_x_m = 0.3", "needs cross_slope_pct"),
         ("cross_slope_pct = 20", "cross slope 20 % is outside ±12 %"),
-        ("cross_slope_pct = nan", "cross slope NaN %"),
+        ("cross_slope_pct = nan", "cross slope is not a number"),
         ("cross_slope_pct = 2\nbanking = 1", "banking"),
         ("cross_slope_pct = 2\ncrown_x_m = 40", "crown line x 40 m"),
     ] {

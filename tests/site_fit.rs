@@ -576,6 +576,7 @@ fn a_truck_far_off_is_told_where_to_move() {
         err.contains("re-planning: stop 1: the arm cannot reach"),
         "{err}"
     );
+
     // Just past the edge of reach (0.68 m short of the planned place):
     // the leaned nozzle of the O's knots is what falls short, and the crew
     // is told where to move, not compile's advice on letter sizes.
@@ -644,6 +645,17 @@ fn bad_point_files_are_refused() {
         d,
         "t_s,station,stroke,paint\n0.000,0,-1,0\n",
         &["reads as CSV", "a points file is TOML"],
+    );
+    // a points file opening with a comment that has commas in it is still
+    // read as one: its own mistake named with its line
+    let at = good.find("road_m = [").unwrap();
+    let close = at + good[at..].find(']').unwrap();
+    let mut typo = good.clone();
+    typo.remove(close);
+    refused(
+        d,
+        &format!("# measured 2026-12-06, stop 1, truck 12\n{typo}"),
+        &["line ", "expected `]`"],
     );
     let job_text = std::fs::read_to_string(d.join("j.job.json")).unwrap();
     refused(
@@ -765,6 +777,20 @@ fn points_may_be_encoder_counts() {
         d,
         &bad,
         &["encoders need tip_gap_m", "measure it with a rule"],
+    );
+    // A count the joint cannot reach: named, with the joint's range.
+    let at = text.find("enc_extension = ").unwrap() + "enc_extension = ".len();
+    let end = at + text[at..].find([',', ' ', '}']).unwrap();
+    let mut far = text.clone();
+    far.replace_range(at..end, "-900000");
+    refused(
+        d,
+        &far,
+        &[
+            "enc_extension = -900000 puts extension_m at",
+            "outside its range",
+            "check the count",
+        ],
     );
 }
 

@@ -167,8 +167,7 @@ fn base_of(
             let gap = p.tip_gap_m.ok_or_else(|| {
                 anyhow::anyhow!(
                     "{origin}: point {name:?}: encoders need tip_gap_m, the tip's height over \
-                     the road when the counts were read (m; measure it with a rule, 0 where \
-                     the tip touched the road)"
+                     the road when the counts were read (m; measure it with a rule)"
                 )
             })?;
             anyhow::ensure!(
@@ -179,6 +178,27 @@ fn base_of(
             let q = robot.joints_from_encoders(&counts).map_err(|e| {
                 anyhow::anyhow!("{origin}: point {name:?}: these counts are no pose: {e}")
             })?;
+            // a count the joint cannot reach is a misread or mistyped count
+            let (limits, joints) = (robot.limits(), robot.joint_names());
+            for k in 0..5 {
+                let l = &limits[k];
+                // a part in a million of the range: the count's own rounding
+                let slack = 1e-6 * (l.max - l.min);
+                if !(l.min - slack..=l.max + slack).contains(&q[k]) {
+                    let (at, lo, hi) = (
+                        basr::io::show_num(q[k]),
+                        basr::io::show_num(l.min),
+                        basr::io::show_num(l.max),
+                    );
+                    anyhow::bail!(
+                        "{origin}: point {name:?}: {} = {} puts {} at {at}, outside its range \
+                         {lo} to {hi}: check the count (`basr pose --json` prints a pose's)",
+                        names[k],
+                        counts[k],
+                        joints[k]
+                    );
+                }
+            }
             let pose = robot.fk(&q);
             Ok([pose.x_m, pose.y_m, pose.z_m - gap])
         }
@@ -211,14 +231,16 @@ fn read_points(
         let first = text
             .lines()
             .map(str::trim)
-            .find(|l| !l.is_empty())
+            .find(|l| !l.is_empty() && !l.starts_with('#'))
             .unwrap_or("");
         let what = if first.starts_with('{') {
             "it reads as JSON (a job?), not a points file".to_string()
-        } else if first.contains(',') && !first.contains('=') {
+        } else if first.contains(',') && !first.contains('=') && !first.starts_with('[') {
             "it reads as CSV (the setpoint CSV?), not a points file".to_string()
         } else {
-            basr::io::one_line(e.message())
+            let at = e.span().map(|s| basr::io::line_col(&text, s.start));
+            let at = at.map_or(String::new(), |(l, c)| format!("line {l}, column {c}: "));
+            format!("{at}{}", basr::io::one_line(e.message()))
         };
         anyhow::anyhow!(
             "{origin}: {what}; a points file is TOML: `stop = 1` and [[point]] tables with \
@@ -585,7 +607,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
                     "  {:<12} off by {:.1} mm on the road, {:+.1} mm in height",
                     r.name,
                     r.xy_m * 1e3,
-                    z * 1e3 + 0.0
+                    basr::io::shown_as(z * 1e3, 1)
                 ),
                 None => note!("  {:<12} off by {:.1} mm on the road", r.name, r.xy_m * 1e3),
             }

@@ -1189,8 +1189,9 @@ mod tests {
                     format!("{:.2} s over {n} passes{how}", f.s)
                 })
                 .collect();
+            let lane = lane_ft.map_or(String::new(), |w| format!(" on a {w} ft lane"));
             println!(
-                "{text} at {ft} ft, tip {}: air {:.2} s ({:.2} s unverified), of it truck \
+                "{text} at {ft} ft{lane}, tip {}: air {:.2} s ({:.2} s unverified), of it truck \
                  {truck:.2} s; air floor {}; bound ratio {:.3}, at the floor {least:.3}",
                 job.paint.tip.as_deref().unwrap_or("-"),
                 s.air_time_s,

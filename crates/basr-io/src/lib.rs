@@ -557,6 +557,13 @@ pub fn same_file_pair<'a>(paths: &[NamedPath<'a>]) -> Option<(NamedPath<'a>, Nam
     None
 }
 
+/// `v` rounded to the `decimals` a message prints it with, and 0 where
+/// that is zero, so that `{:.3}` or `{:+.1}` of it never reads "-0.000".
+pub fn shown_as(v: f64, decimals: i32) -> f64 {
+    let k = 10f64.powi(decimals);
+    (v * k).round() / k + 0.0
+}
+
 /// `v` with `decimals` decimals, trailing zeros (and a bare point)
 /// dropped, and no negative zero: `fixed(2.50, 3)` is `2.5`, `fixed(-0.0001,
 /// 2)` is `0`.
@@ -978,6 +985,16 @@ mod tests {
             .file_type()
             .is_symlink());
         assert_eq!(std::fs::read(&real).unwrap(), b"new");
+    }
+
+    #[test]
+    fn shown_as_never_prints_a_negative_zero() {
+        assert_eq!(format!("{:.3}", shown_as(-0.0004, 3)), "0.000");
+        assert_eq!(format!("{:+.1}", shown_as(-0.04, 1)), "+0.0");
+        assert_eq!(format!("{:.3}", shown_as(-0.0006, 3)), "-0.001");
+        assert_eq!(shown_as(1.23456, 2), 1.23);
+        // what it replaces: the plain format of a tiny negative number
+        assert_eq!(format!("{:.3}", -0.0004), "-0.000");
     }
 
     #[test]

@@ -212,19 +212,26 @@ impl Road {
     /// is checked like a marking file's `[road]`).
     pub fn problem(&self, stops: usize) -> Option<String> {
         if !self.cross_slope.is_finite() || self.cross_slope.abs() > MAX_CROSS_SLOPE {
+            let (pct, max) = basr_io::show_apart(self.cross_slope * 100.0, MAX_CROSS_SLOPE * 100.0);
+            let what = if self.cross_slope.is_nan() {
+                "is not a number".to_string()
+            } else {
+                format!("{pct} % is outside ±{max} %")
+            };
             return Some(format!(
-                "cross slope {} % is outside ±{} % (a road's cross slope is 1.5–2 %, a \
-                 superelevated curve's at most about 12 %)",
-                basr_io::show_num(self.cross_slope * 100.0),
-                MAX_CROSS_SLOPE * 100.0
+                "cross slope {what} (a road's cross slope is 1.5–2 %, a superelevated \
+                 curve's at most about 12 %)"
             ));
         }
         if let Some(c) = self.crown_x_m {
             if !c.is_finite() || c.abs() > MAX_CROWN_X_M {
-                return Some(format!(
-                    "crown line x {} m is not within ±{MAX_CROWN_X_M} m of the lane centre",
-                    basr_io::show_num(c)
-                ));
+                let (x, max) = basr_io::show_apart(c, MAX_CROWN_X_M);
+                let what = if c.is_nan() {
+                    "is not a number".to_string()
+                } else {
+                    format!("{x} m is not within ±{max} m of the lane centre")
+                };
+                return Some(format!("crown line x {what}"));
             }
         }
         let mut seen = std::collections::BTreeSet::new();
@@ -311,6 +318,34 @@ mod tests {
         };
         let p = crowned.problem(0).unwrap();
         assert!(p.starts_with("crown line x -1e300 m is not within"), "{p}");
+        // just past a limit, told apart from it; not a number, said so
+        let just = Road {
+            cross_slope: 0.120000001,
+            crown_x_m: Some(MAX_CROWN_X_M + 1e-7),
+            ..Road::default()
+        };
+        let p = just.problem(0).unwrap();
+        assert!(
+            p.starts_with("cross slope 12.0000001 % is outside ±12 %"),
+            "{p}"
+        );
+        let p = Road {
+            cross_slope: 0.0,
+            ..just
+        }
+        .problem(0)
+        .unwrap();
+        assert!(
+            p.starts_with("crown line x 15.0000001 m is not within ±15 m"),
+            "{p}"
+        );
+        let p = Road {
+            cross_slope: f64::NAN,
+            ..Road::default()
+        }
+        .problem(0)
+        .unwrap();
+        assert!(p.starts_with("cross slope is not a number"), "{p}");
         let fitted = Road {
             planes: vec![StopPlane {
                 stop: 1,

@@ -227,14 +227,14 @@ pub fn put_at_site(
             back_to(&st, &planned)
         ),
     };
+    // each to the digits it is printed with, without a "-0.0"
     Err(StationError::SiteOutOfReach {
         stop: si + 1,
-        x: st.x_m,
-        y: st.y_m,
-        // to the tenth it is printed with, without a "-0.0"
-        turned_deg: (turned_deg(st.heading_rad) * 10.0).round() / 10.0 + 0.0,
-        px,
-        py,
+        x: basr_io::shown_as(st.x_m, 3),
+        y: basr_io::shown_as(st.y_m, 3),
+        turned_deg: basr_io::shown_as(turned_deg(st.heading_rad), 1),
+        px: basr_io::shown_as(px, 3),
+        py: basr_io::shown_as(py, 3),
         short_m: slack - here,
         advice,
     })
