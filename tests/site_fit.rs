@@ -432,8 +432,7 @@ fn station_rows(j: &Job, si: u32) -> Vec<Vec<String>> {
 fn a_fitted_stop_is_fitted_again_from_its_own_points() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    succeeded(basr(d, &["compile", "SCHOOL XING", "-o", "j.job.json"]));
-    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let job = word_job(d, "SCHOOL XING");
     let truth = moved(&job, 1, MOVE, level(1));
     let points = points_file(&job, 1, &truth, 0.002, 7);
     succeeded(fit(d, &points, &[]));
@@ -455,8 +454,7 @@ fn a_fitted_stop_is_fitted_again_from_its_own_points() {
 fn a_word_is_fitted_stop_by_stop_on_roads_of_their_own() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    succeeded(basr(d, &["compile", "STOP AHEAD", "-o", "j.job.json"]));
-    let job = Job::read(&d.join("j.job.json")).unwrap();
+    let job = word_job(d, "STOP AHEAD");
     assert_eq!(
         job.stations.len(),
         2,
@@ -514,7 +512,12 @@ fn fit_a_stop_beside_a_bicycle() {
 }
 
 fn stop_job(dir: &Path) -> Job {
-    succeeded(basr(dir, &["compile", "STOP", "-o", "j.job.json"]));
+    word_job(dir, "STOP")
+}
+
+/// `words` compiled at the defaults into `j.job.json`, read back.
+fn word_job(dir: &Path, words: &str) -> Job {
+    succeeded(basr(dir, &["compile", words, "-o", "j.job.json"]));
     Job::read(&dir.join("j.job.json")).unwrap()
 }
 

@@ -183,8 +183,7 @@ fn base_of(
             for k in 0..5 {
                 let l = &limits[k];
                 // a part in a million of the range: the count's own rounding
-                let slack = 1e-6 * (l.max - l.min);
-                if !(l.min - slack..=l.max + slack).contains(&q[k]) {
+                if l.excess(q[k]) > 1e-6 * (l.max - l.min) {
                     let (at, lo, hi) = (
                         basr::io::show_num(q[k]),
                         basr::io::show_num(l.min),
@@ -466,11 +465,7 @@ pub fn run(args: Args, global: &Global) -> anyhow::Result<Outcome> {
     let font = replan::replan_font(&job, &origin, args.font.as_deref(), "fit")?;
     let plan = replan::recover(&job, &origin, font, args.marking.as_deref(), "fit")?;
     let mut req = plan.request().clone();
-    req.tilt = match job.layout.tilt_method.as_str() {
-        "none" => Tilt::None,
-        "trapezoid" => Tilt::Trapezoid,
-        _ => Tilt::Quadrilateral,
-    };
+    req.tilt = Tilt::of_job(&job.layout.tilt_method);
     req.tilt_named = true;
     let mut stations = job.stations.clone();
     stations[si] = fitted.station.clone();

@@ -1109,11 +1109,7 @@ mod tests {
     /// its tilt method and options.
     fn as_planned(req: &CompileRequest, job: &Job) -> CompileRequest {
         let mut r = req.clone().with_options(job.layout.options.as_ref());
-        r.tilt = match job.layout.tilt_method.as_str() {
-            "none" => request::Tilt::None,
-            "trapezoid" => request::Tilt::Trapezoid,
-            _ => request::Tilt::Quadrilateral,
-        };
+        r.tilt = request::Tilt::of_job(&job.layout.tilt_method);
         r.tilt_named = true;
         r.robot_description = Some(job.robot.clone());
         r

@@ -309,6 +309,12 @@ pub fn join_time(limits: &JointLimits<5>, a: Side, b: Side, joins: &Joins) -> Op
     let (e, _, _) = seam_ends(limits, a, b, joins)?;
     // The slowest joint alone (the synchronised move can take a little
     // longer where another joint cannot stretch to it).
+    slowest_joint(&e)
+}
+
+/// The least time the slowest joint alone takes between `e`'s ends at its
+/// limits; None where it is not finite.
+fn slowest_joint(e: &Ends<5>) -> Option<f64> {
     Some(
         (0..5)
             .map(|j| {
@@ -350,15 +356,15 @@ pub fn least_time(
         None => Some((*rest, [0.0; 5])),
     };
     let ((p0, v0), (p1, v1)) = (state(a)?, state(b)?);
-    Some(
-        (0..5)
-            .map(|j| {
-                let acc = [limits.acc[j]; 2];
-                min_time((p0[j], v0[j]), (p1[j], v1[j]), limits.vel[j], acc)
-            })
-            .fold(0.0, f64::max),
-    )
-    .filter(|t| t.is_finite())
+    slowest_joint(&Ends {
+        p0,
+        v0,
+        p1,
+        v1,
+        vel: limits.vel,
+        acc: limits.acc,
+        acc_end: limits.acc,
+    })
 }
 
 /// The join flown from run a's last rung at its painting speed into run

@@ -318,11 +318,7 @@ pub fn air_floor(
     joins: &Joins,
 ) -> Result<Vec<AirFloor>, CompileError> {
     let stow = stow_joints(robot);
-    let limits = super::timing::JointLimits {
-        vel: std::array::from_fn(|j| robot.limits()[j].max_vel),
-        acc: std::array::from_fn(|j| robot.limits()[j].max_acc),
-        jerk: [f64::INFINITY; 5],
-    };
+    let limits = full_limits(robot);
     let n = plan.stations.len().min(tours.stations.len());
     (0..n)
         .map(|si| {
@@ -330,6 +326,17 @@ pub fn air_floor(
             Ok(least_air(&ways, &limits, &stow, AIR_FLOOR_MAX_PASSES))
         })
         .collect()
+}
+
+/// The robot's own speed and acceleration limits in full (no drive's cap,
+/// no jerk limit): what [`air_floor`] holds each move to.
+fn full_limits(robot: &AnyRobot) -> super::timing::JointLimits<5> {
+    let l = robot.limits();
+    super::timing::JointLimits {
+        vel: l.map(|l| l.max_vel),
+        acc: l.map(|l| l.max_acc),
+        jerk: [f64::INFINITY; 5],
+    }
 }
 
 /// [`air_floor`] of one station's passes, searched over every order where
@@ -367,8 +374,8 @@ fn least_air(
         let side = passes + 1;
         let mut cost = vec![f64::INFINITY; side * side];
         for (v, nv) in nodes.iter().enumerate() {
-            let (a, b) = (nv.0 + 1, nv.0 + 1);
-            cost[b] = cost[b].min(out[v]);
+            let a = nv.0 + 1;
+            cost[a] = cost[a].min(out[v]);
             cost[a * side] = cost[a * side].min(back[v]);
             for (w, nw) in nodes.iter().enumerate() {
                 if nw.0 != nv.0 {
@@ -965,11 +972,7 @@ mod tests {
                 (0.7, 1.6, 0.4),
             ],
         );
-        let limits = crate::timing::JointLimits {
-            vel: std::array::from_fn(|j| robot.limits()[j].max_vel),
-            acc: std::array::from_fn(|j| robot.limits()[j].max_acc),
-            jerk: [f64::INFINITY; 5],
-        };
+        let limits = full_limits(&robot);
         let stow = stow_joints(&robot);
         let time = |a: Option<Side>, b: Option<Side>| {
             crate::chain::least_time(&limits, a, b, &stow).unwrap_or(f64::INFINITY)

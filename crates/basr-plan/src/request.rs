@@ -46,6 +46,16 @@ impl Tilt {
         }
     }
 
+    /// The method a job was planned with, from its `layout.tilt_method`
+    /// (the default where the name is none of them).
+    pub fn of_job(name: &str) -> Tilt {
+        match name {
+            "none" => Tilt::None,
+            "trapezoid" => Tilt::Trapezoid,
+            _ => Tilt::Quadrilateral,
+        }
+    }
+
     /// The name written in the job (`layout.tilt_method`).
     pub fn name(self) -> &'static str {
         match self {
